@@ -1,0 +1,125 @@
+#include "solver/core/sampling.h"
+
+#include <algorithm>
+
+namespace radflux {
+
+uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
+  uint32_t w = l - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  do {
+    i ^= p;
+    i *= 0xe170893d;
+    i ^= p >> 16;
+    i ^= (i & w) >> 4;
+    i ^= p >> 8;
+    i *= 0x0929eb3f;
+    i ^= p >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1 | p >> 27;
+    i *= 0x6935fa69;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3df;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= l);
+  return (i + p) % l;
+}
+
+double RandomFloat(uint32_t i, uint32_t p) {
+  i ^= p;
+  i ^= i >> 17;
+  i ^= i >> 10;
+  i *= 0xb36534e5;
+  i ^= i >> 12;
+  i ^= i >> 21;
+  i *= 0x93fc4795;
+  i ^= 0xdf6e307f;
+  i ^= i >> 17;
+  i *= 1 | p >> 18;
+  return i * (1.0 / 4294967808.0);
+}
+
+Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p) {
+  const uint32_t m = std::max<uint32_t>(1, static_cast<uint32_t>(std::sqrt(double(n))));
+  const uint32_t cols = (n + m - 1) / m;  // m * cols >= n cells; take n of them
+  const uint32_t cells = m * cols;
+  const uint32_t s = PermuteIndex(i, cells, p * 0x51633e2d);
+  const uint32_t sx = PermuteIndex(s % m, m, p * 0xa511e9b3);
+  const uint32_t sy = PermuteIndex(s / m, cols, p * 0x63d83595);
+  const double jx = RandomFloat(s, p * 0xa399d265);
+  const double jy = RandomFloat(s, p * 0x711ad6a5);
+  return {std::min((s % m + (sy + jx) / cols) / m, 0x1.fffffffffffffp-1),
+          std::min((s / m + (sx + jy) / m) / cols, 0x1.fffffffffffffp-1)};
+}
+
+namespace {
+Point2 SampleUniformDiskConcentric(Point2 u) {
+  const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
+  if (ox == 0 && oy == 0) return {0, 0};
+  double r, theta;
+  if (std::abs(ox) > std::abs(oy)) {
+    r = ox;
+    theta = std::numbers::pi / 4 * (oy / ox);
+  } else {
+    r = oy;
+    theta = std::numbers::pi / 2 - std::numbers::pi / 4 * (ox / oy);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+Point2 InvertUniformDiskConcentric(Point2 p) {
+  const double theta = std::atan2(p.y, p.x);  // [-pi, pi]
+  const double r = std::sqrt(p.x * p.x + p.y * p.y);
+  const double pi = std::numbers::pi;
+  double ox, oy;
+  if (std::abs(theta) < pi / 4 || std::abs(theta) > 3 * pi / 4) {
+    ox = r * (std::abs(theta) < pi / 4 ? 1 : -1);
+    const double t = std::abs(theta) < pi / 4 ? theta : (theta > 0 ? theta - pi : theta + pi);
+    oy = ox * t / (pi / 4);
+  } else {
+    oy = r * (theta > 0 ? 1 : -1);
+    const double t = theta > 0 ? theta : theta + pi;  // in (pi/4, 3pi/4)
+    ox = oy * (pi / 2 - t) / (pi / 4);
+  }
+  return {(ox + 1) / 2, (oy + 1) / 2};
+}
+}  // namespace
+
+Vec3 SampleCosineHemisphere(Point2 u) {
+  const Point2 d = SampleUniformDiskConcentric(u);
+  const double z = std::sqrt(std::max(0.0, 1 - d.x * d.x - d.y * d.y));
+  return {d.x, d.y, z};
+}
+
+Point2 InvertCosineHemisphereSample(const Vec3& w) {
+  return InvertUniformDiskConcentric({w.x, w.y});
+}
+
+std::pair<double, double> SampleUniformTriangle(Point2 u) {
+  // Heitz's low-distortion mapping keeps stratification.
+  double b0, b1;
+  if (u.x < u.y) {
+    b0 = u.x / 2;
+    b1 = u.y - b0;
+  } else {
+    b1 = u.y / 2;
+    b0 = u.x - b1;
+  }
+  return {b0, b1};
+}
+
+Point2 InvertUniformTriangleSample(double b0, double b1) {
+  if (b0 >= b1) return {b0 + b1, 2 * b1};  // the u.x >= u.y branch
+  return {2 * b0, b1 + b0};
+}
+
+}  // namespace radflux

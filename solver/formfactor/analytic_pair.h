@@ -1,0 +1,26 @@
+// The analytic estimate of one form factor F_ij: Lambert's exact point-to-polygon
+// form factor at stratified points on patch i, times visibility by shadow rays.
+// Used by the analytic builder for every column and by monte_carlo for emitters.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/formfactor/row_builder.h"
+
+namespace radflux {
+
+// False when i and j cannot exchange light: j wholly behind i's plane or i wholly
+// behind j's (back-facing and behind-the-plane pairs are never traced).
+bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j);
+
+// s stratified points on patch i, seeded from (seed, i).
+std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed);
+
+// F_ij averaged over `points` on i, each point's value times the visibility of a
+// stratified point on j; adds the shadow rays cast to `rays`.
+double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
+                              const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
+                              uint64_t& rays);
+
+}  // namespace radflux

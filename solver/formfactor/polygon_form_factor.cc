@@ -1,0 +1,51 @@
+#include "solver/formfactor/polygon_form_factor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace radflux {
+
+std::vector<Vec3> ClipPolygonToHalfSpace(const std::vector<Vec3>& polygon, const Vec3& origin,
+                                         const Vec3& n) {
+  std::vector<Vec3> out;
+  out.reserve(polygon.size() + 1);
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3& a = polygon[k];
+    const Vec3& b = polygon[(k + 1) % polygon.size()];
+    const double da = Dot(a - origin, n), db = Dot(b - origin, n);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
+                                         const std::vector<Vec3>& polygon) {
+  double sum = 0;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3 a = polygon[k] - x;
+    const Vec3 b = polygon[(k + 1) % polygon.size()] - x;
+    const Vec3 c = Cross(a, b);
+    const double cross_len = Length(c);
+    if (cross_len == 0) continue;  // edge points straight at x: contributes nothing
+    const double gamma = std::atan2(cross_len, Dot(a, b));
+    sum += gamma * Dot(n, c) / cross_len;
+  }
+  return std::clamp(std::abs(sum) / (2 * std::numbers::pi), 0.0, 1.0);
+}
+
+double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
+  bool all_front = true, any_front = false;
+  for (const Vec3& p : polygon) {
+    const double d = Dot(p - x, n);
+    all_front = all_front && d >= 0;
+    any_front = any_front || d > 0;
+  }
+  if (!any_front) return 0;
+  if (all_front) return UnclippedPointToPolygonFormFactor(x, n, polygon);
+  const std::vector<Vec3> clipped = ClipPolygonToHalfSpace(polygon, x, n);
+  return clipped.size() < 3 ? 0 : UnclippedPointToPolygonFormFactor(x, n, clipped);
+}
+
+}  // namespace radflux

@@ -1,0 +1,98 @@
+#include "solver/formfactor/row_builder.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+
+#include "solver/core/parallel.h"
+#include "solver/formfactor/builders.h"
+
+namespace radflux {
+
+void RowBlockStats::Merge(const RowBlockStats& o) {
+  rays += o.rays;
+  dropped_sum += o.dropped_sum;
+  max_row_dropped = std::max(max_row_dropped, o.max_row_dropped);
+}
+
+std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
+                                           const FormFactorOptions& options) {
+  switch (options.method) {
+    case FormFactorMethod::kMonteCarlo:
+      return MakeMonteCarloBuilder(context, options);
+    case FormFactorMethod::kHemicube:
+      return MakeHemicubeBuilder(context, options);
+    case FormFactorMethod::kAnalytic:
+      return MakeAnalyticBuilder(context, options);
+  }
+  return nullptr;
+}
+
+RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, double cutoff,
+                       uint32_t first, uint32_t count, RowAccumulator& row, RowBlockStats& stats) {
+  RowBlock block;
+  block.first_row = first;
+  for (uint32_t i = first; i < first + count; ++i) {
+    if (context.needs_row[i]) stats.rays += builder.BuildRow(i, row);
+    const double dropped = row.Flush(cutoff, block);
+    stats.dropped_sum += dropped;
+    stats.max_row_dropped = std::max(stats.max_row_dropped, dropped);
+  }
+  return block;
+}
+
+double RayEpsilonFor(const PatchMesh& mesh) {
+  if (mesh.positions.empty()) return 0;
+  Vec3 lo = mesh.positions[0], hi = lo;
+  for (const Vec3& p : mesh.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return 1e-5 * Length(hi - lo);
+}
+
+absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
+                                                  const FormFactorOptions& options,
+                                                  const PhaseProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint32_t n = static_cast<uint32_t>(context.mesh->size());
+  const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
+  const uint32_t block_count = (n + block_size - 1) / block_size;
+  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
+
+  std::vector<RowBlock> blocks(block_count);
+  std::vector<RowBlockStats> block_stats(block_count);
+  const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
+  std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
+  std::atomic<int64_t> rows_done{0};
+  std::atomic<bool> cancelled{false};
+
+  ParallelFor(block_count, 1, threads, [&](int64_t begin, int64_t end) {
+    auto& row = scratch[static_cast<size_t>(ThreadIndex())];
+    if (!row) row = std::make_unique<RowAccumulator>(n);
+    for (int64_t b = begin; b < end && !cancelled.load(std::memory_order_relaxed); ++b) {
+      const uint32_t first = static_cast<uint32_t>(b) * block_size;
+      const uint32_t count = std::min(block_size, n - first);
+      blocks[b] = BuildRowBlock(*builder, context, options.cutoff, first, count, *row,
+                                block_stats[b]);
+      const int64_t done = rows_done.fetch_add(count) + count;
+      // Only thread 0 reports, so the callback never runs concurrently with itself.
+      if (progress && ThreadIndex() == 0 && !progress("rows", done, n)) cancelled = true;
+    }
+  });
+  if (cancelled) return absl::CancelledError("form-factor rows cancelled");
+
+  FormFactorResult result;
+  result.matrix.cols = n;
+  for (uint32_t b = 0; b < block_count; ++b) {
+    result.matrix.Append(blocks[b]);
+    result.stats.Merge(block_stats[b]);
+    blocks[b] = RowBlock{};
+  }
+  if (progress) progress("rows", n, n);
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace radflux

@@ -1,0 +1,67 @@
+// RowBuilder: computes the sparse form-factor row F_i. of one patch. The three
+// methods (monte_carlo, hemicube, analytic) implement it; BuildRowBlock and
+// BuildFormFactors run any of them over blocks of consecutive patches.
+// A row depends only on (mesh, options, seed, i): never on the thread or block.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/core/cancel.h"
+#include "solver/formfactor/form_factor_options.h"
+#include "solver/formfactor/row_accumulator.h"
+#include "solver/mesh/patch_mesh.h"
+#include "solver/raytrace/ray_caster.h"
+#include "solver/sparse/csr_matrix.h"
+
+namespace radflux {
+
+// What the row builders need to know about the scene besides its geometry.
+struct RowContext {
+  const PatchMesh* mesh = nullptr;
+  const RayCaster* caster = nullptr;
+  std::vector<uint8_t> needs_row;  // 1 where rho > 0 in some band: only those get rows
+  std::vector<uint8_t> emitter;    // 1 where the patch emits
+  double ray_epsilon = 0;          // ray origin offset along the normal, scene units
+};
+
+class RowBuilder {
+ public:
+  virtual ~RowBuilder() = default;
+  // Adds F_ij (j != i) for patch i into `row`; returns the number of rays cast.
+  virtual uint64_t BuildRow(uint32_t i, RowAccumulator& row) const = 0;
+};
+
+std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
+                                           const FormFactorOptions& options);
+
+struct RowBlockStats {
+  uint64_t rays = 0;
+  double dropped_sum = 0;      // sum over rows of the F_ij dropped by the cut-off
+  double max_row_dropped = 0;  // the largest such sum in one row
+  void Merge(const RowBlockStats& o);
+};
+
+// Rows [first, first + count) as one block; `row` is scratch of size n.
+RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, double cutoff,
+                       uint32_t first, uint32_t count, RowAccumulator& row, RowBlockStats& stats);
+
+struct FormFactorResult {
+  CsrMatrix matrix;
+  RowBlockStats stats;
+  double seconds = 0;
+};
+
+// All rows of the mesh, in parallel over blocks. Returns CANCELLED when progress
+// returns false.
+absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
+                                                  const FormFactorOptions& options,
+                                                  const PhaseProgress& progress = {});
+
+// Scene-relative ray offset: 1e-5 of the bounding-box diagonal.
+double RayEpsilonFor(const PatchMesh& mesh);
+
+}  // namespace radflux

@@ -1,0 +1,20 @@
+#include "solver/formfactor/row_context.h"
+
+namespace radflux {
+
+RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
+                          const RayCaster& caster) {
+  RowContext context;
+  context.mesh = &mesh;
+  context.caster = &caster;
+  context.ray_epsilon = RayEpsilonFor(mesh);
+  context.needs_row.resize(mesh.size());
+  context.emitter.resize(mesh.size());
+  for (size_t p = 0; p < mesh.size(); ++p) {
+    context.needs_row[p] = MaxComponent(attributes.reflectance[p]) > 0;
+    context.emitter[p] = MaxComponent(attributes.emission[p]) > 0;
+  }
+  return context;
+}
+
+}  // namespace radflux

@@ -1,0 +1,13 @@
+// Building the RowContext of a mesh from its patch attributes.
+#pragma once
+
+#include "solver/formfactor/row_builder.h"
+#include "solver/mesh/patch_attributes.h"
+
+namespace radflux {
+
+// Rows only where rho > 0 in some band; emitters where E > 0 in some band.
+RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
+                          const RayCaster& caster);
+
+}  // namespace radflux

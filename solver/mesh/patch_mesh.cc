@@ -1,0 +1,44 @@
+#include "solver/mesh/patch_mesh.h"
+
+namespace radflux {
+namespace {
+double TriangleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return Length(Cross(b - a, c - a)) / 2;
+}
+Vec3 TrianglePoint(const Vec3& a, const Vec3& b, const Vec3& c, Point2 u) {
+  const auto [b0, b1] = SampleUniformTriangle(u);
+  return a * b0 + b * b1 + c * (1 - b0 - b1);
+}
+}  // namespace
+
+Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u) {
+  const Patch& patch = mesh.patches[p];
+  const Vec3& a = mesh.positions[patch.v[0]];
+  const Vec3& b = mesh.positions[patch.v[1]];
+  const Vec3& c = mesh.positions[patch.v[2]];
+  if (patch.IsTriangle()) return TrianglePoint(a, b, c, u);
+  const Vec3& d = mesh.positions[patch.v[3]];
+  const double first = TriangleArea(a, b, c) / patch.area;
+  if (u.x < first) return TrianglePoint(a, b, c, {u.x / first, u.y});
+  return TrianglePoint(a, c, d, {std::min((u.x - first) / (1 - first), 0x1.fffffffffffffp-1), u.y});
+}
+
+void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch) {
+  const Vec3& a = positions[patch.v[0]];
+  const Vec3& b = positions[patch.v[1]];
+  const Vec3& c = positions[patch.v[2]];
+  const double abc = TriangleArea(a, b, c);
+  Vec3 weighted = (a + b + c) * (abc / 3);
+  double area = abc;
+  if (!patch.IsTriangle()) {
+    const Vec3& d = positions[patch.v[3]];
+    const double acd = TriangleArea(a, c, d);
+    weighted += (a + c + d) * (acd / 3);
+    area += acd;
+  }
+  patch.area = area;
+  patch.centroid = area > 0 ? weighted / area : (a + b + c) / 3;
+  patch.normal = face_normal;
+}
+
+}  // namespace radflux

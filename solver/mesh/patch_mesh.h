@@ -1,0 +1,43 @@
+// PatchMesh: the scene's faces split into patches, the unknowns of the radiosity
+// system. A patch is a planar convex triangle or quad that remembers its source face.
+// Patches of one face share vertices (no T-junctions inside a face); faces never
+// share vertices, so per-vertex values keep creases between faces sharp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "solver/core/sampling.h"
+#include "solver/core/vec3.h"
+
+namespace radflux {
+
+struct Patch {
+  std::array<uint32_t, 4> v{};  // PatchMesh::positions indices, ccw; v[3] == v[2] for a triangle
+  uint32_t face = 0;            // source face in the Scene
+  Vec3 centroid;                // area-weighted centroid
+  Vec3 normal;                  // unit normal of the source face (front side)
+  double area = 0;              // scene units^2
+
+  bool IsTriangle() const { return v[2] == v[3]; }
+  int VertexCount() const { return IsTriangle() ? 3 : 4; }
+};
+
+struct PatchMesh {
+  std::vector<Vec3> positions;
+  std::vector<Patch> patches;
+  std::vector<uint32_t> face_first_patch;  // patches of face f: [first[f], first[f+1])
+  std::vector<uint32_t> face_first_vertex;  // vertices of face f: [first[f], first[f+1])
+
+  size_t size() const { return patches.size(); }
+  Vec3 Vertex(uint32_t patch, int k) const { return positions[patches[patch].v[k]]; }
+};
+
+// Point on patch p for sample u in [0,1)^2; uniform by area, stratification kept.
+Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u);
+
+// Fills area, centroid and normal of `patch` from its vertices and face normal.
+void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch);
+
+}  // namespace radflux

@@ -1,0 +1,196 @@
+#include "solver/mesh/subdivide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "absl/strings/str_cat.h"
+
+namespace radflux {
+namespace {
+
+int Steps(double length, double h) {
+  if (h <= 0) return 1;
+  return std::max(1, static_cast<int>(std::ceil(length / h - 1e-9)));
+}
+
+// Subdivision counts of one face at edge length h: (nu, nv) for a quad, (n, n) otherwise.
+std::pair<int, int> FaceSteps(const std::vector<Vec3>& p, double h) {
+  if (p.size() == 4) {
+    return {Steps(std::max(Length(p[1] - p[0]), Length(p[2] - p[3])), h),
+            Steps(std::max(Length(p[3] - p[0]), Length(p[2] - p[1])), h)};
+  }
+  double longest = 0;
+  Vec3 c;
+  for (const Vec3& q : p) c += q / static_cast<double>(p.size());
+  for (size_t i = 0; i < p.size(); ++i) {
+    longest = std::max(longest, Length(p[(i + 1) % p.size()] - p[i]));
+    if (p.size() > 4) longest = std::max(longest, Length(p[i] - c));
+  }
+  const int n = Steps(longest, h);
+  return {n, n};
+}
+
+int64_t FacePatchCount(const std::vector<Vec3>& p, double h) {
+  const auto [nu, nv] = FaceSteps(p, h);
+  if (p.size() == 4) return int64_t{nu} * nv;
+  const int64_t fan = p.size() == 3 ? 1 : static_cast<int64_t>(p.size());
+  return fan * nu * nu;
+}
+
+// Builds one face's vertices and patches into the mesh.
+class FaceMesher {
+ public:
+  FaceMesher(PatchMesh& mesh, uint32_t face, const Vec3& normal)
+      : mesh_(mesh), face_(face), normal_(normal) {}
+
+  void Quad(const std::vector<Vec3>& p, int nu, int nv) {
+    const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());
+    for (int j = 0; j <= nv; ++j) {
+      for (int i = 0; i <= nu; ++i) {
+        const double u = double(i) / nu, v = double(j) / nv;
+        mesh_.positions.push_back(p[0] * ((1 - u) * (1 - v)) + p[1] * (u * (1 - v)) +
+                                  p[2] * (u * v) + p[3] * ((1 - u) * v));
+      }
+    }
+    auto id = [&](int i, int j) { return base + static_cast<uint32_t>(j * (nu + 1) + i); };
+    for (int j = 0; j < nv; ++j) {
+      for (int i = 0; i < nu; ++i) Emit({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+
+  // Triangle fan (a single triangle when p has 3 vertices), each subdivided n x n.
+  void Fan(const std::vector<Vec3>& p, int n) {
+    if (p.size() == 3) {
+      Triangle(p[0], p[1], p[2], n, [&](int a, int b) { return Key(0, a, b); });
+      return;
+    }
+    Vec3 c;
+    for (const Vec3& q : p) c += q / static_cast<double>(p.size());
+    const int k = static_cast<int>(p.size());
+    for (int s = 0; s < k; ++s) {
+      const int next = (s + 1) % k;
+      // Points on spokes are keyed by (spoke, step) so that neighbouring fan triangles share them.
+      Triangle(c, p[s], p[next], n, [&](int a, int b) {
+        if (a == 0 && b == 0) return Key(-1, 0, 0);
+        if (b == 0) return Key(-2, s, a);
+        if (a == 0) return Key(-2, next, b);
+        return Key(s, a, b);
+      });
+    }
+  }
+
+ private:
+  using Key = std::tuple<int, int, int>;
+
+  template <typename KeyOf>
+  void Triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, int n, KeyOf key_of) {
+    auto id = [&](int a, int b) {
+      auto [it, inserted] = ids_.try_emplace(key_of(a, b), 0u);
+      if (inserted) {
+        it->second = static_cast<uint32_t>(mesh_.positions.size());
+        mesh_.positions.push_back(p0 + (p1 - p0) * (double(a) / n) + (p2 - p0) * (double(b) / n));
+      }
+      return it->second;
+    };
+    for (int b = 0; b < n; ++b) {
+      for (int a = 0; a + b < n; ++a) {
+        const uint32_t up2 = id(a, b + 1);
+        Emit({id(a, b), id(a + 1, b), up2, up2});
+        if (a + b < n - 1) {
+          const uint32_t down2 = id(a, b + 1);
+          Emit({id(a + 1, b), id(a + 1, b + 1), down2, down2});
+        }
+      }
+    }
+  }
+
+  void Emit(std::array<uint32_t, 4> v) {
+    Patch patch;
+    patch.v = v;
+    patch.face = face_;
+    FinishPatch(mesh_.positions, normal_, patch);
+    mesh_.patches.push_back(patch);
+  }
+
+  PatchMesh& mesh_;
+  uint32_t face_;
+  Vec3 normal_;
+  std::map<Key, uint32_t> ids_;
+};
+
+double ChooseEdgeLength(const Scene& scene, const MeshOptions& options) {
+  if (options.max_edge > 0) return options.max_edge;
+  if (options.target_patches <= 0) return 0;
+  std::vector<std::vector<Vec3>> polygons;
+  double longest = 0;
+  for (const Face& face : scene.faces) {
+    polygons.push_back(FacePolygon(scene, face));
+    for (const Vec3& q : polygons.back()) longest = std::max(longest, Length(q - polygons.back()[0]));
+  }
+  auto count = [&](double h) {
+    int64_t total = 0;
+    for (const auto& p : polygons) total += FacePatchCount(p, h);
+    return total;
+  };
+  // Bisect (log scale) for the boundary where count(h) falls to <= target; pick the closer side.
+  double lo = longest * 1e-7, hi = longest * 2;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (count(mid) > options.target_patches ? lo : hi) = mid;
+  }
+  const int64_t above = count(lo), below = count(hi);
+  return (above - options.target_patches < options.target_patches - below) ? lo : hi;
+}
+
+}  // namespace
+
+absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options) {
+  if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
+    return absl::InvalidArgumentError("patch count and max edge length must be >= 0");
+  }
+  const double h = ChooseEdgeLength(scene, options);
+  PatchMesh mesh;
+  for (uint32_t f = 0; f < scene.faces.size(); ++f) {
+    mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
+    mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
+    const std::vector<Vec3> polygon = FacePolygon(scene, scene.faces[f]);
+    const auto [nu, nv] = FaceSteps(polygon, h);
+    if (int64_t{nu} * nv > (int64_t{1} << 31)) {
+      return absl::ResourceExhaustedError(absl::StrCat(scene.DescribeFace(f),
+                                                       ": subdivision would exceed 2^31 patches"));
+    }
+    FaceMesher mesher(mesh, f, Normalize(PolygonNewellNormal(polygon)));
+    if (polygon.size() == 4) {
+      mesher.Quad(polygon, nu, nv);
+    } else {
+      mesher.Fan(polygon, nu);
+    }
+  }
+  mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
+  mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
+  return mesh;
+}
+
+MeshStats ComputeMeshStats(const PatchMesh& mesh) {
+  MeshStats stats;
+  stats.patches = mesh.size();
+  if (mesh.patches.empty()) return stats;
+  stats.min_area = stats.max_area = mesh.patches[0].area;
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const Patch& patch = mesh.patches[p];
+    double longest = 0;
+    for (int k = 0; k < patch.VertexCount(); ++k) {
+      longest = std::max(longest, Length(mesh.Vertex(p, (k + 1) % patch.VertexCount()) -
+                                         mesh.Vertex(p, k)));
+    }
+    const double shape = patch.IsTriangle() ? std::sqrt(3.0) / 4 : 1.0;
+    stats.min_area = std::min(stats.min_area, patch.area);
+    stats.max_area = std::max(stats.max_area, patch.area);
+    stats.max_aspect = std::max(stats.max_aspect, longest * longest * shape / patch.area);
+  }
+  return stats;
+}
+
+}  // namespace radflux

@@ -1,0 +1,30 @@
+// Uniform subdivision of a validated scene into patches. The mesh depends only on the
+// scene and the options, so runs with the same --patches compare patch by patch.
+#pragma once
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "solver/mesh/patch_mesh.h"
+#include "solver/scene/scene.h"
+
+namespace radflux {
+
+struct MeshOptions {
+  int64_t target_patches = 0;  // aim for this many patches in the scene (closest count wins)
+  double max_edge = 0;         // or: no patch edge longer than this (scene units)
+  // Neither set: every face becomes one patch (quads and triangles) or a fan.
+};
+
+// Subdivides every face: triangles into n^2 triangles, quads into a nu x nv grid,
+// larger convex polygons into a fan of subdivided triangles around their centroid.
+absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options);
+
+struct MeshStats {
+  size_t patches = 0;
+  double min_area = 0, max_area = 0;
+  double max_aspect = 0;  // longest edge^2 / area, 1 for a square or equilateral triangle
+};
+MeshStats ComputeMeshStats(const PatchMesh& mesh);
+
+}  // namespace radflux

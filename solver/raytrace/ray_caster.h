@@ -1,0 +1,36 @@
+// RayCaster: the two ray queries radflux needs, against the patches of one mesh.
+// EmbreeRayCaster is the fast one; BruteForceRayCaster checks it in tests.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "solver/core/vec3.h"
+
+namespace radflux {
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;  // need not be unit length; t is in units of |direction|
+  double t_near = 0;
+  double t_far = std::numeric_limits<double>::infinity();
+};
+
+inline constexpr uint32_t kNoPatch = 0xffffffffu;
+
+struct Hit {
+  uint32_t patch = kNoPatch;  // kNoPatch when the ray escapes
+  double t = 0;
+  float u = 0, v = 0;  // Embree's parametric coordinates on the hit primitive
+};
+
+class RayCaster {
+ public:
+  virtual ~RayCaster() = default;
+  // Nearest patch hit in (t_near, t_far), either side of it.
+  virtual Hit Intersect(const Ray& ray) const = 0;
+  // True when any patch lies in (t_near, t_far).
+  virtual bool Occluded(const Ray& ray) const = 0;
+};
+
+}  // namespace radflux

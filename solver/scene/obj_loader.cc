@@ -1,0 +1,146 @@
+#include "solver/scene/obj_loader.h"
+
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "tiny_obj_loader.h"
+
+namespace radflux {
+namespace {
+
+// Where each 'f' statement stands in the file and which 'o', 'g' and 'usemtl' are
+// in force there. tinyobjloader parses the geometry; this scan only recovers the
+// provenance that it does not keep, so that messages and results can name surfaces.
+struct FaceOrigin {
+  int line = 0;
+  std::string object, group, usemtl;
+};
+
+std::vector<FaceOrigin> ScanFaceOrigins(const std::string& text) {
+  std::vector<FaceOrigin> origins;
+  std::istringstream in(text);
+  std::string line, keyword;
+  FaceOrigin current;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    if (!(words >> keyword)) continue;
+    std::string rest;
+    std::getline(words >> std::ws, rest);
+    while (!rest.empty() && (rest.back() == '\r' || rest.back() == ' ')) rest.pop_back();
+    if (keyword == "o") {
+      current.object = rest;
+    } else if (keyword == "g") {
+      current.group = rest;
+    } else if (keyword == "usemtl") {
+      current.usemtl = rest;
+    } else if (keyword == "f") {
+      current.line = number;
+      origins.push_back(current);
+    }
+  }
+  return origins;
+}
+
+uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
+                    const std::string& name) {
+  auto [it, inserted] = index.try_emplace(name, static_cast<uint32_t>(names.size()));
+  if (inserted) names.push_back(name);
+  return it->second;
+}
+
+absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std::string& obj_text,
+                                    const std::string& name) {
+  if (!reader.Valid()) {
+    return absl::InvalidArgumentError(absl::StrCat(name, ": cannot parse OBJ: ", reader.Error()));
+  }
+  Scene scene;
+  scene.source = name;
+  const auto& attrib = reader.GetAttrib();
+  const size_t vertex_count = attrib.vertices.size() / 3;
+  for (size_t v = 0; v < vertex_count; ++v) {
+    scene.positions.push_back(
+        {attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]});
+  }
+  for (const auto& m : reader.GetMaterials()) {
+    Material material;
+    material.name = m.name;
+    for (int b = 0; b < kBands; ++b) {
+      material.reflectance[b] = m.diffuse[b];
+      material.emission[b] = std::numbers::pi * m.emission[b];
+    }
+    scene.materials.push_back(material);
+  }
+
+  const std::vector<FaceOrigin> origins = ScanFaceOrigins(obj_text);
+  std::map<std::string, uint32_t> object_index, group_index;
+  size_t face_number = 0;
+  for (const auto& shape : reader.GetShapes()) {
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
+      const size_t arity = shape.mesh.num_face_vertices[f];
+      FaceOrigin origin;
+      origin.object = origin.group = shape.name;
+      if (face_number < origins.size()) origin = origins[face_number];
+      Face face;
+      face.source_line = origin.line;
+      face.object = InternName(scene.objects, object_index, origin.object);
+      face.group = InternName(scene.groups, group_index, origin.group);
+      for (size_t k = 0; k < arity; ++k) {
+        const int v = shape.mesh.indices[offset + k].vertex_index;
+        if (v < 0 || static_cast<size_t>(v) >= vertex_count) {
+          return absl::InvalidArgumentError(
+              absl::StrCat(name, ":", origin.line, ": vertex index out of range"));
+        }
+        face.vertices.push_back(static_cast<uint32_t>(v));
+      }
+      offset += arity;
+      const int material = shape.mesh.material_ids[f];
+      if (material < 0 || static_cast<size_t>(material) >= scene.materials.size()) {
+        const std::string why = origin.usemtl.empty()
+                                    ? "face has no material (no 'usemtl' before it)"
+                                    : absl::StrCat("unknown material '", origin.usemtl, "'");
+        return absl::InvalidArgumentError(absl::StrCat(name, ":", origin.line, ": ", why,
+                                                       reader.Warning().empty() ? "" : " (",
+                                                       reader.Warning(),
+                                                       reader.Warning().empty() ? "" : ")"));
+      }
+      face.material = static_cast<uint32_t>(material);
+      scene.faces.push_back(std::move(face));
+    }
+  }
+  return scene;
+}
+
+tinyobj::ObjReaderConfig Config() {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  return config;
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return absl::NotFoundError(absl::StrCat(path, ": cannot open file"));
+  std::ostringstream text;
+  text << file.rdbuf();
+  tinyobj::ObjReader reader;
+  tinyobj::ObjReaderConfig config = Config();
+  const size_t slash = path.find_last_of('/');
+  config.mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
+  reader.ParseFromFile(path, config);
+  return ConvertReader(reader, text.str(), path);
+}
+
+absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string& mtl_text,
+                                  const std::string& name) {
+  tinyobj::ObjReader reader;
+  reader.ParseFromString(obj_text, mtl_text, Config());
+  return ConvertReader(reader, obj_text, name);
+}
+
+}  // namespace radflux

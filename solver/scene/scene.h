@@ -1,0 +1,48 @@
+// Scene: the diffuse surfaces a job is asked about, as loaded from a file.
+// Faces are planar convex polygons with outward (lit-side) normals by their winding
+// (counter-clockwise seen from the front). A validated scene has no NaN, no degenerate
+// or non-planar face, reflectance in [0,1), non-negative emission and at least one emitter.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/core/bands.h"
+#include "solver/core/vec3.h"
+
+namespace radflux {
+
+struct Material {
+  std::string name;
+  Rgb reflectance{};  // diffuse reflectance rho per band, in [0, 1)
+  Rgb emission{};     // emitted radiosity E = pi * L_e, W/m^2 per band
+
+  bool IsEmitter() const { return MaxComponent(emission) > 0; }
+};
+
+struct Face {
+  std::vector<uint32_t> vertices;  // indices into Scene::positions, counter-clockwise
+  uint32_t material = 0;           // index into Scene::materials
+  uint32_t object = 0;             // index into Scene::objects ('o' name)
+  uint32_t group = 0;              // index into Scene::groups ('g' name)
+  int source_line = 0;             // 1-based line in the source file, 0 if unknown
+};
+
+struct Scene {
+  std::string source;  // file name the scene came from, for messages
+  std::vector<Vec3> positions;
+  std::vector<Face> faces;
+  std::vector<Material> materials;
+  std::vector<std::string> objects;
+  std::vector<std::string> groups;
+
+  // "file:line (object 'o', face k)" for messages about face f.
+  std::string DescribeFace(size_t f) const;
+};
+
+// Newell normal of a polygon (unnormalised; length = 2 * area for a planar polygon).
+Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon);
+std::vector<Vec3> FacePolygon(const Scene& scene, const Face& face);
+
+}  // namespace radflux

@@ -1,0 +1,91 @@
+#include "solver/scene/validation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+
+namespace radflux {
+namespace {
+
+absl::Status FaceError(const Scene& scene, size_t f, const std::string& what) {
+  return absl::InvalidArgumentError(absl::StrCat(scene.DescribeFace(f), ": ", what));
+}
+
+absl::Status ValidateMaterial(const Scene& scene, const Material& m) {
+  for (int b = 0; b < kBands; ++b) {
+    const double rho = m.reflectance[b], e = m.emission[b];
+    if (!std::isfinite(rho) || rho < 0 || rho >= 1) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "%s: material '%s': reflectance Kd %g is outside [0,1)", scene.source, m.name, rho));
+    }
+    if (!std::isfinite(e) || e < 0) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "%s: material '%s': emission Ke %g must be finite and >= 0", scene.source, m.name,
+          e / 3.141592653589793));
+    }
+  }
+  return absl::OkStatus();
+}
+
+absl::Status ValidateFace(const Scene& scene, size_t f) {
+  const Face& face = scene.faces[f];
+  if (face.vertices.size() < 3) return FaceError(scene, f, "a face needs at least 3 vertices");
+  const std::vector<Vec3> polygon = FacePolygon(scene, face);
+  double longest = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    if (!IsFinite(polygon[i])) return FaceError(scene, f, "vertex has a NaN or infinite coordinate");
+    longest = std::max(longest, Length(polygon[(i + 1) % polygon.size()] - polygon[i]));
+  }
+  const Vec3 newell = PolygonNewellNormal(polygon);
+  const double area = Length(newell) / 2;
+  if (!(area > kDegenerateAreaTolerance * longest * longest)) {
+    return FaceError(scene, f, absl::StrFormat("zero-area (degenerate) face, area %g", area));
+  }
+  const Vec3 n = newell / (2 * area);
+  Vec3 centroid;
+  for (const Vec3& p : polygon) centroid += p / static_cast<double>(polygon.size());
+  for (const Vec3& p : polygon) {
+    const double off = std::abs(Dot(p - centroid, n));
+    if (off > kPlanarityTolerance * longest) {
+      return FaceError(scene, f,
+                       absl::StrFormat("non-planar face: a vertex is %g off its plane (tolerance "
+                                       "%g = %g x longest edge); split it into triangles",
+                                       off, kPlanarityTolerance * longest, kPlanarityTolerance));
+    }
+  }
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % polygon.size()];
+    const Vec3& c = polygon[(i + 2) % polygon.size()];
+    if (Dot(Cross(b - a, c - b), n) < -kDegenerateAreaTolerance * longest * longest) {
+      return FaceError(scene, f, "non-convex face; split it into convex polygons");
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status ValidateScene(const Scene& scene) {
+  if (scene.faces.empty()) return absl::InvalidArgumentError(scene.source + ": empty scene (no faces)");
+  for (const Material& m : scene.materials) {
+    if (absl::Status s = ValidateMaterial(scene, m); !s.ok()) return s;
+  }
+  bool has_emitter = false;
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    if (scene.faces[f].material >= scene.materials.size()) {
+      return FaceError(scene, f, "unknown material");
+    }
+    if (absl::Status s = ValidateFace(scene, f); !s.ok()) return s;
+    has_emitter = has_emitter || scene.materials[scene.faces[f].material].IsEmitter();
+  }
+  if (!has_emitter) {
+    return absl::InvalidArgumentError(scene.source +
+                                      ": no emitter (no face's material has Ke > 0)");
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace radflux

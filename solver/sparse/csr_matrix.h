@@ -1,0 +1,50 @@
+// CsrMatrix: compressed sparse rows of form factors F_ij (column index + float value).
+// Rows are complete and in order; columns within a row are strictly increasing.
+// A row may be empty (a patch that needs no row, rho = 0).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace radflux {
+
+// One block of consecutive rows built independently (by a thread or a worker).
+struct RowBlock {
+  uint32_t first_row = 0;
+  std::vector<uint64_t> row_begin{0};  // size = rows in block + 1, offsets into col/value
+  std::vector<uint32_t> col;
+  std::vector<float> value;
+
+  uint32_t RowCount() const { return static_cast<uint32_t>(row_begin.size() - 1); }
+  void Add(uint32_t column, float v) {
+    col.push_back(column);
+    value.push_back(v);
+  }
+  void EndRow() { row_begin.push_back(col.size()); }
+};
+
+struct CsrMatrix {
+  uint32_t rows = 0;
+  uint32_t cols = 0;
+  std::vector<uint64_t> row_begin{0};
+  std::vector<uint32_t> col;
+  std::vector<float> value;
+
+  size_t nnz() const { return col.size(); }
+  // Bytes held by the three arrays.
+  size_t Bytes() const;
+  std::span<const uint32_t> RowCols(uint32_t i) const {
+    return {col.data() + row_begin[i], col.data() + row_begin[i + 1]};
+  }
+  std::span<const float> RowValues(uint32_t i) const {
+    return {value.data() + row_begin[i], value.data() + row_begin[i + 1]};
+  }
+  double RowSum(uint32_t i) const;
+  // F_ij, or 0 when absent (binary search in row i).
+  float At(uint32_t i, uint32_t j) const;
+  // Appends a block; its first_row must equal `rows` (blocks arrive in order).
+  void Append(const RowBlock& block);
+};
+
+}  // namespace radflux
