@@ -1,0 +1,156 @@
+#include "solver/output/gltf_writer.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "solver/output/output_file.h"
+#include "solver/output/vertex_radiosity.h"
+
+namespace radflux {
+namespace {
+
+// Appends `values` to buffer 0 as a new buffer view and returns the accessor index.
+int AddAccessor(tinygltf::Model& model, const std::vector<float>& values, int type,
+                int target) {
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = values.size() * sizeof(float);
+  view.target = target;
+  data.resize(data.size() + view.byteLength);
+  std::memcpy(data.data() + view.byteOffset, values.data(), view.byteLength);
+  model.bufferViews.push_back(view);
+
+  tinygltf::Accessor accessor;
+  accessor.bufferView = static_cast<int>(model.bufferViews.size() - 1);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  accessor.type = type;
+  accessor.count = values.size() / (type == TINYGLTF_TYPE_VEC3 ? 3 : 1);
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+// Triangle indices: triangles as they are, quads as (v0,v1,v3) and (v2,v3,v1).
+std::vector<uint32_t> TriangleIndices(const PatchMesh& mesh) {
+  std::vector<uint32_t> indices;
+  indices.reserve(mesh.size() * 6);
+  for (const Patch& p : mesh.patches) {
+    if (p.IsTriangle()) {
+      indices.insert(indices.end(), {p.v[0], p.v[1], p.v[2]});
+    } else {
+      indices.insert(indices.end(), {p.v[0], p.v[1], p.v[3], p.v[2], p.v[3], p.v[1]});
+    }
+  }
+  return indices;
+}
+
+int AddIndices(tinygltf::Model& model, const std::vector<uint32_t>& indices) {
+  std::vector<float> bits(indices.size());  // same 4 bytes, copied verbatim
+  std::memcpy(bits.data(), indices.data(), indices.size() * sizeof(uint32_t));
+  const int accessor = AddAccessor(model, bits, TINYGLTF_TYPE_SCALAR,
+                                   TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  model.accessors[accessor].componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  return accessor;
+}
+
+struct VertexArrays {
+  std::vector<float> positions, normals, colours, radiosity;
+  std::vector<double> min, max;
+};
+
+VertexArrays BuildVertexArrays(const PatchMesh& mesh, const std::vector<Rgb>& vertex_b,
+                               const GltfOptions& options) {
+  VertexArrays a;
+  a.min.assign(3, std::numeric_limits<double>::infinity());
+  a.max.assign(3, -std::numeric_limits<double>::infinity());
+  const std::vector<Vec3> normals = VertexNormals(mesh);
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const float x = static_cast<float>(mesh.positions[i][k] * options.metres_per_unit);
+      a.positions.push_back(x);
+      a.min[k] = std::min<double>(a.min[k], x);
+      a.max[k] = std::max<double>(a.max[k], x);
+      a.normals.push_back(static_cast<float>(normals[i][k]));
+      const double b = vertex_b[i][k];
+      a.colours.push_back(static_cast<float>(ToneMapLinear(b / std::numbers::pi, options.tone)));
+      a.radiosity.push_back(static_cast<float>(b));
+    }
+  }
+  return a;
+}
+
+tinygltf::Material UnlitMaterial() {
+  tinygltf::Material material;
+  material.name = "radflux_baked_radiosity";
+  material.pbrMetallicRoughness.baseColorFactor = {1, 1, 1, 1};
+  material.pbrMetallicRoughness.metallicFactor = 0;
+  material.pbrMetallicRoughness.roughnessFactor = 1;
+  material.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+  return material;
+}
+
+tinygltf::Model BuildModel(const PatchMesh& mesh, const std::vector<Rgb>& vertex_b,
+                           const GltfOptions& options) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "radflux";
+  model.extensionsUsed.push_back("KHR_materials_unlit");
+  model.buffers.emplace_back();
+  const VertexArrays arrays = BuildVertexArrays(mesh, vertex_b, options);
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.material = 0;
+  const int target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  primitive.attributes["POSITION"] =
+      AddAccessor(model, arrays.positions, TINYGLTF_TYPE_VEC3, target);
+  model.accessors.back().minValues = arrays.min;
+  model.accessors.back().maxValues = arrays.max;
+  primitive.attributes["NORMAL"] = AddAccessor(model, arrays.normals, TINYGLTF_TYPE_VEC3, target);
+  primitive.attributes["COLOR_0"] = AddAccessor(model, arrays.colours, TINYGLTF_TYPE_VEC3, target);
+  primitive.attributes["_RADIOSITY"] =
+      AddAccessor(model, arrays.radiosity, TINYGLTF_TYPE_VEC3, target);
+  primitive.indices = AddIndices(model, TriangleIndices(mesh));
+  model.materials.push_back(UnlitMaterial());
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = "radiosity";
+  gltf_mesh.primitives.push_back(primitive);
+  model.meshes.push_back(gltf_mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return model;
+}
+
+}  // namespace
+
+absl::Status WriteGlb(const std::string& path, const PatchMesh& mesh,
+                      const std::vector<Rgb>& patch_radiosity, const GltfOptions& options) {
+  if (mesh.size() == 0) {
+    return absl::InvalidArgumentError(absl::StrCat("glTF file '", path, "': the mesh is empty"));
+  }
+  auto vertex_b = VertexRadiosity(mesh, patch_radiosity);
+  if (!vertex_b.ok()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("glTF file '", path, "': ", vertex_b.status().message()));
+  }
+  const tinygltf::Model model = BuildModel(mesh, *vertex_b, options);
+  std::ostringstream stream;
+  tinygltf::TinyGLTF gltf;
+  if (!gltf.WriteGltfSceneToStream(&model, stream, false, true)) {
+    return absl::InternalError(absl::StrCat("cannot encode glTF file '", path, "'"));
+  }
+  return WriteOutputFile(path, stream.str(), "glTF");
+}
+
+}  // namespace radflux
