@@ -1,0 +1,114 @@
+#include "solver/solve/band_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace radflux {
+
+BandSystem MakeBandSystem(const RadiositySystem& system, int threads) {
+  const PatchAttributes& p = *system.patches;
+  BandSystem bands;
+  bands.f = system.form_factors;
+  bands.n = static_cast<uint32_t>(p.size());
+  bands.area = &p.area;
+  bands.threads = threads;
+  bands.grey = p.grey;
+  const int candidates = p.grey ? 1 : kBands;
+  for (int band = 0; band < candidates; ++band) {
+    double norm2 = 0;
+    for (uint32_t i = 0; i < bands.n; ++i) norm2 += p.area[i] * p.emission[i][band] * p.emission[i][band];
+    if (norm2 <= 0) continue;  // nothing emits in this band: B = 0 there
+    bands.emission_norm[bands.lanes] = std::sqrt(norm2);
+    bands.band[bands.lanes++] = band;
+  }
+  bands.rho.assign(bands.n, Rgb{});
+  bands.emission.assign(bands.n, Rgb{});
+  for (uint32_t i = 0; i < bands.n; ++i) {
+    bands.total_area += p.area[i];
+    for (int k = 0; k < bands.lanes; ++k) {
+      bands.rho[i][k] = p.reflectance[i][bands.band[k]];
+      bands.emission[i][k] = p.emission[i][bands.band[k]];
+    }
+  }
+  return bands;
+}
+
+std::vector<Rgb> PackLanes(const BandSystem& bands, const std::vector<Rgb>& rgb) {
+  std::vector<Rgb> lanes(bands.n, Rgb{});
+  for (uint32_t i = 0; i < bands.n; ++i)
+    for (int k = 0; k < bands.lanes; ++k) lanes[i][k] = rgb[i][bands.band[k]];
+  return lanes;
+}
+
+void UnpackLanes(const BandSystem& bands, const std::vector<Rgb>& lanes, std::vector<Rgb>& rgb) {
+  rgb.assign(bands.n, Rgb{});
+  const bool grey = bands.grey && bands.lanes == 1;
+  for (uint32_t i = 0; i < bands.n; ++i) {
+    if (grey) {
+      rgb[i].fill(lanes[i][0]);
+      continue;
+    }
+    for (int k = 0; k < bands.lanes; ++k) rgb[i][bands.band[k]] = lanes[i][k];
+  }
+}
+
+Rgb AreaDot(const BandSystem& bands, const std::vector<Rgb>& x, const std::vector<Rgb>& y) {
+  const std::vector<double>& area = *bands.area;
+  return ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+    Rgb s{};
+    for (int64_t i = begin; i < end; ++i)
+      for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * x[i][k] * y[i][k];
+    return s;
+  });
+}
+
+Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, uint32_t col_begin,
+              uint32_t col_end) {
+  const auto cols = bands.f->RowCols(i);
+  const auto values = bands.f->RowValues(i);
+  size_t e = static_cast<size_t>(std::lower_bound(cols.begin(), cols.end(), col_begin) - cols.begin());
+  Rgb s{};
+  for (; e < cols.size() && cols[e] < col_end; ++e) {
+    const double fij = values[e];
+    const Rgb& xj = x[cols[e]];
+    for (int k = 0; k < bands.lanes; ++k) s[k] += fij * xj[k];
+  }
+  return s;
+}
+
+void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<Rgb>& y) {
+  y.resize(bands.n);
+  ParallelFor(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i)
+      y[i] = GatherRow(bands, static_cast<uint32_t>(i), x, 0, bands.n);
+  });
+}
+
+Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
+  if (r != nullptr) r->resize(bands.n);
+  const std::vector<double>& area = *bands.area;
+  const Rgb norm2 = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+    Rgb s{};
+    for (int64_t i = begin; i < end; ++i) {
+      const Rgb fb = GatherRow(bands, static_cast<uint32_t>(i), b, 0, bands.n);
+      Rgb ri{};
+      for (int k = 0; k < bands.lanes; ++k) {
+        ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
+        s[k] += area[i] * ri[k] * ri[k];
+      }
+      if (r != nullptr) (*r)[i] = ri;
+    }
+    return s;
+  });
+  Rgb relative{};
+  for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
+  return relative;
+}
+
+double MaxOverLanes(const BandSystem& bands, const Rgb& v) {
+  double m = 0;
+  for (int k = 0; k < bands.lanes; ++k) m = std::max(m, v[k]);
+  return m;
+}
+
+}  // namespace radflux

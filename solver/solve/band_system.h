@@ -1,0 +1,75 @@
+// BandSystem: the per-band view of a RadiositySystem that every method solves. The
+// bands that need solving are packed into "lanes" (lane k solves band `band[k]`): one
+// lane for a grey scene, otherwise one per band that emits somewhere. Per-patch lane
+// values are stored as Rgb with lanes >= `lanes` unused. All reductions here are
+// summed per fixed block and then in block order, so results never depend on threads.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "solver/core/bands.h"
+#include "solver/core/parallel.h"
+#include "solver/solve/solver.h"
+#include "solver/sparse/csr_matrix.h"
+
+namespace radflux {
+
+// Rows per ParallelFor block in the solvers; fixed so that results do not depend on threads.
+inline constexpr int64_t kSolveBlock = 256;
+
+struct BandSystem {
+  const CsrMatrix* f = nullptr;
+  uint32_t n = 0;
+  int lanes = 0;                     // bands actually solved (0: nothing emits)
+  bool grey = false;                 // lane 0 stands for all three bands
+  std::array<int, kBands> band{};    // band solved in lane k
+  const std::vector<double>* area = nullptr;  // per patch, scene units^2
+  std::vector<Rgb> rho;              // reflectance per patch per lane
+  std::vector<Rgb> emission;         // E per patch per lane, W/m^2
+  Rgb emission_norm{};               // ||E||_A per lane (> 0 for every lane)
+  double total_area = 0;
+  int threads = 0;                   // for ParallelFor (0 = all cores)
+};
+
+// The lanes of `system` (grey: one; else the bands with any emission). Inputs must be valid.
+BandSystem MakeBandSystem(const RadiositySystem& system, int threads);
+
+// Per-patch Rgb (all bands) -> lane values.
+std::vector<Rgb> PackLanes(const BandSystem& bands, const std::vector<Rgb>& rgb);
+// Lane values -> all bands: a grey lane is copied to every band, unsolved bands are 0.
+void UnpackLanes(const BandSystem& bands, const std::vector<Rgb>& lanes, std::vector<Rgb>& rgb);
+
+// Deterministic parallel sum of per-block Rgb partials: partial(begin, end) per fixed
+// block of kSolveBlock indices, added in block order.
+template <typename Partial>
+Rgb ReduceBlocks(int64_t count, int threads, Partial&& partial) {
+  const int64_t blocks = (count + kSolveBlock - 1) / kSolveBlock;
+  std::vector<Rgb> sums(static_cast<size_t>(blocks), Rgb{});
+  ParallelFor(count, kSolveBlock, threads, [&](int64_t begin, int64_t end) {
+    sums[static_cast<size_t>(begin / kSolveBlock)] = partial(begin, end);
+  });
+  Rgb total{};
+  for (const Rgb& s : sums)
+    for (int k = 0; k < kBands; ++k) total[k] += s[k];
+  return total;
+}
+
+// sum_i A_i x_ik y_ik per lane.
+Rgb AreaDot(const BandSystem& bands, const std::vector<Rgb>& x, const std::vector<Rgb>& y);
+
+// Sum over the entries of row i with column in [col_begin, col_end) of F_ij x_j, per lane.
+Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, uint32_t col_begin,
+              uint32_t col_end);
+
+// y = F x per lane, parallel over rows.
+void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<Rgb>& y);
+
+// r = E + rho F B - B (if `r` is non-null, stored there) and ||r||_A / ||E||_A per lane.
+Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r);
+
+// The larger of the first `bands.lanes` components.
+double MaxOverLanes(const BandSystem& bands, const Rgb& v);
+
+}  // namespace radflux

@@ -1,0 +1,136 @@
+// Solve(): input checks, the per-band view, dispatch to the method, and the final
+// residual and band unpacking shared by every method.
+#include "solver/solve/solver.h"
+
+#include <cmath>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "solver/solve/band_system.h"
+#include "solver/solve/methods.h"
+
+namespace radflux {
+namespace {
+
+constexpr SolverMethod kAllMethods[] = {SolverMethod::kJacobi, SolverMethod::kGaussSeidel,
+                                        SolverMethod::kSouthwell,
+                                        SolverMethod::kConjugateGradient, SolverMethod::kDirect};
+
+absl::Status CheckMatrix(const CsrMatrix& f, size_t n) {
+  if (f.rows != n || f.row_begin.size() != n + 1 || f.col.size() != f.value.size() ||
+      f.row_begin.back() != f.col.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("form-factor matrix has ", f.rows,
+                                                   " rows for ", n, " patches"));
+  }
+  for (uint32_t c : f.col) {
+    if (c >= n) return absl::InvalidArgumentError(absl::StrCat("form-factor column ", c, " >= ", n));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckPatches(const PatchAttributes& p) {
+  const size_t n = p.size();
+  if (p.reflectance.size() != n || p.emission.size() != n) {
+    return absl::InvalidArgumentError("patch attributes have inconsistent sizes");
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!(p.area[i] > 0) || !std::isfinite(p.area[i])) {
+      return absl::InvalidArgumentError(absl::StrCat("patch ", i, " has area ", p.area[i]));
+    }
+    for (int band = 0; band < kBands; ++band) {
+      const double rho = p.reflectance[i][band];
+      if (!(rho >= 0 && rho <= 1) || !std::isfinite(p.emission[i][band])) {
+        return absl::InvalidArgumentError(
+            absl::StrCat("patch ", i, " has reflectance ", rho, " or non-finite emission"));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckInputs(const RadiositySystem& system, const SolverOptions& options) {
+  if (system.form_factors == nullptr || system.patches == nullptr) {
+    return absl::InvalidArgumentError("radiosity system needs form factors and patches");
+  }
+  if (!(options.tolerance >= 0) || options.max_iterations < 0 || options.snapshot_every < 0 ||
+      options.threads < 0) {
+    return absl::InvalidArgumentError(
+        "solver options: tolerance, max_iterations, snapshot_every and threads must be >= 0");
+  }
+  const size_t n = system.patches->size();
+  if (options.initial != nullptr && options.initial->size() != n) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("initial radiosity has ", options.initial->size(), " patches, not ", n));
+  }
+  if (absl::Status s = CheckPatches(*system.patches); !s.ok()) return s;
+  return CheckMatrix(*system.form_factors, n);
+}
+
+absl::Status Dispatch(const BandSystem& bands, const SolverOptions& options,
+                      const SolveCallback& callback, std::vector<Rgb>& b, SolveResult& result) {
+  switch (options.method) {
+    case SolverMethod::kJacobi:
+      return SolveJacobi(bands, options, callback, b, result);
+    case SolverMethod::kGaussSeidel:
+      return SolveGaussSeidel(bands, options, callback, b, result);
+    case SolverMethod::kSouthwell:
+      return SolveSouthwell(bands, options, callback, b, result);
+    case SolverMethod::kConjugateGradient:
+      return SolveConjugateGradient(bands, options, callback, b, result);
+    case SolverMethod::kDirect:
+      return SolveDirect(bands, options, callback, b, result);
+  }
+  return absl::InvalidArgumentError("unknown solver method");
+}
+
+}  // namespace
+
+std::string_view SolverName(SolverMethod method) {
+  switch (method) {
+    case SolverMethod::kJacobi:
+      return "jacobi";
+    case SolverMethod::kGaussSeidel:
+      return "gauss_seidel";
+    case SolverMethod::kSouthwell:
+      return "southwell";
+    case SolverMethod::kConjugateGradient:
+      return "cg";
+    case SolverMethod::kDirect:
+      return "direct";
+  }
+  return "unknown";
+}
+
+std::optional<SolverMethod> ParseSolver(std::string_view name) {
+  for (SolverMethod method : kAllMethods) {
+    if (SolverName(method) == name) return method;
+  }
+  if (name == "conjugate_gradient") return SolverMethod::kConjugateGradient;
+  return std::nullopt;
+}
+
+absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOptions& options,
+                                  const SolveCallback& callback) {
+  if (absl::Status s = CheckInputs(system, options); !s.ok()) return s;
+  const BandSystem bands = MakeBandSystem(system, options.threads);
+  SolveResult result;
+  result.bands_solved = bands.lanes;
+  std::vector<Rgb> b = options.initial != nullptr ? PackLanes(bands, *options.initial)
+                                                  : std::vector<Rgb>(bands.n, Rgb{});
+  if (bands.lanes == 0) {  // nothing emits: B = 0 everywhere, no sweep needed
+    result.converged = true;
+  } else {
+    if (absl::Status s = Dispatch(bands, options, callback, b, result); !s.ok()) return s;
+    result.residual = MaxOverLanes(bands, LaneResiduals(bands, b, nullptr));
+  }
+  UnpackLanes(bands, b, result.radiosity);
+  return result;
+}
+
+double RelativeResidual(const RadiositySystem& system, const std::vector<Rgb>& radiosity) {
+  const BandSystem bands = MakeBandSystem(system, 0);
+  if (bands.lanes == 0) return 0;
+  return MaxOverLanes(bands, LaneResiduals(bands, PackLanes(bands, radiosity), nullptr));
+}
+
+}  // namespace radflux

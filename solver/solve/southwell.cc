@@ -1,0 +1,181 @@
+// Southwell progressive refinement (Cohen et al. 1988). B and the unshot radiosity dB
+// keep the invariant B = E + rho G (B - dB), G_ji = A_i F_ij / A_j (reciprocity), so
+// shooting patch i needs only row i. Each iteration shoots a batch: the patches with
+// the most unshot power A_i |dB_i| (summed over lanes, each relative to its emitted
+// power), shot together and scattered in parallel over fixed blocks of receivers, each
+// receiver summing its shooters in batch order (same result on any thread count).
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "solver/solve/methods.h"
+#include "solver/solve/stopping.h"
+
+namespace radflux {
+namespace {
+
+constexpr int64_t kReceiverBlock = 1024;
+
+// Shooters per batch: grows with n so a batch outweighs the O(n) selection; fixed by n
+// alone (never by threads) so that results are bit-identical on any thread count.
+size_t BatchSize(uint32_t n) { return std::clamp<size_t>(n / 128, 1, 256); }
+
+struct ShootState {
+  std::vector<Rgb> db;        // unshot radiosity per lane
+  std::vector<double> power;  // selection key per patch
+  Rgb emitted{};              // sum_i A_i E_i per lane
+  double max_rho = 0;
+};
+
+// Shoots every patch whose row is empty through column i of F (B_j += rho_j F_ji dB_i):
+// emitters that reflect nothing need no row.
+void ShootRowless(const BandSystem& bands, ShootState& st, std::vector<Rgb>& b) {
+  std::vector<Rgb> z(bands.n, Rgb{}), y;
+  bool any = false;
+  for (uint32_t i = 0; i < bands.n; ++i) {
+    if (bands.f->row_begin[i] != bands.f->row_begin[i + 1]) continue;
+    z[i] = st.db[i];
+    st.db[i] = Rgb{};
+    for (int k = 0; k < bands.lanes; ++k) any = any || z[i][k] != 0;
+  }
+  if (!any) return;
+  MultiplyF(bands, z, y);
+  for (uint32_t j = 0; j < bands.n; ++j)
+    for (int k = 0; k < bands.lanes; ++k) {
+      const double delta = bands.rho[j][k] * y[j][k];
+      b[j][k] += delta;
+      st.db[j][k] += delta;
+    }
+}
+
+// Recomputes the selection keys; returns the unshot fraction (max over lanes) and the
+// residual bound max(rho) ||dB||_A / ||E||_A (a bound on ||rho F dB||_A for reciprocal rows).
+std::pair<double, double> Measure(const BandSystem& bands, ShootState& st) {
+  const std::vector<double>& area = *bands.area;
+  const Rgb unshot = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+    Rgb s{};
+    for (int64_t i = begin; i < end; ++i) {
+      double key = 0;
+      for (int k = 0; k < bands.lanes; ++k) {
+        s[k] += area[i] * std::abs(st.db[i][k]);
+        key += area[i] * std::abs(st.db[i][k]) / st.emitted[k];
+      }
+      st.power[i] = key;
+    }
+    return s;
+  });
+  const Rgb sq = AreaDot(bands, st.db, st.db);
+  double fraction = 0, residual = 0;
+  for (int k = 0; k < bands.lanes; ++k) {
+    fraction = std::max(fraction, unshot[k] / st.emitted[k]);
+    residual = std::max(residual, st.max_rho * std::sqrt(sq[k]) / bands.emission_norm[k]);
+  }
+  return {fraction, residual};
+}
+
+// The up-to-m patches with the largest key (ties: lower index), best first.
+std::vector<uint32_t> SelectBatch(const std::vector<double>& power, size_t m) {
+  const auto better = [&](uint32_t a, uint32_t b) {
+    return power[a] > power[b] || (power[a] == power[b] && a < b);
+  };
+  std::vector<uint32_t> heap;  // front = worst kept
+  for (uint32_t i = 0; i < power.size(); ++i) {
+    if (!(power[i] > 0)) continue;
+    if (heap.size() < m) {
+      heap.push_back(i);
+      std::push_heap(heap.begin(), heap.end(), better);
+    } else if (better(i, heap.front())) {
+      std::pop_heap(heap.begin(), heap.end(), better);
+      heap.back() = i;
+      std::push_heap(heap.begin(), heap.end(), better);
+    }
+  }
+  std::sort(heap.begin(), heap.end(), better);
+  return heap;
+}
+
+// Shoots `batch` (their dB taken before any of them receives).
+void ShootBatch(const BandSystem& bands, const std::vector<uint32_t>& batch, ShootState& st,
+                std::vector<Rgb>& b) {
+  const std::vector<double>& area = *bands.area;
+  std::vector<Rgb> shot(batch.size());
+  for (size_t s = 0; s < batch.size(); ++s) {
+    shot[s] = st.db[batch[s]];
+    st.db[batch[s]] = Rgb{};
+  }
+  ParallelFor(bands.n, kReceiverBlock, bands.threads, [&](int64_t begin, int64_t end) {
+    for (size_t s = 0; s < batch.size(); ++s) {
+      const uint32_t i = batch[s];
+      const auto cols = bands.f->RowCols(i);
+      const auto values = bands.f->RowValues(i);
+      size_t e = static_cast<size_t>(
+          std::lower_bound(cols.begin(), cols.end(), static_cast<uint32_t>(begin)) - cols.begin());
+      for (; e < cols.size() && cols[e] < end; ++e) {
+        const uint32_t j = cols[e];
+        const double gji = area[i] * values[e] / area[j];
+        for (int k = 0; k < bands.lanes; ++k) {
+          const double delta = bands.rho[j][k] * gji * shot[s][k];
+          b[j][k] += delta;
+          st.db[j][k] += delta;
+        }
+      }
+    }
+  });
+}
+
+// B plus the ambient term rho_i * sum(A dB) / (A_total (1 - rho_avg)) per lane.
+std::vector<Rgb> WithAmbient(const BandSystem& bands, const ShootState& st,
+                             const std::vector<Rgb>& b) {
+  const std::vector<double>& area = *bands.area;
+  Rgb unshot{}, rho_area{}, ambient{};
+  for (uint32_t i = 0; i < bands.n; ++i)
+    for (int k = 0; k < bands.lanes; ++k) {
+      unshot[k] += area[i] * st.db[i][k];
+      rho_area[k] += area[i] * bands.rho[i][k];
+    }
+  for (int k = 0; k < bands.lanes; ++k) {
+    const double rho_avg = rho_area[k] / bands.total_area;
+    ambient[k] = rho_avg < 1 ? unshot[k] / (bands.total_area * (1 - rho_avg)) : 0;
+  }
+  std::vector<Rgb> display = b;
+  for (uint32_t i = 0; i < bands.n; ++i)
+    for (int k = 0; k < bands.lanes; ++k) display[i][k] += bands.rho[i][k] * ambient[k];
+  return display;
+}
+
+ShootState StartShooting(const BandSystem& bands, std::vector<Rgb>& b) {
+  ShootState st;
+  LaneResiduals(bands, b, &st.db);  // dB = r(B0); B = B0 + r keeps the invariant
+  for (uint32_t i = 0; i < bands.n; ++i)
+    for (int k = 0; k < bands.lanes; ++k) {
+      b[i][k] += st.db[i][k];
+      st.emitted[k] += (*bands.area)[i] * std::abs(bands.emission[i][k]);
+      st.max_rho = std::max(st.max_rho, bands.rho[i][k]);
+    }
+  st.power.assign(bands.n, 0);
+  ShootRowless(bands, st, b);
+  return st;
+}
+
+}  // namespace
+
+absl::Status SolveSouthwell(const BandSystem& bands, const SolverOptions& options,
+                            const SolveCallback& callback, std::vector<Rgb>& b,
+                            SolveResult& result) {
+  ShootState st = StartShooting(bands, b);
+  auto [fraction, residual] = Measure(bands, st);
+  IterationMonitor monitor(bands, options, callback, result);
+  const size_t m = BatchSize(bands.n);
+  while (!monitor.ShouldStop()) {
+    ShootBatch(bands, SelectBatch(st.power, m), st, b);
+    std::tie(fraction, residual) = Measure(bands, st);
+    const bool snapshot = monitor.SnapshotDue();
+    const bool done =
+        monitor.Record(fraction, residual, fraction, snapshot ? WithAmbient(bands, st, b) : b);
+    if (done) break;
+  }
+  result.unshot_fraction = fraction;
+  return absl::OkStatus();
+}
+
+}  // namespace radflux

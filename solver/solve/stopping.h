@@ -1,0 +1,41 @@
+// IterationMonitor: the stopping rule and progress reporting shared by every method.
+// A method asks ShouldStop() before each sweep (cancellation, max iterations) and
+// calls Record() after it; Record() calls back every iteration and attaches a snapshot
+// (all three bands) only every options.snapshot_every iterations.
+#pragma once
+
+#include <vector>
+
+#include "solver/core/bands.h"
+#include "solver/solve/band_system.h"
+#include "solver/solve/solver.h"
+
+namespace radflux {
+
+class IterationMonitor {
+ public:
+  IterationMonitor(const BandSystem& bands, const SolverOptions& options,
+                   const SolveCallback& callback, SolveResult& result);
+
+  // True when no further sweep may start: cancelled (sets result.cancelled) or
+  // max_iterations sweeps done. Checked once per sweep.
+  bool ShouldStop();
+  // Whether the iteration about to be recorded carries a snapshot.
+  bool SnapshotDue() const;
+  // Records one finished sweep with its stopping `measure` (residual, or unshot fraction
+  // for southwell); `display` (lane values) is copied into the snapshot when one is due.
+  // Returns true when measure <= tolerance (and sets result.converged).
+  bool Record(double measure, double residual, double unshot_fraction,
+              const std::vector<Rgb>& display);
+  int iteration() const { return iteration_; }
+
+ private:
+  const BandSystem& bands_;
+  const SolverOptions& options_;
+  const SolveCallback& callback_;
+  SolveResult& result_;
+  int iteration_ = 0;
+  std::vector<Rgb> snapshot_;
+};
+
+}  // namespace radflux
