@@ -139,7 +139,10 @@ absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
 absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string& mtl_text,
                                   const std::string& name) {
   tinyobj::ObjReader reader;
-  reader.ParseFromString(obj_text, mtl_text, Config());
+  // tinyobjloader reads the MTL text only when the OBJ names a material library.
+  const bool names_library = obj_text.find("mtllib") != std::string::npos;
+  reader.ParseFromString(names_library ? obj_text : "mtllib scene.mtl\n" + obj_text, mtl_text,
+                         Config());
   return ConvertReader(reader, obj_text, name);
 }
 

@@ -1,0 +1,117 @@
+#include "solver/pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "solver/formfactor/row_context.h"
+#include "solver/scene/validation.h"
+
+namespace radflux {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+absl::Status Require(bool ok, const std::string& what) {
+  return ok ? absl::OkStatus() : absl::InvalidArgumentError(what);
+}
+
+}  // namespace
+
+absl::Status ValidateJobOptions(const JobOptions& o) {
+  const FormFactorOptions& f = o.form_factors;
+  const SolverOptions& s = o.solver;
+  for (const absl::Status& status : {
+           Require(o.mesh.target_patches >= 0, "--patches must be >= 0"),
+           Require(o.mesh.max_edge >= 0 && std::isfinite(o.mesh.max_edge),
+                   "--max-edge must be a finite length >= 0"),
+           Require(o.mesh.target_patches == 0 || o.mesh.max_edge == 0,
+                   "give --patches or --max-edge, not both"),
+           Require(f.rays >= 1 && f.rays <= (1 << 24), "--rays must be in [1, 16777216]"),
+           Require(f.hemicube_res >= 2 && f.hemicube_res <= 4096 && f.hemicube_res % 2 == 0,
+                   "--hemicube-res must be even and in [2, 4096]"),
+           Require(f.samples >= 1 && f.samples <= 65536, "--samples must be in [1, 65536]"),
+           Require(f.cutoff >= 0 && f.cutoff < 1, "--cutoff must be in [0, 1)"),
+           Require(f.threads >= 0 && f.threads <= 4096, "--threads must be in [0, 4096]"),
+           Require(f.block_size >= 1, "block size must be >= 1"),
+           Require(s.tolerance > 0 && s.tolerance < 1, "--tolerance must be in (0, 1)"),
+           Require(s.max_iterations >= 1, "--max-iterations must be >= 1"),
+       }) {
+    if (!status.ok()) return status;
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
+  if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
+  if (absl::Status s = ValidateScene(scene); !s.ok()) return s;
+  auto job = std::make_unique<PreparedJob>();
+  job->scene = std::move(scene);
+  auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(job->scene, options.mesh);
+  if (!mesh.ok()) return mesh.status();
+  job->mesh = *std::move(mesh);
+  job->mesh_stats = ComputeMeshStats(job->mesh);
+  job->attributes = ComputePatchAttributes(job->scene, job->mesh);
+  job->mesh_seconds = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
+  if (!caster.ok()) return caster.status();
+  job->caster = *std::move(caster);
+  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster);
+  job->embree_seconds = SecondsSince(start);
+  return job;
+}
+
+uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
+  // Patch count from the subdivision rule itself (cheap: counting, not building).
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options.mesh);
+  const uint64_t n = mesh.ok() ? mesh->size() : 0;
+  const FormFactorOptions& f = options.form_factors;
+  // Non-zeros per row: bounded by n, and by the rays or cells that can land in a row.
+  uint64_t per_row = n;
+  if (f.method == FormFactorMethod::kMonteCarlo) per_row = std::min<uint64_t>(n, f.rays + 64);
+  if (f.method == FormFactorMethod::kHemicube) {
+    per_row = std::min<uint64_t>(n, 3ull * f.hemicube_res * f.hemicube_res);
+  }
+  const uint64_t rows = n * per_row * (sizeof(uint32_t) + sizeof(float)) * 2;  // rows + CG copy
+  const uint64_t mesh_bytes = n * (sizeof(Patch) + 4 * sizeof(Vec3) + 2 * sizeof(Rgb) + 64);
+  const uint64_t embree = n * 128;
+  const uint64_t solver = n * sizeof(Rgb) * 8;
+  const uint64_t direct = options.solver.method == SolverMethod::kDirect ? n * n * 8 : 0;
+  return rows + mesh_bytes + embree + solver + direct;
+}
+
+absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
+                                 const JobCallbacks& callbacks) {
+  JobResult result;
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(std::move(scene), options);
+  if (!job.ok()) return job.status();
+  result.job = *std::move(job);
+  result.timings.mesh = result.job->mesh_seconds;
+  result.timings.embree = result.job->embree_seconds;
+
+  absl::StatusOr<FormFactorResult> rows =
+      BuildFormFactors(result.job->rows, options.form_factors, callbacks.phase);
+  if (!rows.ok()) return rows.status();
+  result.form_factors = std::move(rows->matrix);
+  result.row_stats = rows->stats;
+  result.timings.rows = rows->seconds;
+
+  const auto start = std::chrono::steady_clock::now();
+  SolverOptions solver_options = options.solver;
+  if (solver_options.threads == 0) solver_options.threads = options.form_factors.threads;
+  absl::StatusOr<SolveResult> solved = Solve(
+      RadiositySystem{&result.form_factors, &result.job->attributes}, solver_options,
+      callbacks.solve);
+  if (!solved.ok()) return solved.status();
+  result.solve = *std::move(solved);
+  result.timings.solve = SecondsSince(start);
+  return result;
+}
+
+}  // namespace radflux

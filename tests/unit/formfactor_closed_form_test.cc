@@ -1,0 +1,130 @@
+// Row builders against Howell's closed forms: each method within a stated tolerance,
+// and the error shrinking as its knob (k, r, s) grows.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "howell_closed_forms.h"
+#include "solver/formfactor/polygon_form_factor.h"
+#include "test_scenes.h"
+
+namespace radflux {
+namespace {
+
+using testing::ObjQuad;
+using testing::RowFixture;
+using testing::SceneFromObj;
+
+// Plate "a" at z=0 facing +z and plate "b" at z=d facing -z, both 1 x 1 centred on the axis.
+Scene ParallelSquares(double d) {
+  int next = 1;
+  std::string obj = ObjQuad("a", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
+  obj += ObjQuad("b", "white", {{-.5, -.5, d}, {-.5, .5, d}, {.5, .5, d}, {.5, -.5, d}}, next);
+  return SceneFromObj(obj);
+}
+
+// Floor "a" (w along x, l along y) and wall "b" (h along z) sharing the edge x=0.
+Scene PerpendicularPlates(double w, double h, double l) {
+  int next = 1;
+  std::string obj = ObjQuad("a", "white", {{0, 0, 0}, {w, 0, 0}, {w, l, 0}, {0, l, 0}}, next);
+  obj += ObjQuad("b", "white", {{0, 0, 0}, {0, l, 0}, {0, l, h}, {0, 0, h}}, next);
+  return SceneFromObj(obj);
+}
+
+FormFactorOptions Method(FormFactorMethod m, int knob) {
+  FormFactorOptions o;
+  o.method = m;
+  o.cutoff = 0;
+  o.rays = knob;
+  o.hemicube_res = knob;
+  o.samples = knob;
+  return o;
+}
+
+double ErrorFor(RowFixture& fixture, FormFactorMethod m, int knob, double exact) {
+  const CsrMatrix f = fixture.Rows(Method(m, knob));
+  return std::abs(fixture.SurfaceFormFactor(f, "a", "b") - exact);
+}
+
+struct Sweep {
+  FormFactorMethod method;
+  std::vector<int> knobs;  // increasing cost
+  double tolerance;        // error bound at the largest knob
+};
+
+// Each method: the error at the largest knob is within tolerance, and it is smaller
+// than at the smallest knob (the trend, not one point).
+void CheckSweep(RowFixture& fixture, double exact, const Sweep& sweep) {
+  std::vector<double> errors;
+  for (int knob : sweep.knobs) errors.push_back(ErrorFor(fixture, sweep.method, knob, exact));
+  for (size_t k = 0; k < errors.size(); ++k) {
+    std::printf("  %-12s knob %5d  error %.2e\n", std::string(MethodName(sweep.method)).c_str(),
+                sweep.knobs[k], errors[k]);
+  }
+  EXPECT_LT(errors.back(), sweep.tolerance) << MethodName(sweep.method);
+  EXPECT_LT(errors.back(), errors.front()) << MethodName(sweep.method) << " does not converge";
+}
+
+TEST(FormFactorClosedForm, ParallelSquaresAtSeveralDistances) {
+  for (double d : {0.5, 1.0, 2.0}) {
+    const double exact = testing::ParallelRectangles(1, 1, d);
+    RowFixture fixture(ParallelSquares(d), MeshOptions{16 * 2, 0});
+    std::printf("parallel squares d=%g exact %.6f\n", d, exact);
+    CheckSweep(fixture, exact, {FormFactorMethod::kMonteCarlo, {16, 256, 4096}, 0.004});
+    CheckSweep(fixture, exact, {FormFactorMethod::kHemicube, {4, 16, 64}, 0.01});
+    CheckSweep(fixture, exact, {FormFactorMethod::kAnalytic, {1, 16, 64}, 0.002});
+  }
+}
+
+TEST(FormFactorClosedForm, PerpendicularRectanglesSharingAnEdge) {
+  const double exact = testing::PerpendicularRectangles(1, 0.7, 1.3);
+  RowFixture fixture(PerpendicularPlates(1, 0.7, 1.3), MeshOptions{64, 0});
+  std::printf("perpendicular rectangles exact %.6f\n", exact);
+  CheckSweep(fixture, exact, {FormFactorMethod::kMonteCarlo, {16, 256, 4096}, 0.004});
+  CheckSweep(fixture, exact, {FormFactorMethod::kHemicube, {4, 16, 64}, 0.01});
+  CheckSweep(fixture, exact, {FormFactorMethod::kAnalytic, {1, 16, 64}, 0.004});
+}
+
+// Coaxial discs as 48-gons (the polygon loses a relative 1 - sin(2pi/48)*48/(2pi) of area).
+TEST(FormFactorClosedForm, CoaxialParallelDiscs) {
+  const double r1 = 0.5, r2 = 0.8, h = 1.0;
+  const int sides = 48;
+  std::string obj;
+  int next = 1;
+  auto disc = [&](const std::string& name, double r, double z, bool up) {
+    std::vector<Vec3> v;
+    for (int k = 0; k < sides; ++k) {
+      const double a = 2 * std::numbers::pi * (up ? k : sides - k) / sides;
+      v.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+    obj += ObjQuad(name, "white", v, next);
+  };
+  disc("a", r1, 0, true);
+  disc("b", r2, h, false);
+  // The exact value for the inscribed polygons: discs of equal area are a close proxy.
+  const double shrink = std::sqrt(sides * std::sin(2 * std::numbers::pi / sides) / (2 * std::numbers::pi));
+  const double exact = testing::CoaxialDiscs(r1 * shrink, r2 * shrink, h);
+  RowFixture fixture(SceneFromObj(obj), MeshOptions{0, 0.45});
+  std::printf("coaxial discs exact %.6f\n", exact);
+  CheckSweep(fixture, exact, {FormFactorMethod::kMonteCarlo, {16, 256, 4096}, 0.005});
+  CheckSweep(fixture, exact, {FormFactorMethod::kHemicube, {4, 16, 64}, 0.01});
+  CheckSweep(fixture, exact, {FormFactorMethod::kAnalytic, {1, 4, 16}, 0.005});
+}
+
+TEST(FormFactorClosedForm, PointFacingAPolygonIsExact) {
+  // Differential area at the origin facing +z; a 0.8 x 1.5 rectangle at height 0.6 with
+  // one corner on the normal.
+  const std::vector<Vec3> rect{{0, 0, 0.6}, {0, 1.5, 0.6}, {0.8, 1.5, 0.6}, {0.8, 0, 0.6}};
+  EXPECT_NEAR(PointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, rect),
+              testing::PointToCornerRectangle(0.8, 1.5, 0.6), 1e-12);
+  // The same rectangle seen from below its plane contributes nothing, tilted half-way it is clipped.
+  EXPECT_EQ(PointToPolygonFormFactor({0, 0, 1}, {0, 0, 1}, rect), 0.0);
+  const std::vector<Vec3> straddling{{-1, -1, -1}, {1, -1, -1}, {1, 1, 1}, {-1, 1, 1}};
+  const double half = PointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, straddling);
+  EXPECT_GT(half, 0);
+  EXPECT_LT(half, 0.5);
+}
+
+}  // namespace
+}  // namespace radflux

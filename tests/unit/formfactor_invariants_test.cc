@@ -1,0 +1,197 @@
+// Invariants of the form-factor rows: closed enclosures sum to 1, reciprocity,
+// occlusion, determinism across thread counts, culling and the cut-off.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "howell_closed_forms.h"
+#include "solver/raytrace/brute_force_ray_caster.h"
+#include "test_scenes.h"
+
+namespace radflux {
+namespace {
+
+using testing::ObjQuad;
+using testing::RowFixture;
+using testing::SceneFromObj;
+
+// A unit cube with every face looking inwards; face "top" is the lamp.
+Scene ClosedCube() {
+  int next = 1;
+  std::string obj;
+  obj += ObjQuad("bottom", "white", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, next);
+  obj += ObjQuad("top", "lamp", {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}, next);
+  obj += ObjQuad("x0", "white", {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, next);
+  obj += ObjQuad("x1", "white", {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}}, next);
+  obj += ObjQuad("y0", "white", {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, next);
+  obj += ObjQuad("y1", "white", {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}, next);
+  return SceneFromObj(obj);
+}
+
+FormFactorOptions Options(FormFactorMethod m) {
+  FormFactorOptions o;
+  o.method = m;
+  o.rays = 1024;
+  o.hemicube_res = 64;
+  o.samples = 16;
+  o.cutoff = 0;
+  return o;
+}
+
+TEST(FormFactorInvariants, ClosedCubeRowsSumToOne) {
+  RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
+  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
+                 FormFactorMethod::kAnalytic}) {
+    const CsrMatrix f = fixture.Rows(Options(m));
+    double worst = 0;
+    for (uint32_t i = 0; i < f.rows; ++i) worst = std::max(worst, std::abs(f.RowSum(i) - 1));
+    std::printf("  %-12s max |row sum - 1| = %.2e\n", std::string(MethodName(m)).c_str(), worst);
+    // Hemicube cells and monte_carlo rays all land somewhere in a closed box; analytic
+    // sums exact per-point factors times sampled visibility (no occluders here).
+    EXPECT_LT(worst, m == FormFactorMethod::kMonteCarlo ? 0.02 : 2e-3) << MethodName(m);
+  }
+}
+
+TEST(FormFactorInvariants, ReciprocityBetweenFacesOfTheCube) {
+  RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
+  const double adjacent = testing::PerpendicularRectangles(1, 1, 1);
+  const double opposite = testing::ParallelRectangles(1, 1, 1);
+  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
+                 FormFactorMethod::kAnalytic}) {
+    const CsrMatrix f = fixture.Rows(Options(m));
+    // Equal areas: A_i F_ij = A_j F_ji reduces to F_ij = F_ji for whole faces.
+    const double bx = fixture.SurfaceFormFactor(f, "bottom", "x0");
+    const double xb = fixture.SurfaceFormFactor(f, "x0", "bottom");
+    const double by = fixture.SurfaceFormFactor(f, "bottom", "y1");
+    const double yb = fixture.SurfaceFormFactor(f, "y1", "bottom");
+    const double x01 = fixture.SurfaceFormFactor(f, "x0", "x1");
+    const double x10 = fixture.SurfaceFormFactor(f, "x1", "x0");
+    EXPECT_NEAR(bx, xb, 0.01) << MethodName(m);
+    EXPECT_NEAR(by, yb, 0.01) << MethodName(m);
+    EXPECT_NEAR(x01, x10, 0.01) << MethodName(m);
+    EXPECT_NEAR(bx, adjacent, 0.01) << MethodName(m);
+    EXPECT_NEAR(x01, opposite, 0.01) << MethodName(m);
+  }
+}
+
+// Two parallel unit squares one apart and, half-way, a plate covering x > 0. By the
+// symmetry (p, q) -> (-p, -q) of the line from p to q, exactly half of the exchange is blocked.
+TEST(FormFactorInvariants, HalfPlaneOccluderHalvesTheFormFactor) {
+  int next = 1;
+  std::string obj;
+  obj += ObjQuad("a", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
+  obj += ObjQuad("b", "white", {{-.5, -.5, 1}, {-.5, .5, 1}, {.5, .5, 1}, {.5, -.5, 1}}, next);
+  obj += ObjQuad("wall", "white", {{0, -1, .5}, {1, -1, .5}, {1, 1, .5}, {0, 1, .5}}, next);
+  RowFixture fixture(SceneFromObj(obj), MeshOptions{0, 0.125});
+  const double open = testing::ParallelRectangles(1, 1, 1);
+  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
+                 FormFactorMethod::kAnalytic}) {
+    const CsrMatrix f = fixture.Rows(Options(m));
+    EXPECT_NEAR(fixture.SurfaceFormFactor(f, "a", "b"), open / 2, 0.006) << MethodName(m);
+  }
+}
+
+TEST(FormFactorInvariants, RowsAreBitIdenticalOnOneAndTwoThreads) {
+  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(scene.ok());
+  RowFixture fixture(*scene, MeshOptions{600, 0});
+  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
+                 FormFactorMethod::kAnalytic}) {
+    FormFactorOptions o = Options(m);
+    o.rays = 64;
+    o.hemicube_res = 8;
+    o.samples = 2;
+    o.block_size = 7;
+    o.threads = 1;
+    const CsrMatrix one = fixture.Rows(o);
+    o.threads = 2;
+    const CsrMatrix two = fixture.Rows(o);
+    EXPECT_EQ(one.row_begin, two.row_begin) << MethodName(m);
+    EXPECT_EQ(one.col, two.col) << MethodName(m);
+    EXPECT_EQ(one.value, two.value) << MethodName(m);
+  }
+}
+
+TEST(FormFactorInvariants, CornellBoxRowSumsAndSparsity) {
+  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(scene.ok());
+  RowFixture fixture(*scene, MeshOptions{2000, 0});
+  FormFactorOptions o = Options(FormFactorMethod::kMonteCarlo);
+  o.rays = 256;
+  o.cutoff = 1e-6;
+  absl::StatusOr<FormFactorResult> result = BuildFormFactors(fixture.context, o);
+  ASSERT_TRUE(result.ok());
+  const CsrMatrix& f = result->matrix;
+  double min_sum = 2, max_sum = 0, mean = 0;
+  for (uint32_t i = 0; i < f.rows; ++i) {
+    min_sum = std::min(min_sum, f.RowSum(i));
+    max_sum = std::max(max_sum, f.RowSum(i));
+    mean += f.RowSum(i) / f.rows;
+  }
+  std::printf("cornell box: %u patches, nnz %zu (%.1f per row), %zu bytes, row sums [%.4f, %.4f] "
+              "mean %.4f, dropped %.2e\n",
+              f.rows, f.nnz(), double(f.nnz()) / f.rows, f.Bytes(), min_sum, max_sum, mean,
+              result->stats.dropped_sum);
+  // The box is open at the front: rows sum to less than one. A row can exceed one only by
+  // noise: monte_carlo hits plus the analytic emitter columns (s = 4 shadow rays each).
+  EXPECT_LE(max_sum, 1.0 + 0.01);
+  EXPECT_GT(mean, 0.5);
+  EXPECT_LT(mean, 1.0);
+  EXPECT_LT(f.nnz(), size_t{f.rows} * f.rows / 4);  // sparse: rays, not all pairs
+}
+
+TEST(FormFactorInvariants, PatchesWithoutReflectanceGetNoRow) {
+  int next = 1;
+  std::string obj;
+  obj += ObjQuad("a", "black", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
+  obj += ObjQuad("b", "white", {{-.5, -.5, 1}, {-.5, .5, 1}, {.5, .5, 1}, {.5, -.5, 1}}, next);
+  RowFixture fixture(SceneFromObj(obj), MeshOptions{8, 0});
+  const CsrMatrix f = fixture.Rows(Options(FormFactorMethod::kMonteCarlo));
+  for (uint32_t i = 0; i < f.rows; ++i) {
+    if (fixture.ObjectOf(i) == "a") {
+      EXPECT_EQ(f.RowCols(i).size(), 0u);
+    } else {
+      EXPECT_GT(f.RowCols(i).size(), 0u);
+    }
+  }
+}
+
+TEST(FormFactorInvariants, CutoffDropsSmallEntriesAndReportsTheirSum) {
+  RowFixture fixture(ClosedCube(), MeshOptions{6 * 64, 0});
+  FormFactorOptions o = Options(FormFactorMethod::kAnalytic);
+  o.samples = 4;
+  absl::StatusOr<FormFactorResult> all = BuildFormFactors(fixture.context, o);
+  o.cutoff = 1e-3;
+  absl::StatusOr<FormFactorResult> cut = BuildFormFactors(fixture.context, o);
+  ASSERT_TRUE(all.ok() && cut.ok());
+  EXPECT_LT(cut->matrix.nnz(), all->matrix.nnz());
+  double lost = 0;
+  for (uint32_t i = 0; i < all->matrix.rows; ++i) lost += all->matrix.RowSum(i) - cut->matrix.RowSum(i);
+  EXPECT_NEAR(lost, cut->stats.dropped_sum, 1e-4);
+  EXPECT_GT(cut->stats.dropped_sum, 0);
+  for (float v : cut->matrix.value) EXPECT_GE(v, 1e-3f);
+}
+
+TEST(EmbreeRayCaster, AgreesWithBruteForce) {
+  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(scene.ok());
+  RowFixture fixture(*scene, MeshOptions{300, 0});
+  BruteForceRayCaster brute(fixture.mesh);
+  int agree = 0, total = 0;
+  for (uint32_t i = 0; i < 400; ++i) {
+    const Point2 u = MultiJitteredSample(i, 400, 7), w = MultiJitteredSample(i, 400, 9);
+    const Ray ray{{278 + 200 * (u.x - .5), 273 + 200 * (u.y - .5), 280},
+                  {std::cos(6.283 * w.x), w.y - .5, std::sin(6.283 * w.x)}};
+    const Hit a = fixture.caster->Intersect(ray), b = brute.Intersect(ray);
+    ++total;
+    if (a.patch == b.patch) {
+      ++agree;
+      EXPECT_NEAR(a.t, b.t, 1e-3 * b.t);
+    }
+    EXPECT_EQ(fixture.caster->Occluded(ray), brute.Occluded(ray));
+  }
+  EXPECT_GE(agree, total - 2);  // rays grazing a shared patch edge may pick either neighbour
+}
+
+}  // namespace
+}  // namespace radflux

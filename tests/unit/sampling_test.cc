@@ -1,0 +1,67 @@
+// Sampling functions against their inverses, and the stratification they promise.
+#include "solver/core/sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace radflux {
+namespace {
+
+TEST(Sampling, CosineHemisphereInvertsAndStaysOnTheHemisphere) {
+  for (uint32_t i = 0; i < 256; ++i) {
+    const Point2 u = MultiJitteredSample(i, 256, 3);
+    const Vec3 w = SampleCosineHemisphere(u);
+    EXPECT_NEAR(Length(w), 1, 1e-12);
+    EXPECT_GE(w.z, 0);
+    const Point2 back = InvertCosineHemisphereSample(w);
+    EXPECT_NEAR(back.x, u.x, 1e-9);
+    EXPECT_NEAR(back.y, u.y, 1e-9);
+  }
+  EXPECT_NEAR(CosineHemispherePdf(1), 1 / std::numbers::pi, 1e-15);
+}
+
+TEST(Sampling, CosineHemisphereHasTheRightMean) {
+  // E[cos theta] under the cosine pdf is 2/3.
+  double mean = 0;
+  const uint32_t n = 4096;
+  for (uint32_t i = 0; i < n; ++i) mean += SampleCosineHemisphere(MultiJitteredSample(i, n, 5)).z / n;
+  EXPECT_NEAR(mean, 2.0 / 3.0, 1e-3);
+}
+
+TEST(Sampling, UniformTriangleInverts) {
+  for (uint32_t i = 0; i < 256; ++i) {
+    const Point2 u = MultiJitteredSample(i, 256, 11);
+    const auto [b0, b1] = SampleUniformTriangle(u);
+    EXPECT_GE(b0, 0);
+    EXPECT_GE(b1, 0);
+    EXPECT_LE(b0 + b1, 1 + 1e-12);
+    const Point2 back = InvertUniformTriangleSample(b0, b1);
+    EXPECT_NEAR(back.x, u.x, 1e-12);
+    EXPECT_NEAR(back.y, u.y, 1e-12);
+  }
+}
+
+TEST(Sampling, MultiJitteredIsStratifiedInEachDimension) {
+  for (uint32_t n : {16u, 64u, 100u}) {
+    std::set<int> xs, ys;
+    for (uint32_t i = 0; i < n; ++i) {
+      const Point2 p = MultiJitteredSample(i, n, 1234);
+      ASSERT_GE(p.x, 0);
+      ASSERT_LT(p.x, 1);
+      xs.insert(static_cast<int>(p.x * n));
+      ys.insert(static_cast<int>(p.y * n));
+    }
+    EXPECT_EQ(xs.size(), n);  // one sample per 1/n column
+    EXPECT_EQ(ys.size(), n);
+  }
+}
+
+TEST(Sampling, PatternSeedsDependOnSeedAndIndex) {
+  EXPECT_NE(PatternSeed(1, 2), PatternSeed(1, 3));
+  EXPECT_NE(PatternSeed(1, 2), PatternSeed(2, 2));
+  EXPECT_EQ(PatternSeed(5, 9, 1), PatternSeed(5, 9, 1));
+}
+
+}  // namespace
+}  // namespace radflux

@@ -1,0 +1,84 @@
+// Small scenes and helpers shared by the unit tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/formfactor/row_builder.h"
+#include "solver/formfactor/row_context.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/mesh/subdivide.h"
+#include "solver/raytrace/embree_ray_caster.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux::testing {
+
+// MTL with a grey reflector "white" (rho 0.5) and an emitter "lamp" (rho 0.5, Ke 1).
+inline const char* kTestMtl =
+    "newmtl white\nKd 0.5 0.5 0.5\n"
+    "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n"
+    "newmtl black\nKd 0 0 0\nKe 1 1 1\n";
+
+inline Scene SceneFromObj(const std::string& obj, const std::string& mtl = kTestMtl) {
+  absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, "test.obj");
+  EXPECT_TRUE(scene.ok()) << scene.status();
+  return scene.ok() ? *scene : Scene{};
+}
+
+// An OBJ quad face with vertices listed counter-clockwise seen from the front.
+inline std::string ObjQuad(const std::string& object, const std::string& material,
+                           const std::vector<Vec3>& v, int& next_index) {
+  std::string s = "o " + object + "\nusemtl " + material + "\n";
+  for (const Vec3& p : v) {
+    s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  }
+  s += "f";
+  for (size_t k = 0; k < v.size(); ++k) s += " " + std::to_string(next_index++);
+  return s + "\n";
+}
+
+// A scene ready for row building: mesh, attributes, Embree, context.
+struct RowFixture {
+  Scene scene;
+  PatchMesh mesh;
+  PatchAttributes attributes;
+  std::unique_ptr<EmbreeRayCaster> caster;
+  RowContext context;
+
+  RowFixture(Scene s, const MeshOptions& options) : scene(std::move(s)) {
+    mesh = *SubdivideScene(scene, options);
+    attributes = ComputePatchAttributes(scene, mesh);
+    caster = *EmbreeRayCaster::Create(mesh);
+    context = MakeRowContext(mesh, attributes, *caster);
+  }
+
+  CsrMatrix Rows(const FormFactorOptions& options) {
+    absl::StatusOr<FormFactorResult> result = BuildFormFactors(context, options);
+    EXPECT_TRUE(result.ok()) << result.status();
+    return result.ok() ? std::move(result->matrix) : CsrMatrix{};
+  }
+
+  // Area-weighted form factor from every patch of object `from` to every patch of `to`.
+  double SurfaceFormFactor(const CsrMatrix& f, const std::string& from, const std::string& to) {
+    double area = 0, sum = 0;
+    for (uint32_t i = 0; i < mesh.size(); ++i) {
+      if (ObjectOf(i) != from) continue;
+      area += mesh.patches[i].area;
+      const auto cols = f.RowCols(i);
+      const auto vals = f.RowValues(i);
+      for (size_t k = 0; k < cols.size(); ++k) {
+        if (ObjectOf(cols[k]) == to) sum += mesh.patches[i].area * vals[k];
+      }
+    }
+    return sum / area;
+  }
+
+  const std::string& ObjectOf(uint32_t patch) const {
+    return scene.objects[scene.faces[mesh.patches[patch].face].object];
+  }
+};
+
+}  // namespace radflux::testing
