@@ -1,0 +1,14 @@
+// Bearer-token check of an RPC: the one place the server decides who may call it.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <string>
+
+namespace radflux {
+
+// OK when `token` is empty (auth off) or the call carries "authorization: Bearer <token>";
+// UNAUTHENTICATED with a message saying which is wrong otherwise. Constant-time compare.
+grpc::Status CheckBearerToken(const grpc::CallbackServerContext& context, const std::string& token);
+
+}  // namespace radflux

@@ -1,0 +1,95 @@
+#include "server/blob_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <zstd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "server/scene_hash.h"
+
+namespace radflux {
+namespace {
+
+constexpr std::string_view kMagic = "RFBLOB1\n";
+constexpr size_t kHashHexSize = 64;
+constexpr int kZstdLevel = 3;
+
+absl::Status ErrnoError(std::string_view what, const std::string& path) {
+  return absl::InternalError(absl::StrCat(std::string(what), " ", path, ": ", std::strerror(errno)));
+}
+
+// Writes all of `data` to fd.
+bool WriteAll(int fd, std::string_view data) {
+  while (!data.empty()) {
+    const ssize_t n = ::write(fd, data.data(), data.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data.remove_prefix(static_cast<size_t>(n));
+  }
+  return true;
+}
+
+// fsyncs the directory holding `path`, so the rename itself is durable.
+void SyncParentDir(const std::string& path) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
+  std::string compressed(ZSTD_compressBound(data.size()), '\0');
+  const size_t size =
+      ZSTD_compress(compressed.data(), compressed.size(), data.data(), data.size(), kZstdLevel);
+  if (ZSTD_isError(size)) return absl::InternalError(ZSTD_getErrorName(size));
+  compressed.resize(size);
+  const std::string header =
+      absl::StrCat(std::string(kMagic), data.size(), "\n", Sha256Hex(data), "\n");
+  const std::string temp = path + ".tmp";
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return ErrnoError("cannot create", temp);
+  const bool ok = WriteAll(fd, header) && WriteAll(fd, compressed) && ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok) return ErrnoError("cannot write", temp);
+  if (::rename(temp.c_str(), path.c_str()) != 0) return ErrnoError("cannot rename", temp);
+  SyncParentDir(path);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::string> ReadBlobFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat("no such blob: ", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string file = buffer.str();
+  const auto corrupt = [&](std::string_view why) {
+    return absl::DataLossError(absl::StrCat("corrupt blob ", path, ": ", std::string(why)));
+  };
+  if (file.compare(0, kMagic.size(), kMagic) != 0) return corrupt("bad magic");
+  const size_t size_end = file.find('\n', kMagic.size());
+  if (size_end == std::string::npos) return corrupt("truncated header");
+  const std::string size_text = file.substr(kMagic.size(), size_end - kMagic.size());
+  const size_t hash_begin = size_end + 1;
+  if (file.size() < hash_begin + kHashHexSize + 1) return corrupt("truncated header");
+  const std::string hash = file.substr(hash_begin, kHashHexSize);
+  const size_t body = hash_begin + kHashHexSize + 1;
+  char* end = nullptr;
+  const unsigned long long raw_size = std::strtoull(size_text.c_str(), &end, 10);
+  if (end == size_text.c_str() || *end != '\0') return corrupt("bad size");
+  std::string raw(raw_size, '\0');
+  const size_t got = ZSTD_decompress(raw.data(), raw.size(), file.data() + body, file.size() - body);
+  if (ZSTD_isError(got) || got != raw_size) return corrupt("bad compressed data");
+  if (Sha256Hex(raw) != hash) return corrupt("checksum mismatch");
+  return raw;
+}
+
+}  // namespace radflux

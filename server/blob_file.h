@@ -1,0 +1,20 @@
+// Blob files: the job store's on-disk format for row blocks, checkpoints, scenes and
+// results. A blob is zstd-compressed with a header carrying the raw size and the SHA-256
+// of the raw bytes; it is written atomically (temp file, fsync, rename, fsync of the dir),
+// so a reader sees either the whole previous file, the whole new one, or none.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "absl/status/statusor.h"
+
+namespace radflux {
+
+// Compresses `data` and atomically replaces `path` with it.
+absl::Status WriteBlobFile(const std::string& path, std::string_view data);
+
+// Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
+absl::StatusOr<std::string> ReadBlobFile(const std::string& path);
+
+}  // namespace radflux

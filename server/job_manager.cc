@@ -1,0 +1,372 @@
+#include "server/job_manager.h"
+
+#include <openssl/rand.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "solver/core/parallel.h"
+#include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+#include "solver/scene/validation.h"
+#include "server/job_runner.h"
+#include "server/proto_convert.h"
+#include "server/result_codec.h"
+#include "server/scene_hash.h"
+
+namespace radflux {
+namespace {
+
+int64_t NowMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string NewJobId() {
+  unsigned char bytes[8];
+  RAND_bytes(bytes, sizeof(bytes));
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string id = "job-";
+  for (unsigned char b : bytes) {
+    id.push_back(kHex[b >> 4]);
+    id.push_back(kHex[b & 15]);
+  }
+  return id;
+}
+
+bool Terminal(v1::JobState s) {
+  return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED ||
+         s == v1::JOB_STATE_CANCELLED;
+}
+
+uint64_t DefaultMaxMemory() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) / 2
+                               : 8ull << 30;
+}
+
+// Upper bound of the patch count of subdividing with max_edge, without subdividing.
+double MaxEdgePatchBound(const Scene& scene, double max_edge) {
+  double bound = 0;
+  for (const Face& face : scene.faces) {
+    const std::vector<Vec3> polygon = FacePolygon(scene, face);
+    double longest = 0;
+    for (size_t k = 0; k < polygon.size(); ++k) {
+      const Vec3& a = polygon[k];
+      const Vec3& b = polygon[(k + 1) % polygon.size()];
+      longest = std::max(longest, std::hypot(a.x - b.x, a.y - b.y, a.z - b.z));
+    }
+    const double per_edge = std::ceil(longest / max_edge) + 1;
+    bound += per_edge * per_edge * static_cast<double>(polygon.size());
+  }
+  return bound;
+}
+
+}  // namespace
+
+JobManager::JobManager(JobStore& store, ManagerOptions options)
+    : store_(store), options_(std::move(options)) {}
+
+JobManager::~JobManager() { Shutdown(); }
+
+absl::Status JobManager::Start() {
+  absl::StatusOr<std::vector<v1::Job>> unfinished = store_.UnfinishedJobs();
+  if (!unfinished.ok()) return unfinished.status();
+  {
+    std::lock_guard lock(mu_);
+    for (const v1::Job& job : *unfinished) {
+      spdlog::info("job {}: {} at startup, requeued", job.job_id(), v1::JobState_Name(job.state()));
+      queue_.push_back(job.job_id());
+      HubLocked(job.job_id());
+    }
+  }
+  for (int i = 0; i < std::max(1, options_.jobs); ++i) workers_.emplace_back([this] { WorkerLoop(); });
+  return absl::OkStatus();
+}
+
+void JobManager::Shutdown() {
+  {
+    std::lock_guard lock(mu_);
+    if (stopping_ && workers_.empty()) return;
+    stopping_ = true;
+    for (auto& [id, running] : running_) running->stop = true;
+  }
+  cv_.notify_all();
+  for (std::thread& t : workers_) t.join();
+  workers_.clear();
+}
+
+absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
+                                                  const std::string& obj, const std::string& mtl) {
+  const std::string sha = SceneContentHash(obj, mtl);
+  if (!header.sha256().empty() && header.sha256() != sha) {
+    return absl::DataLossError(absl::StrCat("upload hashes to ", sha, ", not the declared ",
+                                            header.sha256()));
+  }
+  const std::string name = header.name().empty() ? "scene.obj" : header.name();
+  absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, name);
+  if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
+  if (absl::Status s = ValidateScene(*scene); !s.ok()) {
+    return absl::InvalidArgumentError(s.message());
+  }
+  v1::SceneRef ref;
+  ref.set_sha256(sha);
+  ref.set_faces(scene->faces.size());
+  ref.set_materials(scene->materials.size());
+  ref.set_already_stored(store_.HasScene(sha));
+  if (!ref.already_stored()) {
+    if (absl::Status s = store_.PutScene(sha, {name, obj, mtl}); !s.ok()) return s;
+    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), name, ref.faces());
+  }
+  return ref;
+}
+
+absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
+  absl::StatusOr<StoredScene> stored = store_.GetScene(request.scene_sha256());
+  if (!stored.ok()) return stored.status();
+  absl::StatusOr<JobOptions> options = FromProto(request.options());
+  if (!options.ok()) return options.status();
+  if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
+  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+  if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
+  const int64_t max_patches = options_.max_patches;
+  const auto too_many = [&](double n) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "job would mesh ", static_cast<int64_t>(n), " patches; this server allows at most ",
+        max_patches, " (--max-patches)"));
+  };
+  if (max_patches > 0 && options->mesh.target_patches > max_patches) {
+    return too_many(static_cast<double>(options->mesh.target_patches));
+  }
+  if (max_patches > 0 && options->mesh.max_edge > 0) {
+    const double bound = MaxEdgePatchBound(*scene, options->mesh.max_edge);
+    if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
+  }
+  const uint64_t max_memory = options_.max_memory > 0 ? options_.max_memory : DefaultMaxMemory();
+  const uint64_t bytes = EstimateJobBytes(*scene, *options);
+  if (bytes > max_memory) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "job needs an estimated ", bytes, " bytes; this server allows ", max_memory,
+        " per job (--max-memory)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
+  if (!request.request_id().empty()) {
+    absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
+    if (earlier.ok()) return earlier;
+  }
+  if (absl::Status s = CheckLimits(request); !s.ok()) return s;
+  {
+    std::lock_guard lock(mu_);
+    if (stopping_) return absl::UnavailableError("server is shutting down");
+    if (queue_.size() >= options_.max_queued) {
+      return absl::ResourceExhaustedError(
+          absl::StrCat("job queue is full (", options_.max_queued, " jobs waiting)"));
+    }
+  }
+  v1::Job job;
+  job.set_job_id(NewJobId());
+  job.set_scene_sha256(request.scene_sha256());
+  *job.mutable_options() = request.options();
+  job.set_state(v1::JOB_STATE_QUEUED);
+  job.set_created_unix_ms(NowMs());
+  job.set_request_id(request.request_id());
+  absl::StatusOr<v1::Job> created = store_.CreateJob(job);
+  if (!created.ok() || created->job_id() != job.job_id()) return created;  // error or retry
+  {
+    std::lock_guard lock(mu_);
+    queue_.push_back(job.job_id());
+    v1::JobEvent event;
+    event.set_state(v1::JOB_STATE_QUEUED);
+    HubLocked(job.job_id())->Publish(event);
+  }
+  cv_.notify_one();
+  spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
+  return job;
+}
+
+absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
+  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  if (!job.ok() || Terminal(job->state())) return job;
+  {
+    std::lock_guard lock(mu_);
+    if (auto it = running_.find(job_id); it != running_.end()) {
+      it->second->cancel_requested = true;
+      it->second->stop = true;
+      spdlog::info("job {}: cancel requested", job_id);
+      return *job;
+    }
+    auto queued = std::find(queue_.begin(), queue_.end(), job_id);
+    if (queued == queue_.end()) return *job;  // finishing right now
+    queue_.erase(queued);
+  }
+  Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
+  store_.RemoveWorkFiles(job_id);
+  return *job;
+}
+
+absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) { return store_.GetJob(job_id); }
+
+absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest& request) {
+  JobFilter filter;
+  for (int s : request.states()) filter.states.push_back(static_cast<v1::JobState>(s));
+  filter.scene_sha256 = request.scene_sha256();
+  filter.limit = request.page_size() <= 0 ? 100 : std::min(request.page_size(), 1000);
+  if (!request.page_token().empty()) {
+    char* end = nullptr;
+    const long offset = std::strtol(request.page_token().c_str(), &end, 10);
+    if (*end != '\0' || offset < 0) return absl::InvalidArgumentError("bad page_token");
+    filter.offset = static_cast<int>(offset);
+  }
+  absl::StatusOr<std::vector<v1::Job>> jobs = store_.ListJobs(filter);
+  if (!jobs.ok()) return jobs.status();
+  v1::ListJobsResponse response;
+  for (v1::Job& job : *jobs) *response.add_jobs() = std::move(job);
+  if (response.jobs_size() == filter.limit) {
+    response.set_next_page_token(std::to_string(filter.offset + filter.limit));
+  }
+  return response;
+}
+
+std::shared_ptr<JobHub> JobManager::HubLocked(const std::string& job_id) {
+  std::shared_ptr<JobHub>& hub = hubs_[job_id];
+  if (!hub) hub = std::make_shared<JobHub>(job_id);
+  return hub;
+}
+
+absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_id) {
+  {
+    std::lock_guard lock(mu_);
+    if (auto it = hubs_.find(job_id); it != hubs_.end()) return it->second;
+  }
+  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  if (!job.ok()) return job.status();
+  std::lock_guard lock(mu_);
+  if (auto it = hubs_.find(job_id); it != hubs_.end()) return it->second;
+  std::shared_ptr<JobHub> hub = HubLocked(job_id);
+  v1::JobEvent event;
+  event.set_state(job->state());
+  event.set_phase(job->phase());
+  event.set_message(job->message());
+  hub->Publish(event);
+  if (Terminal(job->state())) hub->Close();
+  return hub;
+}
+
+absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id) {
+  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  if (!job.ok()) return job.status();
+  if (job->state() != v1::JOB_STATE_SUCCEEDED) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "job ", job_id, " has no result: it is ", v1::JobState_Name(job->state()),
+        job->message().empty() ? "" : " (" + job->message() + ")"));
+  }
+  absl::StatusOr<std::string> bytes = store_.GetResult(job_id);
+  if (!bytes.ok()) return bytes.status();
+  absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes);
+  if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
+  return chunks;
+}
+
+void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
+                            const std::string& message) {
+  const v1::JobState from = job.state();
+  job.set_state(state);
+  job.set_phase(phase);
+  job.set_message(message);
+  if (Terminal(state)) job.set_finished_unix_ms(NowMs());
+  if (absl::Status s = store_.UpdateJob(job); !s.ok()) {
+    spdlog::error("job {}: cannot store state: {}", job.job_id(), std::string(s.message()));
+  }
+  std::shared_ptr<JobHub> hub;
+  {
+    std::lock_guard lock(mu_);
+    hub = HubLocked(job.job_id());
+  }
+  v1::JobEvent event;
+  event.set_state(state);
+  event.set_phase(phase);
+  event.set_message(message);
+  hub->Publish(event);
+  if (Terminal(state)) hub->Close();
+  spdlog::info("job {}: {} -> {} {}{}{}", job.job_id(), v1::JobState_Name(from),
+               v1::JobState_Name(state), v1::Phase_Name(phase), message.empty() ? "" : ": ",
+               message);
+}
+
+void JobManager::WorkerLoop() {
+  for (;;) {
+    std::string job_id;
+    {
+      std::unique_lock lock(mu_);
+      cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      job_id = queue_.front();
+      queue_.pop_front();
+      running_[job_id] = std::make_shared<Running>();
+    }
+    RunOne(job_id);
+    std::lock_guard lock(mu_);
+    running_.erase(job_id);
+  }
+}
+
+void JobManager::RunOne(const std::string& job_id) {
+  absl::StatusOr<v1::Job> loaded = store_.GetJob(job_id);
+  if (!loaded.ok()) {
+    spdlog::error("job {}: {}", job_id, std::string(loaded.status().message()));
+    return;
+  }
+  v1::Job job = *std::move(loaded);
+  std::shared_ptr<Running> running;
+  std::shared_ptr<JobHub> hub;
+  {
+    std::lock_guard lock(mu_);
+    running = running_[job_id];
+    hub = HubLocked(job_id);
+  }
+  RunContext context;
+  context.store = &store_;
+  context.hub = hub.get();
+  context.stop = &running->stop;
+  const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
+  context.threads = std::max(1, threads / std::max(1, options_.jobs));
+  context.on_phase = [&](v1::Phase phase, int64_t patches) {
+    if (patches > 0) job.set_patches(patches);
+    Transition(job, v1::JOB_STATE_RUNNING, phase, "");
+  };
+  absl::StatusOr<std::string> result = RunStoredJob(job, context);
+  bool cancelled;
+  {
+    std::lock_guard lock(mu_);
+    cancelled = running->cancel_requested;
+  }
+  if (result.ok()) {
+    absl::Status put = store_.PutResult(job_id, *result);
+    if (put.ok()) {
+      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "");
+    } else {
+      Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
+    }
+    store_.RemoveWorkFiles(job_id);
+  } else if (cancelled) {
+    Transition(job, v1::JOB_STATE_CANCELLED, job.phase(), "cancelled by request");
+    store_.RemoveWorkFiles(job_id);
+  } else if (result.status().code() == absl::StatusCode::kCancelled) {
+    spdlog::info("job {}: suspended for shutdown in {}, resumes on restart", job_id,
+                 v1::Phase_Name(job.phase()));
+  } else {
+    Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(result.status().message()));
+    store_.RemoveWorkFiles(job_id);
+  }
+}
+
+}  // namespace radflux

@@ -1,0 +1,88 @@
+// JobManager: accepts jobs, keeps them in the job store, runs up to `jobs` of them at once
+// on worker threads (sharing `threads` OpenMP threads), and publishes their events to
+// per-job hubs. On Start it requeues every job a previous run left unfinished.
+// Every method is thread-safe; the blocking ones (disk, parsing) must not run on gRPC
+// reactor threads.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "radflux/v1/radiosity.pb.h"
+#include "server/job_hub.h"
+#include "server/job_store.h"
+
+namespace radflux {
+
+struct ManagerOptions {
+  int jobs = 1;                  // jobs running at once
+  int threads = 0;               // OpenMP threads shared by the running jobs (0 = all cores)
+  int64_t max_patches = 2'000'000;  // larger jobs are refused (RESOURCE_EXHAUSTED)
+  uint64_t max_memory = 0;       // bytes per job by EstimateJobBytes (0 = half the RAM)
+  uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
+  size_t max_queued = 1000;      // queued jobs beyond this are refused
+};
+
+class JobManager {
+ public:
+  JobManager(JobStore& store, ManagerOptions options);
+  ~JobManager();  // Shutdown()
+  JobManager(const JobManager&) = delete;
+  JobManager& operator=(const JobManager&) = delete;
+
+  // Requeues unfinished jobs and starts the workers.
+  absl::Status Start();
+  // Stops the workers: running jobs checkpoint and stay RUNNING in the store, to be
+  // resumed by the next Start. Idempotent.
+  void Shutdown();
+
+  const ManagerOptions& options() const { return options_; }
+
+  // Parses and stores an uploaded scene (INVALID_ARGUMENT with the loader's message).
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, const std::string& obj,
+                                        const std::string& mtl);
+  // Validates and queues a job (or returns the job of an earlier submit with the same
+  // request id). Everything that can be refused is refused here, before any work.
+  absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request);
+  // Cancels a queued or running job (a finished job is returned unchanged).
+  absl::StatusOr<v1::Job> Cancel(const std::string& job_id);
+  absl::StatusOr<v1::Job> Get(const std::string& job_id);
+  absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
+  // The event hub of a job (live, or a closed one-event history for a finished job).
+  absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);
+  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that).
+  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id);
+
+ private:
+  struct Running {
+    std::atomic<bool> stop{false};
+    bool cancel_requested = false;  // guarded by mu_
+  };
+
+  absl::Status CheckLimits(const v1::SubmitJobRequest& request);
+  void WorkerLoop();
+  void RunOne(const std::string& job_id);
+  // Stores the job's new state/phase, publishes it and logs one line.
+  void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message);
+  std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
+
+  JobStore& store_;
+  const ManagerOptions options_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::string> queue_;
+  std::map<std::string, std::shared_ptr<Running>> running_;
+  std::map<std::string, std::shared_ptr<JobHub>> hubs_;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace radflux

@@ -1,0 +1,198 @@
+#include "server/job_runner.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "solver/core/parallel.h"
+#include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+#include "server/proto_convert.h"
+#include "server/result_codec.h"
+
+namespace radflux {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
+
+// Publishes a progress event of the running job.
+void PublishProgress(const RunContext& c, v1::Phase phase, const v1::Progress& progress) {
+  v1::JobEvent event;
+  event.set_state(v1::JOB_STATE_RUNNING);
+  event.set_phase(phase);
+  *event.mutable_progress() = progress;
+  c.hub->Publish(std::move(event));
+}
+
+// All row blocks of the job: stored ones are read back, missing ones built (in parallel)
+// and stored as each completes.
+absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
+                                                 const FormFactorOptions& options,
+                                                 const RunContext& c) {
+  const auto start = Clock::now();
+  const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
+  const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
+  const uint32_t block_count = (n + block_size - 1) / block_size;
+  std::vector<StoredRowBlock> blocks(block_count);
+  std::vector<uint32_t> missing;
+  int64_t done = 0;
+  for (uint32_t b = 0; b < block_count; ++b) {
+    absl::StatusOr<StoredRowBlock> stored = c.store->GetRowBlock(job.job_id(), b);
+    if (stored.ok() && stored->block.first_row == b * block_size) {
+      blocks[b] = *std::move(stored);
+      done += blocks[b].block.RowCount();
+    } else {
+      if (stored.status().code() == absl::StatusCode::kDataLoss) {
+        spdlog::warn("job {}: row block {} unreadable ({}), rebuilding", job.job_id(), b,
+                     std::string(stored.status().message()));
+      }
+      missing.push_back(b);
+    }
+  }
+  if (done > 0) spdlog::info("job {}: reusing {} stored rows of {}", job.job_id(), done, n);
+  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(prepared.rows, options);
+  const int threads = c.threads > 0 ? c.threads : DefaultThreadCount();
+  std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
+  std::mutex mu;  // guards done, rays, error and event publishing order
+  uint64_t rays = 0;
+  absl::Status error;
+  ParallelFor(static_cast<int64_t>(missing.size()), 1, threads, [&](int64_t begin, int64_t end) {
+    auto& row = scratch[static_cast<size_t>(ThreadIndex())];
+    if (!row) row = std::make_unique<RowAccumulator>(n);
+    for (int64_t k = begin; k < end && !Stopped(c); ++k) {
+      const uint32_t b = missing[static_cast<size_t>(k)];
+      const uint32_t first = b * block_size;
+      const uint32_t count = std::min(block_size, n - first);
+      StoredRowBlock& s = blocks[b];
+      s.block = BuildRowBlock(*builder, prepared.rows, options.cutoff, first, count, *row, s.stats);
+      absl::Status put = c.store->PutRowBlock(job.job_id(), b, s);
+      std::lock_guard lock(mu);
+      if (!put.ok() && error.ok()) error = put;
+      done += count;
+      rays += s.stats.rays;
+      v1::Progress progress;
+      progress.set_rows_done(done);
+      progress.set_rows_total(n);
+      const double seconds = SecondsSince(start);
+      if (seconds > 0) progress.set_rays_per_second(static_cast<double>(rays) / seconds);
+      progress.set_eta_seconds(seconds / static_cast<double>(done) * static_cast<double>(n - done));
+      PublishProgress(c, v1::PHASE_ROWS, progress);
+    }
+  });
+  if (!error.ok()) return error;
+  if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
+  FormFactorResult result;
+  result.matrix.cols = n;
+  for (StoredRowBlock& s : blocks) {
+    result.matrix.Append(s.block);
+    result.stats.Merge(s.stats);
+    s = StoredRowBlock{};
+  }
+  result.seconds = SecondsSince(start);
+  return result;
+}
+
+bool ResumableSolver(SolverMethod method) {
+  return method == SolverMethod::kJacobi || method == SolverMethod::kGaussSeidel;
+}
+
+std::string ReportJson(const PreparedJob& prepared, const FormFactorResult& rows,
+                       const SolveResult& solve, double solve_seconds) {
+  nlohmann::json report;
+  report["patches"] = prepared.mesh.size();
+  report["nonzeros"] = rows.matrix.nnz();
+  report["rays"] = rows.stats.rays;
+  report["dropped_sum"] = rows.stats.dropped_sum;
+  report["max_row_dropped"] = rows.stats.max_row_dropped;
+  report["iterations"] = solve.iterations;
+  report["residual"] = solve.residual;
+  report["converged"] = solve.converged;
+  report["bands_solved"] = solve.bands_solved;
+  report["reciprocity_error"] = solve.reciprocity_error;
+  report["residual_history"] = solve.residual_history;
+  report["seconds"] = {{"mesh", prepared.mesh_seconds},
+                       {"embree", prepared.embree_seconds},
+                       {"rows", rows.seconds},
+                       {"solve", solve_seconds}};
+  return report.dump(2);
+}
+
+}  // namespace
+
+absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c) {
+  absl::StatusOr<StoredScene> stored = c.store->GetScene(job.scene_sha256());
+  if (!stored.ok()) return stored.status();
+  absl::StatusOr<JobOptions> options = FromProto(job.options());
+  if (!options.ok()) return options.status();
+  options->form_factors.threads = c.threads;
+  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+  if (!scene.ok()) return scene.status();
+  c.on_phase(v1::PHASE_PREPARE, 0);
+  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
+  if (!prepared.ok()) return prepared.status();
+  const PreparedJob& p = **prepared;
+  const int64_t n = static_cast<int64_t>(p.mesh.size());
+  if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
+
+  c.on_phase(v1::PHASE_ROWS, n);
+  absl::StatusOr<FormFactorResult> rows = BuildStoredRows(job, p, options->form_factors, c);
+  if (!rows.ok()) return rows.status();
+
+  c.on_phase(v1::PHASE_SOLVE, n);
+  SolverOptions so = options->solver;
+  so.threads = c.threads;
+  so.cancel = c.stop;
+  so.snapshot_every = 1;
+  const bool resumable = ResumableSolver(so.method);
+  int offset = 0;
+  absl::StatusOr<SolverCheckpoint> checkpoint = c.store->GetCheckpoint(job.job_id());
+  if (resumable && checkpoint.ok() && checkpoint->radiosity.size() == static_cast<size_t>(n)) {
+    offset = checkpoint->iteration;
+    so.initial = &checkpoint->radiosity;
+    so.max_iterations = std::max(0, so.max_iterations - offset);
+    spdlog::info("job {}: resuming the solve at iteration {}", job.job_id(), offset);
+  }
+  SolverCheckpoint last;
+  auto last_checkpoint = Clock::now();
+  const auto solve_start = Clock::now();
+  const auto on_progress = [&](const SolveProgress& sp) {
+    v1::Progress progress;
+    progress.set_rows_done(n);
+    progress.set_rows_total(n);
+    progress.set_iteration(offset + sp.iteration);
+    progress.set_residual(sp.residual);
+    progress.set_unshot_fraction(sp.unshot_fraction);
+    PublishProgress(c, v1::PHASE_SOLVE, progress);
+    if (!sp.snapshot) return;
+    auto b = std::make_shared<const std::vector<Rgb>>(*sp.snapshot);
+    c.hub->PublishSnapshot({offset + sp.iteration, b});
+    if (!resumable) return;
+    last.iteration = offset + sp.iteration;
+    last.radiosity = *b;
+    if (SecondsSince(last_checkpoint) >= 1.0) {
+      if (absl::Status s = c.store->PutCheckpoint(job.job_id(), last); !s.ok()) {
+        spdlog::warn("job {}: checkpoint failed: {}", job.job_id(), std::string(s.message()));
+      }
+      last_checkpoint = Clock::now();
+    }
+  };
+  absl::StatusOr<SolveResult> solved =
+      Solve(RadiositySystem{&rows->matrix, &p.attributes}, so, on_progress);
+  if (!solved.ok()) return solved.status();
+  if (solved->cancelled || Stopped(c)) {
+    if (resumable && !last.radiosity.empty()) (void)c.store->PutCheckpoint(job.job_id(), last);
+    return absl::CancelledError("stopped during the solve");
+  }
+  solved->iterations += offset;
+  const std::string report = ReportJson(p, *rows, *solved, SecondsSince(solve_start));
+  return EncodeResultChunks(MakeResultChunks(p.mesh, *solved, report));
+}
+
+}  // namespace radflux

@@ -1,0 +1,33 @@
+// RunStoredJob: the phases of one job as the server runs them: prepare, form-factor rows
+// block by block (each stored as it completes, stored blocks reused), then the solve
+// (checkpointed). A job resumed after a crash computes exactly what an uninterrupted run
+// computes: rows are deterministic per patch, and the solve resumes from a checkpoint only
+// for the methods whose next iterate depends on B alone (jacobi, gauss_seidel); the others
+// restart their solve from the stored rows.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "radflux/v1/job.pb.h"
+#include "server/job_hub.h"
+#include "server/job_store.h"
+
+namespace radflux {
+
+struct RunContext {
+  JobStore* store = nullptr;
+  JobHub* hub = nullptr;                    // receives progress events and snapshots
+  const std::atomic<bool>* stop = nullptr;  // cancel or shutdown: stop at the next safe point
+  int threads = 0;                          // OpenMP threads for this job (0 = all cores)
+  // Called when the job enters a phase (patches = 0 until meshed).
+  std::function<void(v1::Phase phase, int64_t patches)> on_phase;
+};
+
+// Runs the job to completion and returns its encoded result (see result_codec.h);
+// CANCELLED when *stop was set (rows done so far and a checkpoint stay stored).
+absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& context);
+
+}  // namespace radflux

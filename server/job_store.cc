@@ -1,0 +1,264 @@
+#include "server/job_store.h"
+
+#include <sqlite3.h>
+
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "server/blob_file.h"
+
+namespace radflux {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSchema = R"sql(
+PRAGMA journal_mode=WAL;
+PRAGMA synchronous=FULL;
+CREATE TABLE IF NOT EXISTS scenes(
+  sha256 TEXT PRIMARY KEY, name TEXT NOT NULL, created_ms INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS jobs(
+  seq INTEGER PRIMARY KEY AUTOINCREMENT, job_id TEXT UNIQUE NOT NULL,
+  request_id TEXT UNIQUE, scene_sha256 TEXT NOT NULL, state INTEGER NOT NULL,
+  job BLOB NOT NULL);
+)sql";
+
+// A prepared statement that finalizes itself.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) {
+    status_ = sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr);
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  bool ok() const { return status_ == SQLITE_OK; }
+  void Bind(int i, const std::string& text) {
+    sqlite3_bind_text(stmt_, i, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
+  }
+  void BindBlob(int i, const std::string& bytes) {
+    sqlite3_bind_blob(stmt_, i, bytes.data(), static_cast<int>(bytes.size()), SQLITE_TRANSIENT);
+  }
+  void BindInt(int i, int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
+  void BindNull(int i) { sqlite3_bind_null(stmt_, i); }
+  int Step() { return sqlite3_step(stmt_); }
+  std::string Column(int i) {
+    const void* data = sqlite3_column_blob(stmt_, i);
+    return std::string(static_cast<const char*>(data), static_cast<size_t>(sqlite3_column_bytes(stmt_, i)));
+  }
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+  int status_ = SQLITE_ERROR;
+};
+
+absl::Status SqlError(sqlite3* db, std::string_view what) {
+  return absl::InternalError(absl::StrCat("job store: ", std::string(what), ": ", sqlite3_errmsg(db)));
+}
+
+std::string RowBlockName(uint32_t index) { return absl::StrCat("rows_", index, ".rfb"); }
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<JobStore>> JobStore::Open(const std::string& data_dir) {
+  std::error_code ec;
+  fs::create_directories(fs::path(data_dir) / "scenes", ec);
+  fs::create_directories(fs::path(data_dir) / "jobs", ec);
+  if (ec) return absl::InternalError(absl::StrCat("cannot create ", data_dir, ": ", ec.message()));
+  std::unique_ptr<JobStore> store(new JobStore(data_dir));
+  const std::string db_path = (fs::path(data_dir) / "radflux.db").string();
+  if (sqlite3_open(db_path.c_str(), &store->db_) != SQLITE_OK) {
+    return SqlError(store->db_, absl::StrCat("cannot open ", db_path));
+  }
+  sqlite3_busy_timeout(store->db_, 5000);
+  if (absl::Status s = store->Exec(kSchema); !s.ok()) return s;
+  return store;
+}
+
+JobStore::~JobStore() { sqlite3_close(db_); }
+
+absl::Status JobStore::Exec(const std::string& sql) {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    absl::Status s = absl::InternalError(absl::StrCat("job store: ", error ? error : "?"));
+    sqlite3_free(error);
+    return s;
+  }
+  return absl::OkStatus();
+}
+
+std::string JobStore::JobDir(const std::string& job_id) const {
+  return (fs::path(data_dir_) / "jobs" / job_id).string();
+}
+
+bool JobStore::HasScene(const std::string& sha256) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, "SELECT 1 FROM scenes WHERE sha256 = ?");
+  st.Bind(1, sha256);
+  return st.ok() && st.Step() == SQLITE_ROW;
+}
+
+absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
+  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
+  if (absl::Status s = WriteBlobFile(base + ".mtl.rfb", scene.mtl); !s.ok()) return s;
+  std::lock_guard lock(mu_);
+  Statement st(db_, "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
+                    "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
+  st.Bind(1, sha256);
+  st.Bind(2, scene.name);
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "put scene");
+  return absl::OkStatus();
+}
+
+absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
+  StoredScene scene;
+  {
+    std::lock_guard lock(mu_);
+    Statement st(db_, "SELECT name FROM scenes WHERE sha256 = ?");
+    st.Bind(1, sha256);
+    if (!st.ok() || st.Step() != SQLITE_ROW) {
+      return absl::NotFoundError(absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
+    }
+    scene.name = st.Column(0);
+  }
+  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  absl::StatusOr<std::string> obj = ReadBlobFile(base + ".obj.rfb");
+  if (!obj.ok()) return obj.status();
+  absl::StatusOr<std::string> mtl = ReadBlobFile(base + ".mtl.rfb");
+  if (!mtl.ok()) return mtl.status();
+  scene.obj = *std::move(obj);
+  scene.mtl = *std::move(mtl);
+  return scene;
+}
+
+absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job) {
+  std::lock_guard lock(mu_);
+  if (!job.request_id().empty()) {
+    Statement find(db_, "SELECT job FROM jobs WHERE request_id = ?");
+    find.Bind(1, job.request_id());
+    if (find.ok() && find.Step() == SQLITE_ROW) {
+      v1::Job existing;
+      if (!existing.ParseFromString(find.Column(0))) return absl::DataLossError("corrupt job row");
+      return existing;
+    }
+  }
+  Statement st(db_, "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
+                    "VALUES(?, ?, ?, ?, ?)");
+  st.Bind(1, job.job_id());
+  if (job.request_id().empty()) st.BindNull(2); else st.Bind(2, job.request_id());
+  st.Bind(3, job.scene_sha256());
+  st.BindInt(4, job.state());
+  st.BindBlob(5, job.SerializeAsString());
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "create job");
+  std::error_code ec;
+  fs::create_directories(JobDir(job.job_id()), ec);
+  return job;
+}
+
+absl::Status JobStore::UpdateJob(const v1::Job& job) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, "UPDATE jobs SET state = ?, job = ? WHERE job_id = ?");
+  st.BindInt(1, job.state());
+  st.BindBlob(2, job.SerializeAsString());
+  st.Bind(3, job.job_id());
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "update job");
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::vector<v1::Job>> JobStore::QueryJobs(const std::string& sql,
+                                                         const std::vector<std::string>& args) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, sql);
+  if (!st.ok()) return SqlError(db_, "query jobs");
+  for (size_t i = 0; i < args.size(); ++i) st.Bind(static_cast<int>(i + 1), args[i]);
+  std::vector<v1::Job> jobs;
+  while (st.Step() == SQLITE_ROW) {
+    if (!jobs.emplace_back().ParseFromString(st.Column(0))) {
+      return absl::DataLossError("corrupt job row");
+    }
+  }
+  return jobs;
+}
+
+absl::StatusOr<v1::Job> JobStore::GetJob(const std::string& job_id) {
+  absl::StatusOr<std::vector<v1::Job>> jobs =
+      QueryJobs("SELECT job FROM jobs WHERE job_id = ?", {job_id});
+  if (!jobs.ok()) return jobs.status();
+  if (jobs->empty()) return absl::NotFoundError(absl::StrCat("no job ", job_id));
+  return jobs->front();
+}
+
+absl::StatusOr<v1::Job> JobStore::GetJobByRequestId(const std::string& request_id) {
+  absl::StatusOr<std::vector<v1::Job>> jobs =
+      QueryJobs("SELECT job FROM jobs WHERE request_id = ?", {request_id});
+  if (!jobs.ok()) return jobs.status();
+  if (jobs->empty()) return absl::NotFoundError(absl::StrCat("no job for request ", request_id));
+  return jobs->front();
+}
+
+absl::StatusOr<std::vector<v1::Job>> JobStore::ListJobs(const JobFilter& filter) {
+  std::vector<std::string> where;
+  std::vector<std::string> args;
+  if (!filter.states.empty()) {
+    std::vector<std::string> states;
+    for (v1::JobState s : filter.states) states.push_back(std::to_string(static_cast<int>(s)));
+    where.push_back(absl::StrCat("state IN (", absl::StrJoin(states, ","), ")"));
+  }
+  if (!filter.scene_sha256.empty()) {
+    where.push_back("scene_sha256 = ?");
+    args.push_back(filter.scene_sha256);
+  }
+  const std::string sql = absl::StrCat(
+      "SELECT job FROM jobs", where.empty() ? "" : " WHERE ", absl::StrJoin(where, " AND "),
+      " ORDER BY seq DESC LIMIT ", filter.limit, " OFFSET ", filter.offset);
+  return QueryJobs(sql, args);
+}
+
+absl::StatusOr<std::vector<v1::Job>> JobStore::UnfinishedJobs() {
+  return QueryJobs(absl::StrCat("SELECT job FROM jobs WHERE state IN (",
+                                static_cast<int>(v1::JOB_STATE_QUEUED), ",",
+                                static_cast<int>(v1::JOB_STATE_RUNNING), ") ORDER BY seq ASC"),
+                   {});
+}
+
+absl::Status JobStore::PutRowBlock(const std::string& job_id, uint32_t index,
+                                   const StoredRowBlock& b) {
+  return WriteBlobFile((fs::path(JobDir(job_id)) / RowBlockName(index)).string(),
+                       EncodeRowBlock(b));
+}
+
+absl::StatusOr<StoredRowBlock> JobStore::GetRowBlock(const std::string& job_id, uint32_t index) {
+  absl::StatusOr<std::string> bytes =
+      ReadBlobFile((fs::path(JobDir(job_id)) / RowBlockName(index)).string());
+  if (!bytes.ok()) return bytes.status();
+  return DecodeRowBlock(*bytes);
+}
+
+absl::Status JobStore::PutCheckpoint(const std::string& job_id, const SolverCheckpoint& c) {
+  return WriteBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string(),
+                       EncodeCheckpoint(c));
+}
+
+absl::StatusOr<SolverCheckpoint> JobStore::GetCheckpoint(const std::string& job_id) {
+  absl::StatusOr<std::string> bytes =
+      ReadBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string());
+  if (!bytes.ok()) return bytes.status();
+  return DecodeCheckpoint(*bytes);
+}
+
+absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes) {
+  return WriteBlobFile((fs::path(JobDir(job_id)) / "result.rfb").string(), bytes);
+}
+
+absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
+  return ReadBlobFile((fs::path(JobDir(job_id)) / "result.rfb").string());
+}
+
+void JobStore::RemoveWorkFiles(const std::string& job_id) {
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(JobDir(job_id), ec)) {
+    if (entry.path().filename() != "result.rfb") fs::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace radflux

@@ -1,0 +1,84 @@
+// JobStore: everything the server keeps on disk, in its data directory. Jobs and scenes
+// are rows of an SQLite database (radflux.db); scene texts, form-factor row blocks,
+// solver checkpoints and results are checksummed blob files (see blob_file.h) under
+// scenes/ and jobs/<id>/. Every write is durable when the call returns. Thread-safe.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "radflux/v1/job.pb.h"
+#include "server/stored_codec.h"
+
+struct sqlite3;
+
+namespace radflux {
+
+// The texts of an uploaded scene.
+struct StoredScene {
+  std::string name;
+  std::string obj;
+  std::string mtl;
+};
+
+// Which jobs ListJobs returns: newest first, `offset` jobs skipped, at most `limit`.
+struct JobFilter {
+  std::vector<v1::JobState> states;  // empty = all
+  std::string scene_sha256;          // empty = all
+  int offset = 0;
+  int limit = 100;
+};
+
+class JobStore {
+ public:
+  // Opens (creating if needed) the store in `data_dir`.
+  static absl::StatusOr<std::unique_ptr<JobStore>> Open(const std::string& data_dir);
+  ~JobStore();
+  JobStore(const JobStore&) = delete;
+  JobStore& operator=(const JobStore&) = delete;
+
+  bool HasScene(const std::string& sha256);
+  // Stores a scene under its content address (a no-op when already stored).
+  absl::Status PutScene(const std::string& sha256, const StoredScene& scene);
+  // NOT_FOUND when no scene has that address.
+  absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
+
+  // Inserts a new job. When job.request_id() is set and a job with that request id
+  // exists, returns the existing job instead (and inserts nothing).
+  absl::StatusOr<v1::Job> CreateJob(const v1::Job& job);
+  // Replaces the stored job with the same id.
+  absl::Status UpdateJob(const v1::Job& job);
+  absl::StatusOr<v1::Job> GetJob(const std::string& job_id);
+  // The job created with this client request id; NOT_FOUND when none.
+  absl::StatusOr<v1::Job> GetJobByRequestId(const std::string& request_id);
+  absl::StatusOr<std::vector<v1::Job>> ListJobs(const JobFilter& filter);
+  // Jobs QUEUED or RUNNING, oldest first: what a restarted server must finish.
+  absl::StatusOr<std::vector<v1::Job>> UnfinishedJobs();
+
+  // Row block `index` of a job; NOT_FOUND when it was not stored yet.
+  absl::Status PutRowBlock(const std::string& job_id, uint32_t index, const StoredRowBlock& b);
+  absl::StatusOr<StoredRowBlock> GetRowBlock(const std::string& job_id, uint32_t index);
+  absl::Status PutCheckpoint(const std::string& job_id, const SolverCheckpoint& checkpoint);
+  absl::StatusOr<SolverCheckpoint> GetCheckpoint(const std::string& job_id);
+  // The serialized result stream of a finished job (see result_codec.h).
+  absl::Status PutResult(const std::string& job_id, const std::string& bytes);
+  absl::StatusOr<std::string> GetResult(const std::string& job_id);
+  // Deletes the row blocks and checkpoint of a job (after it finished or was cancelled).
+  void RemoveWorkFiles(const std::string& job_id);
+
+ private:
+  explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
+  absl::Status Exec(const std::string& sql);
+  std::string JobDir(const std::string& job_id) const;
+  absl::StatusOr<std::vector<v1::Job>> QueryJobs(const std::string& sql,
+                                                 const std::vector<std::string>& args);
+
+  std::string data_dir_;
+  std::mutex mu_;  // guards db_
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace radflux

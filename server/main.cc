@@ -1,0 +1,144 @@
+// radfluxd: the radflux gRPC server.
+//   radfluxd --listen HOST:PORT --data-dir DIR [--jobs N] [--threads N] [--token T]
+//            [--tls-cert F --tls-key F] [--max-patches N] [--max-memory BYTES]
+// Prints "radfluxd listening on HOST:PORT" (the port actually bound, so :0 works) once
+// serving. SIGTERM/SIGINT: running jobs checkpoint, then the server exits 0.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "server/job_manager.h"
+#include "server/job_store.h"
+#include "server/radiosity_service.h"
+#include "server/work_queue.h"
+
+namespace {
+
+constexpr int kMaxMessageBytes = 8 << 20;
+constexpr int kWorkThreads = 4;
+
+bool ReadFile(const std::string& path, std::string* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  *out = buffer.str();
+  return true;
+}
+
+struct Flags {
+  std::string listen;
+  std::string data_dir;
+  int jobs = 1;
+  int threads = 0;
+  std::string token;
+  std::string tls_cert, tls_key;
+  radflux::ManagerOptions manager;
+};
+
+// Server credentials: TLS with the given certificate and key, or insecure.
+std::shared_ptr<grpc::ServerCredentials> Credentials(const Flags& flags) {
+  if (flags.tls_cert.empty()) return grpc::InsecureServerCredentials();
+  grpc::SslServerCredentialsOptions::PemKeyCertPair pair;
+  if (!ReadFile(flags.tls_key, &pair.private_key) || !ReadFile(flags.tls_cert, &pair.cert_chain)) {
+    return nullptr;
+  }
+  grpc::SslServerCredentialsOptions options;
+  options.pem_key_cert_pairs.push_back(pair);
+  return grpc::SslServerCredentials(options);
+}
+
+int Serve(const Flags& flags) {
+  absl::StatusOr<std::unique_ptr<radflux::JobStore>> store = radflux::JobStore::Open(flags.data_dir);
+  if (!store.ok()) {
+    spdlog::error("{}", std::string(store.status().message()));
+    return 1;
+  }
+  radflux::JobManager manager(**store, flags.manager);
+  radflux::WorkQueue work(kWorkThreads);
+  radflux::RadiosityService service(manager, work, flags.token);
+  const std::shared_ptr<grpc::ServerCredentials> credentials = Credentials(flags);
+  if (!credentials) {
+    spdlog::error("cannot read --tls-cert {} / --tls-key {}", flags.tls_cert, flags.tls_key);
+    return 1;
+  }
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(flags.listen, credentials, &port);
+  builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
+  builder.SetMaxSendMessageSize(kMaxMessageBytes);
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    spdlog::error("cannot listen on {}", flags.listen);
+    return 1;
+  }
+  if (absl::Status s = manager.Start(); !s.ok()) {
+    spdlog::error("cannot start jobs: {}", std::string(s.message()));
+    return 1;
+  }
+  const std::string host = flags.listen.substr(0, flags.listen.rfind(':'));
+  std::cout << "radfluxd listening on " << host << ":" << port << std::endl;
+  spdlog::info("serving on {}:{} (data {}, {} job(s) at once, tls {}, token {})", host, port,
+               flags.data_dir, flags.manager.jobs, flags.tls_cert.empty() ? "off" : "on",
+               flags.token.empty() ? "off" : "on");
+
+  std::thread signals([&] {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGINT);
+    int signal = 0;
+    sigwait(&set, &signal);
+    spdlog::info("signal {}: checkpointing running jobs and shutting down", signal);
+    server->GetHealthCheckService()->SetServingStatus(false);
+    manager.Shutdown();
+    server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  });
+  server->Wait();
+  signals.join();
+  spdlog::info("radfluxd stopped");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Block the shutdown signals in every thread; one thread waits for them with sigwait.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+
+  CLI::App app{"radfluxd: the radflux radiosity solver service"};
+  Flags flags;
+  app.add_option("--listen", flags.listen, "HOST:PORT to serve on (port 0 = any free port)")->required();
+  app.add_option("--data-dir", flags.data_dir, "directory of the job store")->required();
+  app.add_option("--jobs", flags.manager.jobs, "jobs running at once")->check(CLI::Range(1, 256));
+  app.add_option("--threads", flags.manager.threads, "OpenMP threads shared by running jobs (0 = all cores)")
+      ->check(CLI::Range(0, 4096));
+  app.add_option("--token", flags.token, "require this bearer token on every call");
+  auto* cert = app.add_option("--tls-cert", flags.tls_cert, "PEM server certificate (enables TLS)");
+  auto* key = app.add_option("--tls-key", flags.tls_key, "PEM private key of --tls-cert");
+  cert->needs(key);
+  key->needs(cert);
+  app.add_option("--max-patches", flags.manager.max_patches, "refuse jobs with more patches")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-memory", flags.manager.max_memory,
+                 "refuse jobs whose estimated memory exceeds BYTES (default: half the RAM)");
+  app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
+  CLI11_PARSE(app, argc, argv);
+  return Serve(flags);
+}

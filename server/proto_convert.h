@@ -1,0 +1,35 @@
+// The one place where radflux types meet their radflux.v1 protobuf messages and where
+// absl::Status meets grpc::Status (the codes map one to one).
+#pragma once
+
+#include <grpcpp/support/status.h>
+
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "radflux/v1/job.pb.h"
+#include "solver/core/bands.h"
+#include "solver/pipeline.h"
+
+namespace radflux {
+
+// Solve options from their message: unset fields keep JobOptions' defaults; an unknown
+// method or solver name is INVALID_ARGUMENT. Values are range-checked by ValidateJobOptions.
+absl::StatusOr<JobOptions> FromProto(const v1::SolveOptions& proto);
+
+grpc::Status ToGrpcStatus(const absl::Status& status);
+absl::Status FromGrpcStatus(const grpc::Status& status);
+
+// B per patch as a snapshot message with the given bands (empty = all) and format.
+v1::Snapshot ToProtoSnapshot(int iteration, const std::vector<Rgb>& radiosity,
+                             const std::vector<int>& bands, v1::SnapshotFormat format);
+
+// Values of a snapshot, patch-major over its bands (float16 widened); INVALID_ARGUMENT
+// when the data size does not match.
+absl::StatusOr<std::vector<float>> SnapshotValues(const v1::Snapshot& snapshot);
+
+// IEEE binary16 conversions (round to nearest even; overflow to infinity).
+uint16_t FloatToHalf(float value);
+float HalfToFloat(uint16_t half);
+
+}  // namespace radflux

@@ -1,0 +1,204 @@
+#include "server/radiosity_service.h"
+
+#include "absl/strings/str_cat.h"
+#include "server/auth.h"
+#include "server/proto_convert.h"
+#include "server/watch_reactor.h"
+
+namespace radflux {
+namespace {
+
+// A server stream that ends at once with an error.
+template <typename T>
+class ErrorWriteReactor final : public grpc::ServerWriteReactor<T> {
+ public:
+  explicit ErrorWriteReactor(const grpc::Status& status) { this->Finish(status); }
+  void OnDone() override { delete this; }
+};
+
+// Collects an upload, checks its size against the header and the limit, then stores it
+// (off the reactor thread).
+class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
+ public:
+  UploadReactor(JobManager& manager, WorkQueue& work, v1::SceneRef* response)
+      : manager_(manager), work_(work), response_(response) {
+    StartRead(&chunk_);
+  }
+
+  void OnReadDone(bool ok) override {
+    if (!ok) return Complete();
+    if (first_) {
+      first_ = false;
+      if (!chunk_.has_header()) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "the first chunk of an upload must carry its header");
+      header_ = chunk_.header();
+      expected_ = header_.obj_size() + header_.mtl_size();
+      if (expected_ > manager_.options().max_upload) {
+        return Fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                    absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
+                                 manager_.options().max_upload, " bytes"));
+      }
+      data_.reserve(expected_);
+    }
+    if (data_.size() + chunk_.data().size() > expected_) {
+      return Fail(grpc::StatusCode::DATA_LOSS,
+                  absl::StrCat("upload is longer than the ", expected_, " bytes its header declares"));
+    }
+    data_ += chunk_.data();
+    StartRead(&chunk_);
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  void Fail(grpc::StatusCode code, const std::string& message) { Finish(grpc::Status(code, message)); }
+
+  void Complete() {
+    if (first_) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "empty upload");
+    if (data_.size() != expected_) {
+      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload truncated: got ", data_.size(),
+                                                            " of ", expected_, " bytes"));
+    }
+    work_.Post([this] {
+      const size_t obj_size = header_.obj_size();
+      absl::StatusOr<v1::SceneRef> ref =
+          manager_.AddScene(header_, data_.substr(0, obj_size), data_.substr(obj_size));
+      if (ref.ok()) *response_ = *ref;
+      Finish(ToGrpcStatus(ref.status()));
+    });
+  }
+
+  JobManager& manager_;
+  WorkQueue& work_;
+  v1::SceneRef* response_;
+  v1::SceneChunk chunk_;
+  v1::SceneHeader header_;
+  bool first_ = true;
+  uint64_t expected_ = 0;
+  std::string data_;
+};
+
+// Streams the stored result chunks of a job, one write in flight.
+class ResultReactor final : public grpc::ServerWriteReactor<v1::ResultChunk> {
+ public:
+  ResultReactor(JobManager& manager, WorkQueue& work, std::string job_id) {
+    work.Post([this, &manager, job_id = std::move(job_id)] {
+      absl::StatusOr<std::vector<v1::ResultChunk>> chunks = manager.Result(job_id);
+      {
+        std::lock_guard lock(mu_);
+        if (chunks.ok()) chunks_ = *std::move(chunks); else status_ = ToGrpcStatus(chunks.status());
+      }
+      Next();
+    });
+  }
+
+  void OnWriteDone(bool ok) override {
+    {
+      std::lock_guard lock(mu_);
+      if (!ok) cancelled_ = true;
+    }
+    Next();
+  }
+  void OnCancel() override {
+    std::lock_guard lock(mu_);
+    cancelled_ = true;
+  }
+  void OnDone() override { delete this; }
+
+ private:
+  void Next() {
+    std::unique_lock lock(mu_);
+    if (cancelled_ || !status_.ok() || next_ == chunks_.size()) {
+      const grpc::Status status = cancelled_ ? grpc::Status::CANCELLED : status_;
+      lock.unlock();
+      Finish(status);
+      return;
+    }
+    const v1::ResultChunk* chunk = &chunks_[next_++];
+    lock.unlock();
+    StartWrite(chunk);
+  }
+
+  std::mutex mu_;
+  std::vector<v1::ResultChunk> chunks_;
+  size_t next_ = 0;
+  grpc::Status status_;
+  bool cancelled_ = false;
+};
+
+// A unary call: the token check on the reactor thread, `work` on the work queue.
+template <typename Work>
+grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const std::string& token,
+                                   WorkQueue& queue, Work work) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  if (grpc::Status auth = CheckBearerToken(*context, token); !auth.ok()) {
+    reactor->Finish(auth);
+    return reactor;
+  }
+  queue.Post([reactor, work = std::move(work)] { reactor->Finish(ToGrpcStatus(work())); });
+  return reactor;
+}
+
+}  // namespace
+
+grpc::ServerReadReactor<v1::SceneChunk>* RadiosityService::UploadScene(
+    grpc::CallbackServerContext* context, v1::SceneRef* response) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    class Refuse final : public grpc::ServerReadReactor<v1::SceneChunk> {
+     public:
+      explicit Refuse(const grpc::Status& s) { Finish(s); }
+      void OnDone() override { delete this; }
+    };
+    return new Refuse(auth);
+  }
+  return new UploadReactor(manager_, work_, response);
+}
+
+grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContext* context,
+                                                      const v1::SubmitJobRequest* request,
+                                                      v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Submit(*request);
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerWriteReactor<v1::JobEvent>* RadiosityService::WatchJob(
+    grpc::CallbackServerContext* context, const v1::WatchJobRequest* request) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    return new ErrorWriteReactor<v1::JobEvent>(auth);
+  }
+  absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request->job_id());
+  if (!hub.ok()) return new ErrorWriteReactor<v1::JobEvent>(ToGrpcStatus(hub.status()));
+  return new WatchReactor(*std::move(hub), *request);
+}
+
+grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(
+    grpc::CallbackServerContext* context, const v1::GetResultRequest* request) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    return new ErrorWriteReactor<v1::ResultChunk>(auth);
+  }
+  return new ResultReactor(manager_, work_, request->job_id());
+}
+
+grpc::ServerUnaryReactor* RadiosityService::CancelJob(grpc::CallbackServerContext* context,
+                                                      const v1::CancelJobRequest* request,
+                                                      v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Cancel(request->job_id());
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerUnaryReactor* RadiosityService::ListJobs(grpc::CallbackServerContext* context,
+                                                     const v1::ListJobsRequest* request,
+                                                     v1::ListJobsResponse* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::ListJobsResponse> list = manager_.List(*request);
+    if (list.ok()) *response = *list;
+    return list.status();
+  });
+}
+
+}  // namespace radflux

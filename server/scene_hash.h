@@ -1,0 +1,17 @@
+// The content address of an uploaded scene: shared by the server and the client so both
+// compute the same name for the same OBJ + MTL.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace radflux {
+
+// Lowercase hex SHA-256 of "radflux-scene-v1\n" + decimal(obj.size()) + "\n" + obj + mtl
+// (the length prefix keeps the OBJ/MTL split part of the address).
+std::string SceneContentHash(std::string_view obj, std::string_view mtl);
+
+// Lowercase hex SHA-256 of `data`.
+std::string Sha256Hex(std::string_view data);
+
+}  // namespace radflux

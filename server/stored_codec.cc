@@ -1,0 +1,106 @@
+#include "server/stored_codec.h"
+
+#include <cstring>
+#include <type_traits>
+
+namespace radflux {
+namespace {
+
+constexpr uint32_t kRowBlockTag = 0x52424c31;    // "RBL1"
+constexpr uint32_t kCheckpointTag = 0x43504b31;  // "CPK1"
+
+// Appends trivially copyable values (the platforms radflux runs on are little-endian).
+class Writer {
+ public:
+  template <typename T>
+  void Put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <typename T>
+  void PutVector(const std::vector<T>& v) {
+    Put<uint64_t>(v.size());
+    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  std::string Take() { return std::move(out_); }
+
+ private:
+  std::string out_;
+};
+
+// Reads what Writer wrote; every read checks the remaining length.
+class Reader {
+ public:
+  explicit Reader(std::string_view in) : in_(in) {}
+  template <typename T>
+  bool Get(T& v) {
+    if (in_.size() < sizeof(T)) return false;
+    std::memcpy(&v, in_.data(), sizeof(T));
+    in_.remove_prefix(sizeof(T));
+    return true;
+  }
+  template <typename T>
+  bool GetVector(std::vector<T>& v) {
+    uint64_t size = 0;
+    if (!Get(size) || size > in_.size() / sizeof(T)) return false;
+    v.resize(size);
+    std::memcpy(v.data(), in_.data(), size * sizeof(T));
+    in_.remove_prefix(size * sizeof(T));
+    return true;
+  }
+  bool AtEnd() const { return in_.empty(); }
+
+ private:
+  std::string_view in_;
+};
+
+}  // namespace
+
+std::string EncodeRowBlock(const StoredRowBlock& stored) {
+  Writer w;
+  w.Put(kRowBlockTag);
+  w.Put(stored.block.first_row);
+  w.PutVector(stored.block.row_begin);
+  w.PutVector(stored.block.col);
+  w.PutVector(stored.block.value);
+  w.Put(stored.stats.rays);
+  w.Put(stored.stats.dropped_sum);
+  w.Put(stored.stats.max_row_dropped);
+  return w.Take();
+}
+
+absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
+  Reader r(bytes);
+  StoredRowBlock s;
+  uint32_t tag = 0;
+  const bool ok = r.Get(tag) && tag == kRowBlockTag && r.Get(s.block.first_row) &&
+                  r.GetVector(s.block.row_begin) && r.GetVector(s.block.col) &&
+                  r.GetVector(s.block.value) && r.Get(s.stats.rays) &&
+                  r.Get(s.stats.dropped_sum) && r.Get(s.stats.max_row_dropped) && r.AtEnd();
+  if (!ok || s.block.row_begin.empty() || s.block.col.size() != s.block.value.size() ||
+      s.block.row_begin.back() != s.block.col.size()) {
+    return absl::DataLossError("not a row block");
+  }
+  return s;
+}
+
+std::string EncodeCheckpoint(const SolverCheckpoint& checkpoint) {
+  Writer w;
+  w.Put(kCheckpointTag);
+  w.Put(checkpoint.iteration);
+  w.PutVector(checkpoint.radiosity);
+  return w.Take();
+}
+
+absl::StatusOr<SolverCheckpoint> DecodeCheckpoint(std::string_view bytes) {
+  Reader r(bytes);
+  SolverCheckpoint c;
+  uint32_t tag = 0;
+  if (!(r.Get(tag) && tag == kCheckpointTag && r.Get(c.iteration) && r.GetVector(c.radiosity) &&
+        r.AtEnd())) {
+    return absl::DataLossError("not a solver checkpoint");
+  }
+  return c;
+}
+
+}  // namespace radflux

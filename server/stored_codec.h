@@ -1,0 +1,36 @@
+// Byte encodings of what the job store keeps per job: form-factor row blocks (with the
+// statistics of their build) and solver checkpoints. Little-endian, exact (floats and
+// doubles are stored bit for bit), so a resumed job computes exactly what it would have.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/core/bands.h"
+#include "solver/formfactor/row_builder.h"
+#include "solver/sparse/csr_matrix.h"
+
+namespace radflux {
+
+// A row block as built, with the statistics BuildRowBlock returned for it.
+struct StoredRowBlock {
+  RowBlock block;
+  RowBlockStats stats;
+};
+
+std::string EncodeRowBlock(const StoredRowBlock& stored);
+// DATA_LOSS when the bytes are not a row block.
+absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes);
+
+// The solver's state after `iteration` iterations: B per patch per band.
+struct SolverCheckpoint {
+  int iteration = 0;
+  std::vector<Rgb> radiosity;
+};
+
+std::string EncodeCheckpoint(const SolverCheckpoint& checkpoint);
+absl::StatusOr<SolverCheckpoint> DecodeCheckpoint(std::string_view bytes);
+
+}  // namespace radflux

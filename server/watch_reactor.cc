@@ -1,0 +1,87 @@
+#include "server/watch_reactor.h"
+
+#include "server/proto_convert.h"
+
+namespace radflux {
+
+WatchReactor::WatchReactor(std::shared_ptr<JobHub> hub, const v1::WatchJobRequest& request)
+    : hub_(std::move(hub)), request_(request), link_(std::make_shared<Link>()) {
+  sent_sequence_ = request.after_sequence();
+  link_->reactor = this;
+  subscription_ = hub_->Subscribe([link = link_] {
+    std::lock_guard lock(link->mu);
+    if (link->reactor) link->reactor->Pump();
+  });
+  Pump();
+}
+
+bool WatchReactor::NextMessage() {
+  if (hub_->NextEvent(sent_sequence_, &message_)) {
+    sent_sequence_ = message_.sequence();
+    return true;
+  }
+  const int every = request_.snapshot_every();
+  SnapshotData snapshot;
+  if (every <= 0 || !hub_->NewestSnapshot(next_snapshot_iteration_, &snapshot)) return false;
+  next_snapshot_iteration_ = (snapshot.iteration / every + 1) * every;
+  message_.Clear();
+  message_.set_sequence(sent_sequence_);
+  message_.set_job_id(request_.job_id());
+  message_.set_state(v1::JOB_STATE_RUNNING);
+  message_.set_phase(v1::PHASE_SOLVE);
+  const std::vector<int> bands(request_.bands().begin(), request_.bands().end());
+  *message_.mutable_snapshot() =
+      ToProtoSnapshot(snapshot.iteration, *snapshot.radiosity, bands, request_.snapshot_format());
+  return true;
+}
+
+void WatchReactor::Pump() {
+  std::unique_lock lock(mu_);
+  if (in_flight_ || finished_) return;
+  if (cancelled_) {
+    finished_ = true;
+    lock.unlock();
+    Finish(grpc::Status::CANCELLED);
+    return;
+  }
+  const bool closed = hub_->closed();  // read first: a closed hub has all its events
+  if (NextMessage()) {
+    in_flight_ = true;
+    lock.unlock();
+    StartWrite(&message_);
+    return;
+  }
+  if (closed) {
+    finished_ = true;
+    lock.unlock();
+    Finish(grpc::Status::OK);
+  }
+}
+
+void WatchReactor::OnWriteDone(bool ok) {
+  {
+    std::lock_guard lock(mu_);
+    in_flight_ = false;
+    if (!ok) cancelled_ = true;
+  }
+  Pump();
+}
+
+void WatchReactor::OnCancel() {
+  {
+    std::lock_guard lock(mu_);
+    cancelled_ = true;
+  }
+  Pump();
+}
+
+void WatchReactor::OnDone() {
+  {
+    std::lock_guard lock(link_->mu);
+    link_->reactor = nullptr;
+  }
+  hub_->Unsubscribe(subscription_);
+  delete this;
+}
+
+}  // namespace radflux
