@@ -1,0 +1,138 @@
+#include "client/output_flags.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "solver/output/gltf_writer.h"
+#include "solver/output/image.h"
+#include "solver/output/patch_values_csv.h"
+#include "solver/output/ply_writer.h"
+#include "solver/output/render.h"
+#include "solver/output/tone_map.h"
+
+namespace radflux::cli {
+namespace {
+
+absl::Status RequireExtension(const std::string& path, const std::string& flag,
+                              std::initializer_list<const char*> extensions) {
+  if (path.empty()) return absl::OkStatus();
+  std::string list;
+  for (const char* e : extensions) {
+    if (absl::EndsWith(path, e)) return absl::OkStatus();
+    list += std::string(list.empty() ? "" : " or ") + e;
+  }
+  return absl::InvalidArgumentError(absl::StrCat(flag, " '", path, "': must end in ", list));
+}
+
+Vec3 ToVec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+std::pair<int, int> ParseSize(const std::string& size) {
+  int w = 0, h = 0;
+  char x = 0;
+  if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x') return {0, 0};
+  return {w, h};
+}
+
+}  // namespace
+
+void AddOutputFlags(CLI::App& app, OutputFlags& f) {
+  app.add_option("--out", f.out, "lit mesh: FILE.ply or FILE.glb");
+  app.add_option("--render", f.render, "picture: FILE.png (tone mapped) or FILE.pfm (linear)");
+  app.add_option("--report", f.report, "job report: FILE.json");
+  app.add_option("--patch-values", f.patch_values, "per-patch radiosity: FILE.csv");
+  app.add_option("--camera-pos", f.camera_pos, "camera position X,Y,Z")->delimiter(',')->expected(3);
+  app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
+      ->delimiter(',')
+      ->expected(3);
+  app.add_option("--camera-up", f.camera_up, "camera up vector X,Y,Z (default 0,1,0)")
+      ->delimiter(',')
+      ->expected(3);
+  app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")->capture_default_str();
+  app.add_option("--size", f.size, "image size WxH")->capture_default_str();
+  app.add_option("--exposure", f.exposure,
+                 "PNG exposure in stops on top of auto exposure (95th percentile = white)")
+      ->capture_default_str();
+  app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve");
+  app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
+      ->capture_default_str();
+}
+
+absl::Status ValidateOutputFlags(const OutputFlags& f) {
+  for (const absl::Status& s : {RequireExtension(f.out, "--out", {".ply", ".glb"}),
+                                RequireExtension(f.render, "--render", {".png", ".pfm"}),
+                                RequireExtension(f.report, "--report", {".json"}),
+                                RequireExtension(f.patch_values, "--patch-values", {".csv"})}) {
+    if (!s.ok()) return s;
+  }
+  const auto [w, h] = ParseSize(f.size);
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--size '", f.size, "': expected WxH with 1..16384 pixels each"));
+  }
+  if (!(f.metres_per_unit > 0)) return absl::InvalidArgumentError("--metres-per-unit must be > 0");
+  return absl::OkStatus();
+}
+
+absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh) {
+  Camera camera;
+  std::tie(camera.width, camera.height) = ParseSize(f.size);
+  camera.vertical_fov_degrees = f.fov_deg;
+  if (!f.camera_up.empty()) camera.up = ToVec3(f.camera_up);
+  Vec3 lo = mesh.positions.at(0), hi = lo;
+  for (const Vec3& p : mesh.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const Vec3 centre = (lo + hi) * 0.5;
+  camera.look_at = f.camera_look_at.empty() ? centre : ToVec3(f.camera_look_at);
+  if (!f.camera_pos.empty()) {
+    camera.position = ToVec3(f.camera_pos);
+  } else {
+    const double half = std::max(hi.y - lo.y, (hi.x - lo.x) * camera.height / camera.width) / 2;
+    const double distance = half / std::tan(f.fov_deg * M_PI / 360);
+    camera.position = {camera.look_at.x, camera.look_at.y, lo.z - distance};
+  }
+  if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
+  return camera;
+}
+
+absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                          const std::vector<Rgb>& radiosity, int threads) {
+  std::vector<Rgb> radiance(radiosity.size());
+  for (size_t p = 0; p < radiosity.size(); ++p) {
+    for (int b = 0; b < kBands; ++b) radiance[p][b] = radiosity[p][b] / M_PI;
+  }
+  ToneMapOptions tone;
+  tone.scale = AutoExposureScale(radiance);
+  tone.exposure_stops = f.exposure;
+  tone.srgb = !f.linear_png;
+  if (absl::EndsWith(f.out, ".ply")) {
+    if (absl::Status s = WritePly(f.out, mesh, radiosity, tone); !s.ok()) return s;
+  } else if (absl::EndsWith(f.out, ".glb")) {
+    GltfOptions gltf;
+    gltf.metres_per_unit = f.metres_per_unit;
+    gltf.tone = tone;
+    if (absl::Status s = WriteGlb(f.out, mesh, radiosity, gltf); !s.ok()) return s;
+  }
+  if (!f.render.empty()) {
+    absl::StatusOr<Camera> camera = CameraFromFlags(f, mesh);
+    if (!camera.ok()) return camera.status();
+    RenderOptions options;
+    options.threads = threads;
+    absl::StatusOr<Image> image = RenderPatchRadiosity(mesh, radiosity, *camera, options);
+    if (!image.ok()) return image.status();
+    absl::Status s = absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
+                                                      : WritePng(f.render, *image, tone);
+    if (!s.ok()) return s;
+  }
+  if (!f.patch_values.empty()) {
+    if (absl::Status s = WritePatchValuesCsv(f.patch_values, scene, mesh, radiosity); !s.ok()) {
+      return s;
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace radflux::cli

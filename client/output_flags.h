@@ -1,0 +1,45 @@
+// The output flags shared by `radflux solve` and `radflux result`: lit mesh, picture,
+// camera, report and per-patch values; and writing them from a solved job.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/core/bands.h"
+#include "solver/mesh/patch_mesh.h"
+#include "solver/output/camera.h"
+#include "solver/scene/scene.h"
+
+namespace radflux::cli {
+
+struct OutputFlags {
+  std::string out;           // .ply or .glb
+  std::string render;        // .png or .pfm
+  std::string report;        // .json
+  std::string patch_values;  // .csv
+  std::vector<double> camera_pos, camera_look_at, camera_up;
+  double fov_deg = 39.3077;
+  std::string size = "512x512";
+  double exposure = 0;            // stops
+  bool linear_png = false;        // PNG without the sRGB curve
+  double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
+};
+
+void AddOutputFlags(CLI::App& app, OutputFlags& flags);
+
+// Checks file extensions and camera values before any work starts.
+absl::Status ValidateOutputFlags(const OutputFlags& flags);
+
+// The camera from the flags; without --camera-pos it frames the scene's bounding box
+// from -z looking +z (for the Cornell box this is close to its classic camera).
+absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh);
+
+// Writes the mesh, picture and per-patch values that were asked for (not the report).
+absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
+                          const std::vector<Rgb>& radiosity, int threads);
+
+}  // namespace radflux::cli

@@ -1,0 +1,30 @@
+// Progress for a person: a redrawn bar per phase on a terminal, plain lines (at most a
+// few per second) when stderr is not a terminal, e.g. in CI logs or under a pipe.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace radflux::cli {
+
+class ProgressDisplay {
+ public:
+  explicit ProgressDisplay(bool quiet);
+  // Phase progress: done of total units.
+  void Phase(std::string_view phase, int64_t done, int64_t total);
+  // Solver progress: iteration and convergence measure.
+  void Iteration(int iteration, double residual, double unshot_fraction);
+  // Ends the current bar line, if any.
+  void Finish();
+  // A message on its own line.
+  void Line(const std::string& text);
+
+ private:
+  bool Due(bool force);
+  bool quiet_, terminal_, bar_open_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+}  // namespace radflux::cli

@@ -1,0 +1,97 @@
+#include "client/solve_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "absl/strings/str_format.h"
+#include "client/job_flags.h"
+#include "client/output_flags.h"
+#include "client/progress_display.h"
+#include "solver/report.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux::cli {
+namespace {
+
+struct SolveArgs {
+  std::string scene;
+  JobFlags job;
+  OutputFlags output;
+  bool quiet = false;
+};
+
+absl::Status WriteReport(const std::string& path, const nlohmann::json& report) {
+  std::ofstream file(path);
+  file << report.dump(2) << "\n";
+  file.close();
+  if (!file) return absl::InternalError("cannot write report file '" + path + "'");
+  return absl::OkStatus();
+}
+
+absl::Status RunSolve(const SolveArgs& args) {
+  absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
+  if (!options.ok()) return options.status();
+  if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return s;
+  const auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<Scene> scene = LoadObjFile(args.scene);
+  if (!scene.ok()) return scene.status();
+  const double load_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  ProgressDisplay progress(args.quiet);
+  JobCallbacks callbacks;
+  callbacks.phase = [&](std::string_view phase, int64_t done, int64_t total) {
+    progress.Phase(phase, done, total);
+    return true;
+  };
+  callbacks.solve = [&](const SolveProgress& p) {
+    progress.Iteration(p.iteration, p.residual, p.unshot_fraction);
+  };
+  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options, callbacks);
+  if (!result.ok()) return result.status();
+  progress.Finish();
+  const PreparedJob& job = *result->job;
+  progress.Line(absl::StrFormat(
+      "%d patches, %d non-zeros (%.1f MB), %d iterations, residual %.2e; "
+      "mesh %.3fs embree %.3fs rows %.3fs solve %.3fs",
+      job.mesh.size(), result->form_factors.nnz(), result->form_factors.Bytes() / 1e6,
+      result->solve.iterations, result->solve.residual, result->timings.mesh,
+      result->timings.embree, result->timings.rows, result->timings.solve));
+
+  const auto output_start = std::chrono::steady_clock::now();
+  if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
+                                    args.job.threads);
+      !s.ok()) {
+    return s;
+  }
+  if (!args.output.report.empty()) {
+    nlohmann::json report = MakeJobReport(*result, *options, args.scene);
+    report["seconds"]["load"] = load_seconds;
+    report["seconds"]["output"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
+    if (absl::Status s = WriteReport(args.output.report, report); !s.ok()) return s;
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+void AddSolveCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* solve = app.add_subcommand(
+      "solve", "Solve a scene in-process (no server): mesh, form factors, radiosity, outputs");
+  solve->add_option("SCENE", args->scene, "scene file (Wavefront OBJ with MTL)")->required();
+  AddJobFlags(*solve, args->job);
+  AddOutputFlags(*solve, args->output);
+  solve->add_flag("--quiet,-q", args->quiet, "no progress output");
+  solve->callback([args, &exit_code] {
+    const absl::Status status = RunSolve(*args);
+    if (!status.ok()) {
+      std::fprintf(stderr, "radflux solve: %s\n", std::string(status.message()).c_str());
+      exit_code = status.code() == absl::StatusCode::kInvalidArgument ? 2 : 1;
+    }
+  });
+}
+
+}  // namespace radflux::cli

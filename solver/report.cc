@@ -1,0 +1,73 @@
+#include "solver/report.h"
+
+#include "solver/core/parallel.h"
+
+namespace radflux {
+namespace {
+
+nlohmann::json BandsJson(const Rgb& c) { return {c[0], c[1], c[2]}; }
+
+nlohmann::json OptionsJson(const JobOptions& o) {
+  const FormFactorOptions& f = o.form_factors;
+  return {{"patches", o.mesh.target_patches},
+          {"max_edge", o.mesh.max_edge},
+          {"form_factors", std::string(MethodName(f.method))},
+          {"rays", f.rays},
+          {"hemicube_res", f.hemicube_res},
+          {"samples", f.samples},
+          {"cutoff", f.cutoff},
+          {"seed", f.seed},
+          {"solver", std::string(SolverName(o.solver.method))},
+          {"tolerance", o.solver.tolerance},
+          {"max_iterations", o.solver.max_iterations}};
+}
+
+}  // namespace
+
+nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
+                             const std::string& scene_name) {
+  const PreparedJob& job = *result.job;
+  const JobTimings& t = result.timings;
+  const RadiositySystem system{&result.form_factors, &job.attributes};
+  const EnergyBalance balance = ComputeEnergyBalance(system, result.solve.radiosity);
+  const int threads =
+      options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
+  return {
+      {"scene", scene_name},
+      {"options", OptionsJson(options)},
+      {"threads", threads},
+      {"mesh",
+       {{"faces", job.scene.faces.size()},
+        {"patches", job.mesh_stats.patches},
+        {"min_area", job.mesh_stats.min_area},
+        {"max_area", job.mesh_stats.max_area},
+        {"max_aspect", job.mesh_stats.max_aspect}}},
+      {"matrix",
+       {{"nnz", result.form_factors.nnz()},
+        {"bytes", result.form_factors.Bytes()},
+        {"dropped_sum", result.row_stats.dropped_sum},
+        {"max_row_dropped", result.row_stats.max_row_dropped}}},
+      {"seconds",
+       {{"mesh", t.mesh}, {"embree", t.embree}, {"rows", t.rows}, {"solve", t.solve}}},
+      {"rays", result.row_stats.rays},
+      {"rays_per_second", t.rows > 0 ? result.row_stats.rays / t.rows : 0.0},
+      {"solve",
+       {{"iterations", result.solve.iterations},
+        {"residual", result.solve.residual},
+        {"converged", result.solve.converged},
+        {"cancelled", result.solve.cancelled},
+        {"bands_solved", result.solve.bands_solved},
+        {"reciprocity_error", result.solve.reciprocity_error},
+        {"residual_history", result.solve.residual_history}}},
+      {"energy_balance",
+       {{"emitted", BandsJson(balance.emitted)},
+        {"absorbed", BandsJson(balance.absorbed)},
+        {"escaped", BandsJson(balance.escaped)},
+        {"unaccounted", BandsJson(balance.unaccounted)},
+        {"relative_imbalance", balance.RelativeImbalance()},
+        {"tolerance", kEnergyBalanceTolerance},
+        {"ok", balance.RelativeImbalance() <= kEnergyBalanceTolerance}}},
+  };
+}
+
+}  // namespace radflux
