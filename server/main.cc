@@ -7,6 +7,7 @@
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -121,6 +122,9 @@ int main(int argc, char** argv) {
   sigaddset(&set, SIGTERM);
   sigaddset(&set, SIGINT);
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+  // Logs go to stderr; stdout carries only the "listening on" line scripts read.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("radfluxd"));
 
   CLI::App app{"radfluxd: the radflux radiosity solver service"};
   Flags flags;

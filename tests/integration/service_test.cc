@@ -1,0 +1,361 @@
+// Integration tests of radfluxd over loopback gRPC: each test starts its own server on a
+// port the server picks, with a fresh data directory.
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/proto_convert.h"
+#include "server/scene_hash.h"
+#include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+#include "tests/integration/server_process.h"
+
+namespace radflux {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ServerProcess;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
+
+class ServiceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/radflux_it_XXXXXX";
+    data_dir_ = mkdtemp(pattern);
+  }
+  void TearDown() override {
+    server_.reset();
+    fs::remove_all(data_dir_);
+  }
+  void StartServer(const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> flags = {"--threads", "2"};
+    flags.insert(flags.end(), extra.begin(), extra.end());
+    server_ = std::make_unique<ServerProcess>(data_dir_, flags);
+    stub_ = v1::Radiosity::NewStub(
+        grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));
+  }
+  std::unique_ptr<grpc::ClientContext> Context() {
+    auto context = std::make_unique<grpc::ClientContext>();
+    if (!token_.empty()) context->AddMetadata("authorization", "Bearer " + token_);
+    return context;
+  }
+
+  // Uploads OBJ + MTL in small chunks; `declared_extra` bytes more than sent are declared.
+  grpc::Status Upload(const std::string& obj, const std::string& mtl, v1::SceneRef* ref,
+                      const std::string& sha = "", uint64_t declared_extra = 0) {
+    auto context = Context();
+    auto writer = stub_->UploadScene(context.get(), ref);
+    const std::string data = obj + mtl;
+    v1::SceneChunk chunk;
+    chunk.mutable_header()->set_name("cornell_box.obj");
+    chunk.mutable_header()->set_obj_size(obj.size());
+    chunk.mutable_header()->set_mtl_size(mtl.size() + declared_extra);
+    chunk.mutable_header()->set_sha256(sha);
+    for (size_t at = 0; at < data.size(); at += 1000) {
+      chunk.set_data(data.substr(at, 1000));
+      if (!writer->Write(chunk)) break;
+      chunk.clear_header();
+    }
+    writer->WritesDone();
+    return writer->Finish();
+  }
+
+  std::string UploadCornell() {
+    v1::SceneRef ref;
+    const grpc::Status status = Upload(kObj, kMtl, &ref, SceneContentHash(kObj, kMtl));
+    EXPECT_TRUE(status.ok()) << status.error_message();
+    return ref.sha256();
+  }
+
+  grpc::Status Submit(const v1::SolveOptions& options, v1::Job* job, const std::string& sha,
+                      const std::string& request_id = "") {
+    v1::SubmitJobRequest request;
+    request.set_scene_sha256(sha);
+    *request.mutable_options() = options;
+    request.set_request_id(request_id);
+    return stub_->SubmitJob(Context().get(), request, job);
+  }
+
+  // Watches a job until `stop(event)` is true or the stream ends; returns all events.
+  std::vector<v1::JobEvent> Watch(const std::string& job_id,
+                                  const std::function<bool(const v1::JobEvent&)>& stop = {},
+                                  int snapshot_every = 0) {
+    v1::WatchJobRequest request;
+    request.set_job_id(job_id);
+    request.set_snapshot_every(snapshot_every);
+    request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT16);
+    auto context = Context();
+    auto reader = stub_->WatchJob(context.get(), request);
+    std::vector<v1::JobEvent> events;
+    v1::JobEvent event;
+    while (reader->Read(&event)) {
+      events.push_back(event);
+      if (stop && stop(event)) {
+        context->TryCancel();
+        break;
+      }
+    }
+    reader->Finish();
+    return events;
+  }
+
+  // The per-patch radiosity of a finished job, exactly as the server sent it.
+  grpc::Status Result(const std::string& job_id, std::vector<double>* radiosity) {
+    v1::GetResultRequest request;
+    request.set_job_id(job_id);
+    auto context = Context();
+    auto reader = stub_->GetResult(context.get(), request);
+    v1::ResultChunk chunk;
+    while (reader->Read(&chunk)) {
+      if (chunk.has_patches()) {
+        radiosity->insert(radiosity->end(), chunk.patches().radiosity().begin(),
+                          chunk.patches().radiosity().end());
+      }
+    }
+    return reader->Finish();
+  }
+
+  std::string data_dir_;
+  std::string token_;
+  std::unique_ptr<ServerProcess> server_;
+  std::unique_ptr<v1::Radiosity::Stub> stub_;
+};
+
+v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver) {
+  v1::SolveOptions options;
+  options.set_target_patches(patches);
+  options.set_rays(128);
+  options.set_seed(7);
+  options.set_block_size(16);
+  options.set_solver(solver);
+  return options;
+}
+
+// B per patch per band of the same job computed in-process by RunJob.
+std::vector<double> InProcess(const v1::SolveOptions& proto) {
+  absl::StatusOr<JobOptions> options = FromProto(proto);
+  EXPECT_TRUE(options.ok());
+  options->form_factors.threads = 2;
+  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
+  EXPECT_TRUE(scene.ok());
+  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options);
+  EXPECT_TRUE(result.ok()) << result.status();
+  std::vector<double> values;
+  for (const Rgb& b : result->solve.radiosity) values.insert(values.end(), b.begin(), b.end());
+  return values;
+}
+
+void ExpectBitIdentical(const std::vector<double>& a, const std::vector<double>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)));
+}
+
+TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(300, "cg");
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha, "req-1").ok());
+  v1::Job again;
+  ASSERT_TRUE(Submit(options, &again, sha, "req-1").ok());
+  EXPECT_EQ(job.job_id(), again.job_id()) << "a retried submit must return the same job";
+
+  const std::vector<v1::JobEvent> events = Watch(job.job_id(), {}, /*snapshot_every=*/1);
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  uint64_t last = 0;
+  bool saw_rows = false, saw_snapshot = false;
+  for (const v1::JobEvent& e : events) {
+    if (e.has_snapshot()) {
+      saw_snapshot = true;
+      EXPECT_EQ(e.sequence(), last) << "a snapshot carries the sequence it follows";
+      EXPECT_EQ(e.snapshot().patch_count(), 300u);
+      EXPECT_TRUE(SnapshotValues(e.snapshot()).ok());
+      continue;
+    }
+    EXPECT_EQ(e.sequence(), last + 1);
+    last = e.sequence();
+    saw_rows |= e.phase() == v1::PHASE_ROWS && e.progress().rows_total() == 300;
+  }
+  EXPECT_TRUE(saw_rows);
+  EXPECT_TRUE(saw_snapshot);
+
+  // Resuming after the last sequence seen misses nothing and ends at once.
+  v1::WatchJobRequest resume;
+  resume.set_job_id(job.job_id());
+  resume.set_after_sequence(last - 1);
+  auto context = Context();
+  auto reader = stub_->WatchJob(context.get(), resume);
+  v1::JobEvent event;
+  ASSERT_TRUE(reader->Read(&event));
+  EXPECT_EQ(event.sequence(), last);
+  EXPECT_FALSE(reader->Read(&event));
+  EXPECT_TRUE(reader->Finish().ok());
+
+  std::vector<double> served;
+  const grpc::Status status = Result(job.job_id(), &served);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  ExpectBitIdentical(served, InProcess(options));
+}
+
+TEST_F(ServiceTest, CancelMidRowsEndsCancelledAndCleansFiles) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  v1::SolveOptions options = SmallOptions(3000, "cg");
+  options.set_rays(512);
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  Watch(job.job_id(), [](const v1::JobEvent& e) { return e.progress().rows_done() > 0; });
+  v1::CancelJobRequest cancel;
+  cancel.set_job_id(job.job_id());
+  v1::Job cancelled;
+  ASSERT_TRUE(stub_->CancelJob(Context().get(), cancel, &cancelled).ok());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().state(), v1::JOB_STATE_CANCELLED);
+  std::vector<double> served;
+  EXPECT_EQ(Result(job.job_id(), &served).error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id())) ++files;
+  EXPECT_EQ(files, 0u) << "a cancelled job's row blocks and checkpoint are removed";
+}
+
+TEST_F(ServiceTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  Watch(job.job_id(), [](const v1::JobEvent& e) { return e.progress().rows_done() >= 64; });
+  server_->Kill();
+  size_t stored_blocks = 0;
+  for (const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id())) {
+    stored_blocks += f.path().filename().string().rfind("rows_", 0) == 0;
+  }
+  EXPECT_GT(stored_blocks, 0u) << "row blocks survive kill -9";
+
+  StartServer();
+  v1::ListJobsRequest list_request;
+  v1::ListJobsResponse list;
+  ASSERT_TRUE(stub_->ListJobs(Context().get(), list_request, &list).ok());
+  ASSERT_EQ(list.jobs_size(), 1);
+  EXPECT_EQ(list.jobs(0).job_id(), job.job_id());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_FALSE(events.empty());
+  ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  std::vector<double> served;
+  ASSERT_TRUE(Result(job.job_id(), &served).ok());
+  ExpectBitIdentical(served, InProcess(options));
+
+  // A finished job still returns its result after another restart.
+  server_->Stop();
+  StartServer();
+  std::vector<double> again;
+  ASSERT_TRUE(Result(job.job_id(), &again).ok());
+  ExpectBitIdentical(again, served);
+}
+
+TEST_F(ServiceTest, BadInputGetsTheRightStatusAndTheServerKeepsServing) {
+  StartServer({"--max-patches", "100000"});
+  v1::SceneRef ref;
+  grpc::Status s = Upload(kObj, kMtl, &ref, "", /*declared_extra=*/100);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::DATA_LOSS);
+  EXPECT_NE(s.error_message().find("truncated"), std::string::npos) << s.error_message();
+
+  s = Upload(kObj, kMtl, &ref, std::string(64, 'a'));
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::DATA_LOSS);
+  EXPECT_NE(s.error_message().find("hashes to"), std::string::npos) << s.error_message();
+
+  s = Upload("v 0 0 0\nv 1 0 0\nf 1 2 99\n", "", &ref);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << s.error_message();
+  EXPECT_FALSE(s.error_message().empty());
+
+  const std::string sha = UploadCornell();
+  v1::Job job;
+  v1::SolveOptions options = SmallOptions(300, "cg");
+  options.set_rays(-5);
+  s = Submit(options, &job, sha);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << s.error_message();
+  options = SmallOptions(300, "no_such_solver");
+  s = Submit(options, &job, sha);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(s.error_message().find("no_such_solver"), std::string::npos);
+  s = Submit(SmallOptions(1'000'000'000'000, "cg"), &job, sha);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << s.error_message();
+  EXPECT_NE(s.error_message().find("--max-patches"), std::string::npos);
+  s = Submit(SmallOptions(300, "cg"), &job, std::string(64, '0'));
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::NOT_FOUND);
+
+  std::vector<double> served;
+  EXPECT_EQ(Result("job-unknown", &served).error_code(), grpc::StatusCode::NOT_FOUND);
+  v1::ListJobsResponse list;
+  EXPECT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
+  EXPECT_EQ(list.jobs_size(), 0) << "refused submits leave no job behind";
+}
+
+TEST_F(ServiceTest, MemoryLimitRefusesBeforeAnyWork) {
+  StartServer({"--max-memory", "1000"});
+  const std::string sha = UploadCornell();
+  v1::Job job;
+  const grpc::Status s = Submit(SmallOptions(300, "cg"), &job, sha);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(s.error_message().find("--max-memory"), std::string::npos) << s.error_message();
+}
+
+TEST_F(ServiceTest, BearerTokenIsRequiredWhenConfigured) {
+  StartServer({"--token", "s3cret"});
+  v1::ListJobsResponse list;
+  grpc::Status s = stub_->ListJobs(Context().get(), {}, &list);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_NE(s.error_message().find("missing"), std::string::npos);
+  token_ = "wrong";
+  s = stub_->ListJobs(Context().get(), {}, &list);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_NE(s.error_message().find("invalid"), std::string::npos);
+  v1::SceneRef ref;
+  EXPECT_EQ(Upload(kObj, kMtl, &ref).error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  token_ = "s3cret";
+  EXPECT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
+  EXPECT_FALSE(UploadCornell().empty());
+}
+
+TEST_F(ServiceTest, TlsServerCertificate) {
+  const std::string cert = data_dir_ + "/cert.pem", key = data_dir_ + "/key.pem";
+  const std::string command =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+      "-addext subjectAltName=DNS:localhost -keyout " + key + " -out " + cert + " 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  StartServer({"--tls-cert", cert, "--tls-key", key});
+  grpc::SslCredentialsOptions ssl;
+  ssl.pem_root_certs = ReadText(cert);
+  grpc::ChannelArguments args;
+  args.SetSslTargetNameOverride("localhost");
+  auto stub = v1::Radiosity::NewStub(
+      grpc::CreateCustomChannel(server_->address(), grpc::SslCredentials(ssl), args));
+  v1::ListJobsResponse list;
+  grpc::ClientContext context;
+  EXPECT_TRUE(stub->ListJobs(&context, {}, &list).ok());
+  // A plaintext client cannot talk to it.
+  grpc::ClientContext plain_context;
+  const grpc::Status plain = stub_->ListJobs(&plain_context, {}, &list);
+  EXPECT_EQ(plain.error_code(), grpc::StatusCode::UNAVAILABLE);
+}
+
+}  // namespace
+}  // namespace radflux
