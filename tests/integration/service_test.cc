@@ -180,20 +180,21 @@ TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
   ASSERT_FALSE(events.empty());
   EXPECT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
   uint64_t last = 0;
-  bool saw_rows = false, saw_snapshot = false;
+  int64_t patches = 0;
+  bool saw_snapshot = false;
   for (const v1::JobEvent& e : events) {
     if (e.has_snapshot()) {
       saw_snapshot = true;
       EXPECT_EQ(e.sequence(), last) << "a snapshot carries the sequence it follows";
-      EXPECT_EQ(e.snapshot().patch_count(), 300u);
+      EXPECT_EQ(e.snapshot().patch_count(), static_cast<uint64_t>(patches));
       EXPECT_TRUE(SnapshotValues(e.snapshot()).ok());
       continue;
     }
     EXPECT_EQ(e.sequence(), last + 1);
     last = e.sequence();
-    saw_rows |= e.phase() == v1::PHASE_ROWS && e.progress().rows_total() == 300;
+    if (e.phase() == v1::PHASE_ROWS) patches = std::max(patches, e.progress().rows_total());
   }
-  EXPECT_TRUE(saw_rows);
+  EXPECT_GT(patches, 250) << "rows progress reports the patch count (about 300 asked)";
   EXPECT_TRUE(saw_snapshot);
 
   // Resuming after the last sequence seen misses nothing and ends at once.
