@@ -1,5 +1,7 @@
 #include "solver/scene/obj_loader.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -13,20 +15,41 @@ namespace {
 
 // Where each 'f' statement stands in the file and which 'o', 'g' and 'usemtl' are
 // in force there. tinyobjloader parses the geometry; this scan only recovers the
-// provenance that it does not keep, so that messages and results can name surfaces.
+// provenance that it does not keep, so that messages and results can name surfaces,
+// and the line of any vertex coordinate that is NaN or infinite (tinyobjloader would
+// silently read those as 0).
 struct FaceOrigin {
   int line = 0;
   std::string object, group, usemtl;
 };
 
-std::vector<FaceOrigin> ScanFaceOrigins(const std::string& text) {
-  std::vector<FaceOrigin> origins;
+struct SourceScan {
+  std::vector<FaceOrigin> faces;
+  int bad_vertex_line = 0;  // first 'v' line with a NaN or infinite coordinate, 0 if none
+};
+
+bool HasNonFiniteCoordinate(std::istringstream& words) {
+  std::string token;
+  for (int k = 0; k < 3 && words >> token; ++k) {
+    const double value = std::strtod(token.c_str(), nullptr);
+    if (!std::isfinite(value)) return true;
+  }
+  return false;
+}
+
+SourceScan ScanSource(const std::string& text) {
+  SourceScan scan;
+  std::vector<FaceOrigin>& origins = scan.faces;
   std::istringstream in(text);
   std::string line, keyword;
   FaceOrigin current;
   for (int number = 1; std::getline(in, line); ++number) {
     std::istringstream words(line);
     if (!(words >> keyword)) continue;
+    if (keyword == "v") {
+      if (scan.bad_vertex_line == 0 && HasNonFiniteCoordinate(words)) scan.bad_vertex_line = number;
+      continue;
+    }
     std::string rest;
     std::getline(words >> std::ws, rest);
     while (!rest.empty() && (rest.back() == '\r' || rest.back() == ' ')) rest.pop_back();
@@ -41,7 +64,7 @@ std::vector<FaceOrigin> ScanFaceOrigins(const std::string& text) {
       origins.push_back(current);
     }
   }
-  return origins;
+  return scan;
 }
 
 uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
@@ -74,7 +97,12 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
     scene.materials.push_back(material);
   }
 
-  const std::vector<FaceOrigin> origins = ScanFaceOrigins(obj_text);
+  const SourceScan scan = ScanSource(obj_text);
+  if (scan.bad_vertex_line > 0) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, ":", scan.bad_vertex_line, ": vertex has a NaN or infinite coordinate"));
+  }
+  const std::vector<FaceOrigin>& origins = scan.faces;
   std::map<std::string, uint32_t> object_index, group_index;
   size_t face_number = 0;
   for (const auto& shape : reader.GetShapes()) {

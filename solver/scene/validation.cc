@@ -70,13 +70,14 @@ absl::Status ValidateFace(const Scene& scene, size_t f) {
 
 absl::Status ValidateScene(const Scene& scene) {
   if (scene.faces.empty()) return absl::InvalidArgumentError(scene.source + ": empty scene (no faces)");
-  for (const Material& m : scene.materials) {
-    if (absl::Status s = ValidateMaterial(scene, m); !s.ok()) return s;
-  }
   bool has_emitter = false;
+  std::vector<bool> checked(scene.materials.size(), false);  // only materials in use matter
   for (size_t f = 0; f < scene.faces.size(); ++f) {
-    if (scene.faces[f].material >= scene.materials.size()) {
-      return FaceError(scene, f, "unknown material");
+    const uint32_t material = scene.faces[f].material;
+    if (material >= scene.materials.size()) return FaceError(scene, f, "unknown material");
+    if (!checked[material]) {
+      checked[material] = true;
+      if (absl::Status s = ValidateMaterial(scene, scene.materials[material]); !s.ok()) return s;
     }
     if (absl::Status s = ValidateFace(scene, f); !s.ok()) return s;
     has_emitter = has_emitter || scene.materials[scene.faces[f].material].IsEmitter();

@@ -1,0 +1,129 @@
+// Subdivision: counts, conformity (no T-junctions inside a face), areas, provenance.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <utility>
+
+#include "solver/mesh/subdivide.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux {
+namespace {
+
+Scene Cornell() {
+  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  EXPECT_TRUE(scene.ok()) << scene.status();
+  return *scene;
+}
+
+double FaceArea(const Scene& scene, size_t f) {
+  return Length(PolygonNewellNormal(FacePolygon(scene, scene.faces[f]))) / 2;
+}
+
+TEST(Subdivide, TargetPatchCountIsClose) {
+  const Scene scene = Cornell();
+  for (int64_t target : {100, 2000, 8500}) {
+    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, MeshOptions{target, 0});
+    ASSERT_TRUE(mesh.ok());
+    EXPECT_NEAR(double(mesh->size()), double(target), 0.1 * target) << target;
+  }
+}
+
+TEST(Subdivide, SameCountGivesTheSameMesh) {
+  const Scene scene = Cornell();
+  const PatchMesh a = *SubdivideScene(scene, MeshOptions{1234, 0});
+  const PatchMesh b = *SubdivideScene(scene, MeshOptions{1234, 0});
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t p = 0; p < a.size(); ++p) EXPECT_EQ(a.patches[p].centroid, b.patches[p].centroid);
+}
+
+TEST(Subdivide, PatchAreasSumToFaceAreasAndKeepTheirFace) {
+  const Scene scene = Cornell();
+  const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{3000, 0});
+  std::vector<double> sum(scene.faces.size(), 0.0);
+  for (const Patch& p : mesh.patches) {
+    sum[p.face] += p.area;
+    EXPECT_GT(p.area, 0);
+  }
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    EXPECT_NEAR(sum[f], FaceArea(scene, f), 1e-9 * FaceArea(scene, f)) << f;
+  }
+}
+
+// Within a face every interior edge is shared by exactly two patches (in opposite
+// directions) and boundary edges by one: no T-junctions.
+void ExpectConforming(const PatchMesh& mesh) {
+  for (size_t f = 0; f + 1 < mesh.face_first_patch.size(); ++f) {
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    for (uint32_t p = mesh.face_first_patch[f]; p < mesh.face_first_patch[f + 1]; ++p) {
+      const Patch& patch = mesh.patches[p];
+      for (int k = 0; k < patch.VertexCount(); ++k) {
+        ++directed[{patch.v[k], patch.v[(k + 1) % patch.VertexCount()]}];
+      }
+    }
+    for (const auto& [edge, count] : directed) {
+      EXPECT_EQ(count, 1) << "edge used twice in one direction, face " << f;
+    }
+    // Count vertices used by patches that lie strictly inside another patch's edge.
+    for (uint32_t p = mesh.face_first_patch[f]; p < mesh.face_first_patch[f + 1]; ++p) {
+      const Patch& patch = mesh.patches[p];
+      for (int k = 0; k < patch.VertexCount(); ++k) {
+        const Vec3 a = mesh.Vertex(p, k), b = mesh.Vertex(p, (k + 1) % patch.VertexCount());
+        for (uint32_t v = mesh.face_first_vertex[f]; v < mesh.face_first_vertex[f + 1]; ++v) {
+          const Vec3 q = mesh.positions[v];
+          const double t = Dot(q - a, b - a) / Dot(b - a, b - a);
+          if (t <= 1e-9 || t >= 1 - 1e-9) continue;
+          EXPECT_GT(Length(a + (b - a) * t - q), 1e-9 * Length(b - a)) << "T-junction in face " << f;
+        }
+      }
+    }
+  }
+}
+
+TEST(Subdivide, NoTJunctionsInQuadsTrianglesAndFans) {
+  ExpectConforming(*SubdivideScene(Cornell(), MeshOptions{400, 0}));
+  const char* hexagon =
+      "mtllib m.mtl\no hex\nusemtl w\nv 1 0 0\nv .5 .866 0\nv -.5 .866 0\nv -1 0 0\nv -.5 -.866 0\n"
+      "v .5 -.866 0\nf 1 2 3 4 5 6\n";
+  absl::StatusOr<Scene> scene = LoadObjText(hexagon, "newmtl w\nKd .5 .5 .5\nKe 1 1 1\n", "hex");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const PatchMesh mesh = *SubdivideScene(*scene, MeshOptions{0, 0.3});
+  EXPECT_EQ(mesh.size(), 6u * 4 * 4);  // 6 fan triangles, spokes of 1 -> n = 4
+  ExpectConforming(mesh);
+  double area = 0;
+  for (const Patch& p : mesh.patches) area += p.area;
+  EXPECT_NEAR(area, FaceArea(*scene, 0), 1e-12);
+}
+
+TEST(Subdivide, MaxEdgeBoundsEveryEdge) {
+  const PatchMesh mesh = *SubdivideScene(Cornell(), MeshOptions{0, 50});
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    for (int k = 0; k < mesh.patches[p].VertexCount(); ++k) {
+      EXPECT_LE(Length(mesh.Vertex(p, (k + 1) % mesh.patches[p].VertexCount()) - mesh.Vertex(p, k)),
+                50 * 1.5);  // quads: each side <= 50 up to the skew of the face
+    }
+  }
+  const MeshStats stats = ComputeMeshStats(mesh);
+  EXPECT_EQ(stats.patches, mesh.size());
+  EXPECT_GT(stats.min_area, 0);
+  EXPECT_GE(stats.max_area, stats.min_area);
+  EXPECT_GE(stats.max_aspect, 0.99);
+}
+
+TEST(Subdivide, NormalsFaceIntoTheCornellBox) {
+  const Scene scene = Cornell();
+  const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{200, 0});
+  for (const Patch& p : mesh.patches) {
+    const std::string& object = scene.objects[scene.faces[p.face].object];
+    const Vec3 inward = object == "floor"                          ? Vec3{0, 1, 0}
+                        : object == "ceiling" || object == "light" ? Vec3{0, -1, 0}
+                        : object == "red_wall"                     ? Vec3{-1, 0, 0}
+                        : object == "green_wall"                   ? Vec3{1, 0, 0}
+                        : object == "back_wall"                    ? Vec3{0, 0, -1}
+                                                                   : p.normal;
+    EXPECT_GT(Dot(p.normal, inward), 0.99) << object;
+  }
+}
+
+}  // namespace
+}  // namespace radflux
