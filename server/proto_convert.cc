@@ -35,6 +35,23 @@ absl::StatusOr<JobOptions> FromProto(const v1::SolveOptions& p) {
   return o;
 }
 
+v1::SolveOptions ToProto(const JobOptions& o) {
+  v1::SolveOptions p;
+  p.set_target_patches(o.mesh.target_patches);
+  p.set_max_edge(o.mesh.max_edge);
+  p.set_form_factor_method(std::string(MethodName(o.form_factors.method)));
+  p.set_rays(o.form_factors.rays);
+  p.set_hemicube_res(o.form_factors.hemicube_res);
+  p.set_samples(o.form_factors.samples);
+  p.set_cutoff(o.form_factors.cutoff);
+  p.set_seed(o.form_factors.seed);
+  p.set_block_size(o.form_factors.block_size);
+  p.set_solver(std::string(SolverName(o.solver.method)));
+  p.set_tolerance(o.solver.tolerance);
+  p.set_max_iterations(o.solver.max_iterations);
+  return p;
+}
+
 grpc::Status ToGrpcStatus(const absl::Status& status) {
   if (status.ok()) return grpc::Status::OK;
   return grpc::Status(static_cast<grpc::StatusCode>(status.code()), std::string(status.message()));

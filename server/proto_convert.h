@@ -17,6 +17,9 @@ namespace radflux {
 // method or solver name is INVALID_ARGUMENT. Values are range-checked by ValidateJobOptions.
 absl::StatusOr<JobOptions> FromProto(const v1::SolveOptions& proto);
 
+// All solve options as a message (every field set), for clients submitting JobOptions.
+v1::SolveOptions ToProto(const JobOptions& options);
+
 grpc::Status ToGrpcStatus(const absl::Status& status);
 absl::Status FromGrpcStatus(const grpc::Status& status);
 

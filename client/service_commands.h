@@ -1,0 +1,13 @@
+// The client verbs that talk to radfluxd: submit, watch, result, cancel, list.
+// Each accepts --server HOST:PORT (default localhost:50051), --token and --tls-ca, before
+// or after the verb. Failures print one line ("radflux: ...") and set exit_code to 1.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace radflux::cli {
+
+// Adds the five service verbs (and the connection flags) to `app`.
+void AddServiceCommands(CLI::App& app, int& exit_code);
+
+}  // namespace radflux::cli

@@ -1,0 +1,29 @@
+#!/bin/bash
+# CLI smoke test of the service verbs: radfluxd on a loopback port it picks itself,
+# submit --watch, result, list, --server after and before the verb, server-down message.
+set -euo pipefail
+RADFLUXD=$1 CLI=$2 SCENE=$3
+DIR=$(mktemp -d /tmp/radflux_cli_XXXXXX)
+trap 'kill $PID 2>/dev/null || true; wait $PID 2>/dev/null || true; rm -rf "$DIR"' EXIT
+mkfifo "$DIR/out"
+"$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data" --threads 2 >"$DIR/out" 2>"$DIR/server.log" &
+PID=$!
+read -r LINE <"$DIR/out"
+ADDR=${LINE#radfluxd listening on }
+echo "server at $ADDR"
+
+"$CLI" submit "$SCENE" --patches 200 --rays 64 --watch --server "$ADDR" >"$DIR/submit.out"
+JOB=$(tail -n 1 "$DIR/submit.out")
+[[ "$JOB" =~ ^job-[0-9a-f]{16}$ ]] || { echo "bad job id line: $JOB"; exit 1; }
+"$CLI" --server "$ADDR" result "$JOB" --patch-values "$DIR/b.csv" --report "$DIR/report.json"
+[ "$(head -n 1 "$DIR/b.csv")" = "patch,face,r,g,b" ]
+[ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
+grep -q '"iterations"' "$DIR/report.json"
+"$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"
+
+kill -TERM $PID
+wait $PID
+if "$CLI" list --server "$ADDR" 2>"$DIR/err"; then echo "list succeeded without a server"; exit 1; fi
+grep -q "cannot reach radfluxd at $ADDR" "$DIR/err"
+[ "$(wc -l <"$DIR/err")" -eq 1 ]
+echo "cli round trip ok"
