@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
+
 #include "client/solve_command.h"
 #include "client/viewfactors_command.h"
 
@@ -16,7 +18,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
+    return 2;
   }
   return exit_code;
 }

@@ -74,6 +74,16 @@ uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint3
   return it->second;
 }
 
+// tinyobjloader's warnings (e.g. a missing .mtl file) on one line, as " (a; b)".
+std::string LoaderNotes(const std::string& warnings) {
+  std::string notes;
+  std::istringstream lines(warnings);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty()) notes += (notes.empty() ? "" : "; ") + line;
+  }
+  return notes.empty() ? "" : " (" + notes + ")";
+}
+
 absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std::string& obj_text,
                                     const std::string& name) {
   if (!reader.Valid()) {
@@ -130,10 +140,8 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
         const std::string why = origin.usemtl.empty()
                                     ? "face has no material (no 'usemtl' before it)"
                                     : absl::StrCat("unknown material '", origin.usemtl, "'");
-        return absl::InvalidArgumentError(absl::StrCat(name, ":", origin.line, ": ", why,
-                                                       reader.Warning().empty() ? "" : " (",
-                                                       reader.Warning(),
-                                                       reader.Warning().empty() ? "" : ")"));
+        return absl::InvalidArgumentError(
+            absl::StrCat(name, ":", origin.line, ": ", why, LoaderNotes(reader.Warning())));
       }
       face.material = static_cast<uint32_t>(material);
       scene.faces.push_back(std::move(face));

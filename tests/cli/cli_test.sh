@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# CLI contract smoke tests: `radflux solve` and `radflux viewfactors` on the Cornell box,
+# their output files, and one clear line with a non-zero exit for bad arguments/scenes.
+set -uo pipefail
+radflux=$1
+source_dir=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+cornell="$source_dir/scenes/cornell_box.obj"
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/c.png" --out "$tmp/c.ply" \
+  --report "$tmp/c.json" --patch-values "$tmp/c.csv" --size 64x64 || fail "solve exited $?"
+[ "$(head -c 8 "$tmp/c.png" | od -An -c | tr -d ' ')" = "211PNG\r\n032\n" ] || fail "PNG signature"
+head -1 "$tmp/c.ply" | grep -qx ply || fail "PLY header"
+[ "$(head -1 "$tmp/c.csv")" = "patch,face,object,area,cx,cy,cz,r,g,b" ] || fail "CSV header"
+rows=$(($(wc -l <"$tmp/c.csv") - 1))
+[ "$rows" -ge 270 ] && [ "$rows" -le 330 ] || fail "CSV has $rows patch rows for --patches 300"
+grep -q '"relative_imbalance"' "$tmp/c.json" || fail "report lacks the energy balance"
+grep -q '"rays_per_second"' "$tmp/c.json" || fail "report lacks rays_per_second"
+
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/c.pfm" --size 32x16 || fail "pfm solve"
+[ "$(head -c 3 "$tmp/c.pfm" | od -An -c | tr -d ' ')" = 'PF\n' ] || fail "PFM header"
+
+"$radflux" viewfactors "$cornell" --by object --patches 300 -o "$tmp/vf.csv" || fail "viewfactors"
+head -1 "$tmp/vf.csv" | grep -q '^from,floor,ceiling,back_wall,red_wall' || fail "view-factor header"
+[ "$(wc -l <"$tmp/vf.csv")" -eq 9 ] || fail "view-factor rows (8 objects + header)"
+
+# Bad input: non-zero exit and exactly one line naming the problem.
+expect_error() {
+  local what=$1 pattern=$2
+  shift 2
+  out=$("$radflux" "$@" 2>&1 >/dev/null)
+  code=$?
+  [ "$code" -ne 0 ] || fail "$what: exit code 0"
+  [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "$what: not one line: $out"
+  printf '%s' "$out" | grep -q -- "$pattern" || fail "$what: '$out' lacks '$pattern'"
+}
+expect_error "missing scene" "cannot open" solve "$tmp/none.obj"
+expect_error "bad rays" "rays" solve "$cornell" --rays -3
+expect_error "odd hemicube" "hemicube-res" solve "$cornell" --form-factors hemicube --hemicube-res 7
+expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
+expect_error "unknown solver" "solver" solve "$cornell" --solver magic
+printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
+expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$tmp/bad.obj"
+"$radflux" solve --help | grep -q -- "--hemicube-res" || fail "--help lists options"
+
+echo "$((18 - failures)) passed, $failures failed"
+[ "$failures" -eq 0 ]
