@@ -54,7 +54,7 @@ void UnpackLanes(const BandSystem& bands, const std::vector<Rgb>& lanes, std::ve
 
 Rgb AreaDot(const BandSystem& bands, const std::vector<Rgb>& x, const std::vector<Rgb>& y) {
   const std::vector<double>& area = *bands.area;
-  return ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  return ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * x[i][k] * y[i][k];
@@ -87,7 +87,7 @@ void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<R
 Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
   if (r != nullptr) r->resize(bands.n);
   const std::vector<double>& area = *bands.area;
-  const Rgb norm2 = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  const Rgb norm2 = ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i) {
       const Rgb fb = GatherRow(bands, static_cast<uint32_t>(i), b, 0, bands.n);

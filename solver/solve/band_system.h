@@ -16,8 +16,12 @@
 
 namespace radflux {
 
-// Rows per ParallelFor block in the solvers; fixed so that results do not depend on threads.
+// Rows per ParallelFor block for loops that gather rows (SpMV); fixed so that results
+// do not depend on threads.
 inline constexpr int64_t kSolveBlock = 256;
+// Entries per block for O(n) vector loops and their reductions: large, so that small
+// systems run them without the cost of a parallel region.
+inline constexpr int64_t kVectorBlock = 8192;
 
 struct BandSystem {
   const CsrMatrix* f = nullptr;
@@ -42,13 +46,13 @@ std::vector<Rgb> PackLanes(const BandSystem& bands, const std::vector<Rgb>& rgb)
 void UnpackLanes(const BandSystem& bands, const std::vector<Rgb>& lanes, std::vector<Rgb>& rgb);
 
 // Deterministic parallel sum of per-block Rgb partials: partial(begin, end) per fixed
-// block of kSolveBlock indices, added in block order.
+// block of `block` indices, added in block order.
 template <typename Partial>
-Rgb ReduceBlocks(int64_t count, int threads, Partial&& partial) {
-  const int64_t blocks = (count + kSolveBlock - 1) / kSolveBlock;
+Rgb ReduceBlocks(int64_t count, int64_t block, int threads, Partial&& partial) {
+  const int64_t blocks = (count + block - 1) / block;
   std::vector<Rgb> sums(static_cast<size_t>(blocks), Rgb{});
-  ParallelFor(count, kSolveBlock, threads, [&](int64_t begin, int64_t end) {
-    sums[static_cast<size_t>(begin / kSolveBlock)] = partial(begin, end);
+  ParallelFor(count, block, threads, [&](int64_t begin, int64_t end) {
+    sums[static_cast<size_t>(begin / block)] = partial(begin, end);
   });
   Rgb total{};
   for (const Rgb& s : sums)

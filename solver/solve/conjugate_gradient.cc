@@ -43,13 +43,13 @@ void MultiplyM(const BandSystem& bands, const SymmetricForm& s, CgState& st) {
 // Per lane: r.r (first) and ||r rho / A||_A^2, the CG residual in the original scale.
 std::pair<Rgb, Rgb> ResidualNorms(const BandSystem& bands, const std::vector<Rgb>& r) {
   const std::vector<double>& area = *bands.area;
-  Rgb plain = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  Rgb plain = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k) s[k] += r[i][k] * r[i][k];
     return s;
   });
-  Rgb unscaled = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  Rgb unscaled = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k) {
@@ -76,7 +76,7 @@ void RestartLane(const BandSystem& bands, int k, CgState& st) {
 
 // x += alpha p, r -= alpha q on active lanes; alpha = rr / p.q (restart on breakdown).
 void Step(const BandSystem& bands, CgState& st, std::vector<Rgb>& x) {
-  const Rgb pq = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  const Rgb pq = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k) s[k] += st.p[i][k] * st.q[i][k];
@@ -84,7 +84,7 @@ void Step(const BandSystem& bands, CgState& st, std::vector<Rgb>& x) {
   });
   Rgb alpha{};
   for (int k = 0; k < bands.lanes; ++k) alpha[k] = st.active[k] && pq[k] > 0 ? st.rr[k] / pq[k] : 0;
-  ParallelFor(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+  ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k) {
         x[i][k] += alpha[k] * st.p[i][k];
@@ -109,7 +109,7 @@ void NextDirections(const BandSystem& bands, const Rgb& relative, double toleran
     beta[k] = st.rr[k] > 0 ? rr[k] / st.rr[k] : 0;
     st.rr[k] = rr[k];
   }
-  ParallelFor(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+  ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i)
       for (int k = 0; k < bands.lanes; ++k)
         if (st.active[k]) st.p[i][k] = st.r[i][k] + beta[k] * st.p[i][k];

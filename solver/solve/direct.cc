@@ -2,6 +2,7 @@
 // Lanes with identical reflectance share one factorization. The elimination of each
 // pivot column is parallel over rows; every row is updated by exactly one thread, so
 // the result does not depend on the thread count.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,7 @@ namespace radflux {
 namespace {
 
 constexpr uint32_t kCancelCheckEvery = 32;  // pivots between cancellation checks
+constexpr int64_t kMinBlockFlops = 1 << 16;   // per ParallelFor block of row updates
 
 struct DenseLu {
   uint32_t n = 0;
@@ -58,7 +60,8 @@ absl::StatusOr<bool> Factor(DenseLu& lu, const SolverOptions& options, int threa
       for (uint32_t j = 0; j < n; ++j) std::swap(lu.a[size_t{k} * n + j], lu.a[size_t{p} * n + j]);
     }
     const double* row_k = &lu.a[size_t{k} * n];
-    ParallelFor(n - k - 1, 64, threads, [&](int64_t begin, int64_t end) {
+    const int64_t rows_per_block = std::max<int64_t>(16, kMinBlockFlops / (n - k));
+    ParallelFor(n - k - 1, rows_per_block, threads, [&](int64_t begin, int64_t end) {
       for (int64_t r = begin; r < end; ++r) {
         double* row = &lu.a[(size_t{k} + 1 + static_cast<size_t>(r)) * n];
         const double l = row[k] / pivot;

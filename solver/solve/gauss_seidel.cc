@@ -14,7 +14,7 @@ namespace {
 Rgb UpperSumsAndResidual(const BandSystem& bands, const std::vector<Rgb>& b,
                          const std::vector<Rgb>& lower, std::vector<Rgb>& upper) {
   const std::vector<double>& area = *bands.area;
-  const Rgb norm2 = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  const Rgb norm2 = ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i) {
       const uint32_t row = static_cast<uint32_t>(i);

@@ -11,7 +11,7 @@ absl::Status SolveJacobi(const BandSystem& bands, const SolverOptions& options,
   std::vector<Rgb> r;
   while (!monitor.ShouldStop()) {
     const double residual = MaxOverLanes(bands, LaneResiduals(bands, b, &r));
-    ParallelFor(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+    ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i)
         for (int k = 0; k < bands.lanes; ++k) b[i][k] += r[i][k];
     });

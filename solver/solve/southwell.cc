@@ -14,8 +14,6 @@
 namespace radflux {
 namespace {
 
-constexpr int64_t kReceiverBlock = 1024;
-
 // Shooters per batch: grows with n so a batch outweighs the O(n) selection; fixed by n
 // alone (never by threads) so that results are bit-identical on any thread count.
 size_t BatchSize(uint32_t n) { return std::clamp<size_t>(n / 128, 1, 256); }
@@ -52,7 +50,7 @@ void ShootRowless(const BandSystem& bands, ShootState& st, std::vector<Rgb>& b) 
 // residual bound max(rho) ||dB||_A / ||E||_A (a bound on ||rho F dB||_A for reciprocal rows).
 std::pair<double, double> Measure(const BandSystem& bands, ShootState& st) {
   const std::vector<double>& area = *bands.area;
-  const Rgb unshot = ReduceBlocks(bands.n, bands.threads, [&](int64_t begin, int64_t end) {
+  const Rgb unshot = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     Rgb s{};
     for (int64_t i = begin; i < end; ++i) {
       double key = 0;
@@ -103,7 +101,7 @@ void ShootBatch(const BandSystem& bands, const std::vector<uint32_t>& batch, Sho
     shot[s] = st.db[batch[s]];
     st.db[batch[s]] = Rgb{};
   }
-  ParallelFor(bands.n, kReceiverBlock, bands.threads, [&](int64_t begin, int64_t end) {
+  ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     for (size_t s = 0; s < batch.size(); ++s) {
       const uint32_t i = batch[s];
       const auto cols = bands.f->RowCols(i);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -72,16 +73,34 @@ TEST(SolverFurnace, ComputedCubeRowsGiveFurnaceWithinStatedTolerance) {
   double worst_row = 0;
   for (uint32_t i = 0; i < rows->matrix.rows; ++i)
     worst_row = std::max(worst_row, std::abs(rows->matrix.RowSum(i) - 1));
-  EXPECT_LT(worst_row, 0.02);  // analytic rows of a closed cube sum to 1 within 2%
+  EXPECT_LT(worst_row, 1e-6);  // analytic rows of a closed cube sum to 1
   const RadiositySystem system{&rows->matrix, &patches};
   const double exact = std::numbers::pi / (1 - rho);
-  // Row-sum error d changes B by about rho d / (1 - rho) relative: 2% at rho = 0.5.
+  // Analytic rows of a closed cube sum to 1 within ~1e-8, so the gathering methods, CG
+  // and direct hit the furnace to 1e-6. The rows are NOT pairwise reciprocal (adjacent
+  // patches at the cube's edges: point sampling of a near-singular kernel, ~30% on the
+  // worst pair), and southwell shoots through reciprocity (F_ji = A_i F_ij / A_j), so it
+  // converges to a slightly different system: within 2.5% here, and its final true
+  // residual of the given rows says so.
   for (SolverMethod method : kAllMethods) {
     const auto result = Solve(system, Options(method, 1e-9, 100000));
     ASSERT_TRUE(result.ok()) << result.status();
     EXPECT_TRUE(result->converged) << SolverName(method);
     EXPECT_EQ(result->bands_solved, 1);
-    for (const Rgb& b : result->radiosity) EXPECT_NEAR(b[0], exact, 0.02 * exact);
+    double worst = 0;
+    for (const Rgb& b : result->radiosity) worst = std::max(worst, std::abs(b[0] / exact - 1));
+    const bool shooting = method == SolverMethod::kSouthwell;
+    EXPECT_LT(worst, shooting ? 0.025 : 1e-6) << SolverName(method);
+    if (shooting) {
+      EXPECT_GT(result->residual, 1e-4);
+    }
+    if (method == SolverMethod::kConjugateGradient) {
+      EXPECT_GT(result->reciprocity_error, 0.01);
+    }
+    std::printf("cube %zu patches, worst row-sum error %.2e: %s %d iterations, max |B/exact - 1| "
+                "%.2e, residual %.2e, reciprocity error %.2e\n", patches.size(), worst_row,
+                std::string(SolverName(method)).c_str(), result->iterations, worst,
+                result->residual, result->reciprocity_error);
   }
 }
 
