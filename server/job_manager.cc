@@ -208,8 +208,8 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
     if (queued == queue_.end()) return *job;  // finishing right now
     queue_.erase(queued);
   }
-  Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
   store_.RemoveWorkFiles(job_id);
+  Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
   return *job;
 }
 
@@ -349,23 +349,24 @@ void JobManager::RunOne(const std::string& job_id) {
     std::lock_guard lock(mu_);
     cancelled = running->cancel_requested;
   }
+  // Work files go before the terminal transition: whoever sees the end sees them gone.
   if (result.ok()) {
     absl::Status put = store_.PutResult(job_id, *result);
+    if (put.ok()) store_.RemoveWorkFiles(job_id);
     if (put.ok()) {
       Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "");
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
     }
-    store_.RemoveWorkFiles(job_id);
   } else if (cancelled) {
-    Transition(job, v1::JOB_STATE_CANCELLED, job.phase(), "cancelled by request");
     store_.RemoveWorkFiles(job_id);
+    Transition(job, v1::JOB_STATE_CANCELLED, job.phase(), "cancelled by request");
   } else if (result.status().code() == absl::StatusCode::kCancelled) {
     spdlog::info("job {}: suspended for shutdown in {}, resumes on restart", job_id,
                  v1::Phase_Name(job.phase()));
   } else {
-    Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(result.status().message()));
     store_.RemoveWorkFiles(job_id);
+    Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(result.status().message()));
   }
 }
 
