@@ -16,7 +16,8 @@ BandSystem MakeBandSystem(const RadiositySystem& system, int threads) {
   const int candidates = p.grey ? 1 : kBands;
   for (int band = 0; band < candidates; ++band) {
     double norm2 = 0;
-    for (uint32_t i = 0; i < bands.n; ++i) norm2 += p.area[i] * p.emission[i][band] * p.emission[i][band];
+    for (uint32_t i = 0; i < bands.n; ++i)
+      norm2 += p.area[i] * p.emission[i][band] * p.emission[i][band];
     if (norm2 <= 0) continue;  // nothing emits in this band: B = 0 there
     bands.emission_norm[bands.lanes] = std::sqrt(norm2);
     bands.band[bands.lanes++] = band;
@@ -66,7 +67,8 @@ Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, ui
               uint32_t col_end) {
   const auto cols = bands.f->RowCols(i);
   const auto values = bands.f->RowValues(i);
-  size_t e = static_cast<size_t>(std::lower_bound(cols.begin(), cols.end(), col_begin) - cols.begin());
+  size_t e =
+      static_cast<size_t>(std::lower_bound(cols.begin(), cols.end(), col_begin) - cols.begin());
   Rgb s{};
   for (; e < cols.size() && cols[e] < col_end; ++e) {
     const double fij = values[e];
@@ -87,19 +89,20 @@ void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<R
 Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
   if (r != nullptr) r->resize(bands.n);
   const std::vector<double>& area = *bands.area;
-  const Rgb norm2 = ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    Rgb s{};
-    for (int64_t i = begin; i < end; ++i) {
-      const Rgb fb = GatherRow(bands, static_cast<uint32_t>(i), b, 0, bands.n);
-      Rgb ri{};
-      for (int k = 0; k < bands.lanes; ++k) {
-        ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
-        s[k] += area[i] * ri[k] * ri[k];
-      }
-      if (r != nullptr) (*r)[i] = ri;
-    }
-    return s;
-  });
+  const Rgb norm2 =
+      ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+        Rgb s{};
+        for (int64_t i = begin; i < end; ++i) {
+          const Rgb fb = GatherRow(bands, static_cast<uint32_t>(i), b, 0, bands.n);
+          Rgb ri{};
+          for (int k = 0; k < bands.lanes; ++k) {
+            ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
+            s[k] += area[i] * ri[k] * ri[k];
+          }
+          if (r != nullptr) (*r)[i] = ri;
+        }
+        return s;
+      });
   Rgb relative{};
   for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
   return relative;

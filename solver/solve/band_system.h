@@ -26,15 +26,15 @@ inline constexpr int64_t kVectorBlock = 8192;
 struct BandSystem {
   const CsrMatrix* f = nullptr;
   uint32_t n = 0;
-  int lanes = 0;                     // bands actually solved (0: nothing emits)
-  bool grey = false;                 // lane 0 stands for all three bands
-  std::array<int, kBands> band{};    // band solved in lane k
+  int lanes = 0;                              // bands actually solved (0: nothing emits)
+  bool grey = false;                          // lane 0 stands for all three bands
+  std::array<int, kBands> band{};             // band solved in lane k
   const std::vector<double>* area = nullptr;  // per patch, scene units^2
-  std::vector<Rgb> rho;              // reflectance per patch per lane
-  std::vector<Rgb> emission;         // E per patch per lane, W/m^2
-  Rgb emission_norm{};               // ||E||_A per lane (> 0 for every lane)
+  std::vector<Rgb> rho;                       // reflectance per patch per lane
+  std::vector<Rgb> emission;                  // E per patch per lane, W/m^2
+  Rgb emission_norm{};                        // ||E||_A per lane (> 0 for every lane)
   double total_area = 0;
-  int threads = 0;                   // for ParallelFor (0 = all cores)
+  int threads = 0;  // for ParallelFor (0 = all cores)
 };
 
 // The lanes of `system` (grey: one; else the bands with any emission). Inputs must be valid.

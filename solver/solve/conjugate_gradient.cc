@@ -19,8 +19,8 @@ namespace {
 constexpr double kRestartRatio = 0.1;
 
 struct CgState {
-  std::vector<Rgb> r, p, q, rt;   // CG residual, direction, M p, true residual
-  Rgb rr{};                       // r.r per lane
+  std::vector<Rgb> r, p, q, rt;  // CG residual, direction, M p, true residual
+  Rgb rr{};                      // r.r per lane
   std::array<bool, kBands> active{};
 };
 
@@ -49,15 +49,16 @@ std::pair<Rgb, Rgb> ResidualNorms(const BandSystem& bands, const std::vector<Rgb
       for (int k = 0; k < bands.lanes; ++k) s[k] += r[i][k] * r[i][k];
     return s;
   });
-  Rgb unscaled = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    Rgb s{};
-    for (int64_t i = begin; i < end; ++i)
-      for (int k = 0; k < bands.lanes; ++k) {
-        const double v = r[i][k] * bands.rho[i][k];
-        s[k] += v * v / area[i];
-      }
-    return s;
-  });
+  Rgb unscaled =
+      ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
+        Rgb s{};
+        for (int64_t i = begin; i < end; ++i)
+          for (int k = 0; k < bands.lanes; ++k) {
+            const double v = r[i][k] * bands.rho[i][k];
+            s[k] += v * v / area[i];
+          }
+        return s;
+      });
   return {plain, unscaled};
 }
 
@@ -76,12 +77,13 @@ void RestartLane(const BandSystem& bands, int k, CgState& st) {
 
 // x += alpha p, r -= alpha q on active lanes; alpha = rr / p.q (restart on breakdown).
 void Step(const BandSystem& bands, CgState& st, std::vector<Rgb>& x) {
-  const Rgb pq = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    Rgb s{};
-    for (int64_t i = begin; i < end; ++i)
-      for (int k = 0; k < bands.lanes; ++k) s[k] += st.p[i][k] * st.q[i][k];
-    return s;
-  });
+  const Rgb pq =
+      ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
+        Rgb s{};
+        for (int64_t i = begin; i < end; ++i)
+          for (int k = 0; k < bands.lanes; ++k) s[k] += st.p[i][k] * st.q[i][k];
+        return s;
+      });
   Rgb alpha{};
   for (int k = 0; k < bands.lanes; ++k) alpha[k] = st.active[k] && pq[k] > 0 ? st.rr[k] / pq[k] : 0;
   ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {

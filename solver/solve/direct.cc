@@ -14,8 +14,8 @@
 namespace radflux {
 namespace {
 
-constexpr uint32_t kCancelCheckEvery = 32;  // pivots between cancellation checks
-constexpr int64_t kMinBlockFlops = 1 << 16;   // per ParallelFor block of row updates
+constexpr uint32_t kCancelCheckEvery = 32;   // pivots between cancellation checks
+constexpr int64_t kMinBlockFlops = 1 << 16;  // per ParallelFor block of row updates
 
 struct DenseLu {
   uint32_t n = 0;
@@ -52,8 +52,8 @@ absl::StatusOr<bool> Factor(DenseLu& lu, const SolverOptions& options, int threa
     }
     const double pivot = lu.a[size_t{p} * n + k];
     if (pivot == 0) {
-      return absl::FailedPreconditionError(absl::StrCat(
-          "direct: singular system at column ", k, " (a closed scene with reflectance 1?)"));
+      return absl::FailedPreconditionError(absl::StrCat("direct: singular system at column ", k,
+                                                        " (a closed scene with reflectance 1?)"));
     }
     lu.pivot[k] = p;
     if (p != k) {
@@ -104,9 +104,9 @@ bool SameReflectance(const BandSystem& bands, int k, int l) {
 absl::Status SolveDirect(const BandSystem& bands, const SolverOptions& options,
                          const SolveCallback& callback, std::vector<Rgb>& b, SolveResult& result) {
   if (bands.n > kMaxDirectPatches) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "direct solver refuses ", bands.n, " patches (limit ", kMaxDirectPatches,
-        ": dense LU needs n^2 doubles and n^3/3 flops); use cg"));
+    return absl::ResourceExhaustedError(
+        absl::StrCat("direct solver refuses ", bands.n, " patches (limit ", kMaxDirectPatches,
+                     ": dense LU needs n^2 doubles and n^3/3 flops); use cg"));
   }
   IterationMonitor monitor(bands, options, callback, result);
   if (monitor.ShouldStop()) return absl::OkStatus();

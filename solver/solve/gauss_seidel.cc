@@ -14,19 +14,20 @@ namespace {
 Rgb UpperSumsAndResidual(const BandSystem& bands, const std::vector<Rgb>& b,
                          const std::vector<Rgb>& lower, std::vector<Rgb>& upper) {
   const std::vector<double>& area = *bands.area;
-  const Rgb norm2 = ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    Rgb s{};
-    for (int64_t i = begin; i < end; ++i) {
-      const uint32_t row = static_cast<uint32_t>(i);
-      upper[i] = GatherRow(bands, row, b, row, bands.n);
-      for (int k = 0; k < bands.lanes; ++k) {
-        const double r =
-            bands.emission[i][k] + bands.rho[i][k] * (lower[i][k] + upper[i][k]) - b[i][k];
-        s[k] += area[i] * r * r;
-      }
-    }
-    return s;
-  });
+  const Rgb norm2 =
+      ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+        Rgb s{};
+        for (int64_t i = begin; i < end; ++i) {
+          const uint32_t row = static_cast<uint32_t>(i);
+          upper[i] = GatherRow(bands, row, b, row, bands.n);
+          for (int k = 0; k < bands.lanes; ++k) {
+            const double r =
+                bands.emission[i][k] + bands.rho[i][k] * (lower[i][k] + upper[i][k]) - b[i][k];
+            s[k] += area[i] * r * r;
+          }
+        }
+        return s;
+      });
   Rgb relative{};
   for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
   return relative;

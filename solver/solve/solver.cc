@@ -13,17 +13,18 @@ namespace radflux {
 namespace {
 
 constexpr SolverMethod kAllMethods[] = {SolverMethod::kJacobi, SolverMethod::kGaussSeidel,
-                                        SolverMethod::kSouthwell,
-                                        SolverMethod::kConjugateGradient, SolverMethod::kDirect};
+                                        SolverMethod::kSouthwell, SolverMethod::kConjugateGradient,
+                                        SolverMethod::kDirect};
 
 absl::Status CheckMatrix(const CsrMatrix& f, size_t n) {
   if (f.rows != n || f.row_begin.size() != n + 1 || f.col.size() != f.value.size() ||
       f.row_begin.back() != f.col.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("form-factor matrix has ", f.rows,
-                                                   " rows for ", n, " patches"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("form-factor matrix has ", f.rows, " rows for ", n, " patches"));
   }
   for (uint32_t c : f.col) {
-    if (c >= n) return absl::InvalidArgumentError(absl::StrCat("form-factor column ", c, " >= ", n));
+    if (c >= n)
+      return absl::InvalidArgumentError(absl::StrCat("form-factor column ", c, " >= ", n));
   }
   return absl::OkStatus();
 }

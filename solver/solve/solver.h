@@ -26,7 +26,8 @@ enum class SolverMethod { kJacobi, kGaussSeidel, kSouthwell, kConjugateGradient,
 // (~21 GFlop at 4000); beyond that an iterative method is both smaller and faster.
 inline constexpr size_t kMaxDirectPatches = 4000;
 
-std::string_view SolverName(SolverMethod method);  // "jacobi", "gauss_seidel", "southwell", "cg", "direct"
+std::string_view SolverName(
+    SolverMethod method);  // "jacobi", "gauss_seidel", "southwell", "cg", "direct"
 std::optional<SolverMethod> ParseSolver(std::string_view name);
 
 // The linear system of one job: rows F (n x n) and per-patch area, rho and E.
@@ -37,7 +38,7 @@ struct RadiositySystem {
 
 struct SolverOptions {
   SolverMethod method = SolverMethod::kConjugateGradient;
-  double tolerance = 1e-4;   // stop when the measure (residual or unshot fraction) <= this
+  double tolerance = 1e-4;    // stop when the measure (residual or unshot fraction) <= this
   int max_iterations = 1000;  // sweeps (jacobi, gauss_seidel, cg) or shooting batches (southwell)
   int threads = 0;            // 0 = all cores
   int snapshot_every = 0;     // include B in the callback every N iterations (0 = never)
@@ -58,18 +59,18 @@ struct SolveProgress {
 using SolveCallback = std::function<void(const SolveProgress&)>;
 
 struct SolveResult {
-  std::vector<Rgb> radiosity;          // B per patch per band, W/m^2
+  std::vector<Rgb> radiosity;  // B per patch per band, W/m^2
   int iterations = 0;
-  double residual = 0;                 // final relative residual (max over bands)
+  double residual = 0;                   // final relative residual (max over bands)
   std::vector<double> residual_history;  // per iteration: the stopping measure (the residual
                                          // of B at the sweep's start; southwell: unshot fraction)
   bool converged = false;
   bool cancelled = false;
-  int bands_solved = 3;                // 1 when the scene is grey
-  double reciprocity_error = 0;        // cg: max |A_i F_ij - A_j F_ji| / max(A_i F_ij, A_j F_ji)
-                                       // over pairs where both entries are stored
-  int64_t one_sided_pairs = 0;         // cg: pairs stored one way only (both rows non-empty)
-  double unshot_fraction = 0;          // southwell: final unshot power / emitted power
+  int bands_solved = 3;          // 1 when the scene is grey
+  double reciprocity_error = 0;  // cg: max |A_i F_ij - A_j F_ji| / max(A_i F_ij, A_j F_ji)
+                                 // over pairs where both entries are stored
+  int64_t one_sided_pairs = 0;   // cg: pairs stored one way only (both rows non-empty)
+  double unshot_fraction = 0;    // southwell: final unshot power / emitted power
 };
 
 absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOptions& options,

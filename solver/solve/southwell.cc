@@ -50,18 +50,19 @@ void ShootRowless(const BandSystem& bands, ShootState& st, std::vector<Rgb>& b) 
 // residual bound max(rho) ||dB||_A / ||E||_A (a bound on ||rho F dB||_A for reciprocal rows).
 std::pair<double, double> Measure(const BandSystem& bands, ShootState& st) {
   const std::vector<double>& area = *bands.area;
-  const Rgb unshot = ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    Rgb s{};
-    for (int64_t i = begin; i < end; ++i) {
-      double key = 0;
-      for (int k = 0; k < bands.lanes; ++k) {
-        s[k] += area[i] * std::abs(st.db[i][k]);
-        key += area[i] * std::abs(st.db[i][k]) / st.emitted[k];
-      }
-      st.power[i] = key;
-    }
-    return s;
-  });
+  const Rgb unshot =
+      ReduceBlocks(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
+        Rgb s{};
+        for (int64_t i = begin; i < end; ++i) {
+          double key = 0;
+          for (int k = 0; k < bands.lanes; ++k) {
+            s[k] += area[i] * std::abs(st.db[i][k]);
+            key += area[i] * std::abs(st.db[i][k]) / st.emitted[k];
+          }
+          st.power[i] = key;
+        }
+        return s;
+      });
   const Rgb sq = AreaDot(bands, st.db, st.db);
   double fraction = 0, residual = 0;
   for (int k = 0; k < bands.lanes; ++k) {

@@ -7,9 +7,8 @@ namespace radflux {
 namespace {
 
 // F^T with entries A_j F_ji in row i, columns j increasing.
-void Transpose(const CsrMatrix& f, const std::vector<double>& area,
-               std::vector<uint64_t>& begin, std::vector<uint32_t>& col,
-               std::vector<double>& value) {
+void Transpose(const CsrMatrix& f, const std::vector<double>& area, std::vector<uint64_t>& begin,
+               std::vector<uint32_t>& col, std::vector<double>& value) {
   const uint32_t n = f.rows;
   begin.assign(n + 1, 0);
   for (uint32_t c : f.col) ++begin[c + 1];
@@ -54,8 +53,8 @@ SymmetricForm BuildSymmetricForm(const CsrMatrix& f, const std::vector<double>& 
       if (forward == 0 && RowEmpty(f, i)) sij = reverse;
       if (reverse == 0 && RowEmpty(f, j)) sij = forward;
       if (j != i && forward > 0 && reverse > 0) {
-        s.reciprocity_error = std::max(
-            s.reciprocity_error, std::abs(forward - reverse) / std::max(forward, reverse));
+        s.reciprocity_error =
+            std::max(s.reciprocity_error, std::abs(forward - reverse) / std::max(forward, reverse));
       } else if (j != i && ja == j && jb != j && !RowEmpty(f, j)) {
         ++s.one_sided_pairs;  // counted once, from the row that holds the entry
       }

@@ -151,7 +151,7 @@ TEST(SolverConvergence, BitIdenticalOnOneAndTwoThreads) {
   const TestSystem big = ColouredScene(10000, 8), small = ColouredScene(300, 8);
   for (SolverMethod method : testing::kAllMethods) {
     const TestSystem& t = method == SolverMethod::kDirect ? small : big;  // direct is O(n^3)
-    const int sweeps = method == SolverMethod::kSouthwell ? 200 : 3000;  // batches are small
+    const int sweeps = method == SolverMethod::kSouthwell ? 200 : 3000;   // batches are small
     const auto one = Solve(t.View(), Options(method, 1e-8, sweeps, 1));
     const auto two = Solve(t.View(), Options(method, 1e-8, sweeps, 2));
     ASSERT_TRUE(one.ok() && two.ok());

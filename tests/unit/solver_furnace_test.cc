@@ -97,10 +97,11 @@ TEST(SolverFurnace, ComputedCubeRowsGiveFurnaceWithinStatedTolerance) {
     if (method == SolverMethod::kConjugateGradient) {
       EXPECT_GT(result->reciprocity_error, 0.01);
     }
-    std::printf("cube %zu patches, worst row-sum error %.2e: %s %d iterations, max |B/exact - 1| "
-                "%.2e, residual %.2e, reciprocity error %.2e\n", patches.size(), worst_row,
-                std::string(SolverName(method)).c_str(), result->iterations, worst,
-                result->residual, result->reciprocity_error);
+    std::printf(
+        "cube %zu patches, worst row-sum error %.2e: %s %d iterations, max |B/exact - 1| "
+        "%.2e, residual %.2e, reciprocity error %.2e\n",
+        patches.size(), worst_row, std::string(SolverName(method)).c_str(), result->iterations,
+        worst, result->residual, result->reciprocity_error);
   }
 }
 
