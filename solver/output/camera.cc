@@ -35,21 +35,18 @@ absl::Status ValidateCamera(const Camera& camera) {
 }
 
 PinholeProjection::PinholeProjection(const Camera& camera)
-    : eye_(camera.position),
-      width_(camera.width),
-      height_(camera.height) {
+    : eye_(camera.position), width_(camera.width), height_(camera.height) {
   forward_ = Normalize(camera.look_at - camera.position);
   const Vec3 right = Normalize(Cross(forward_, camera.up));
   const Vec3 up = Cross(right, forward_);
-  const double half_height =
-      std::tan(camera.vertical_fov_degrees * std::numbers::pi / 360.0);
+  const double half_height = std::tan(camera.vertical_fov_degrees * std::numbers::pi / 360.0);
   const double half_width = half_height * width_ / height_;
   right_ = right * half_width;
   up_ = up * half_height;
 }
 
 Ray PinholeProjection::RayThrough(double x, double y) const {
-  const double sx = 2 * x / width_ - 1;  // -1 at the left edge, +1 at the right
+  const double sx = 2 * x / width_ - 1;   // -1 at the left edge, +1 at the right
   const double sy = 1 - 2 * y / height_;  // +1 at the top edge, -1 at the bottom
   Ray ray;
   ray.origin = eye_;

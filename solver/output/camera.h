@@ -4,8 +4,8 @@
 #pragma once
 
 #include "absl/status/status.h"
-#include "solver/raytrace/ray_caster.h"
 #include "solver/core/vec3.h"
+#include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
 

@@ -16,8 +16,7 @@ namespace radflux {
 namespace {
 
 // Appends `values` to buffer 0 as a new buffer view and returns the accessor index.
-int AddAccessor(tinygltf::Model& model, const std::vector<float>& values, int type,
-                int target) {
+int AddAccessor(tinygltf::Model& model, const std::vector<float>& values, int type, int target) {
   std::vector<unsigned char>& data = model.buffers[0].data;
   tinygltf::BufferView view;
   view.buffer = 0;
@@ -54,8 +53,8 @@ std::vector<uint32_t> TriangleIndices(const PatchMesh& mesh) {
 int AddIndices(tinygltf::Model& model, const std::vector<uint32_t>& indices) {
   std::vector<float> bits(indices.size());  // same 4 bytes, copied verbatim
   std::memcpy(bits.data(), indices.data(), indices.size() * sizeof(uint32_t));
-  const int accessor = AddAccessor(model, bits, TINYGLTF_TYPE_SCALAR,
-                                   TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  const int accessor =
+      AddAccessor(model, bits, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   model.accessors[accessor].componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   return accessor;
 }

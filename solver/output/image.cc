@@ -16,8 +16,8 @@ static_assert(std::endian::native == std::endian::little, "PFM writer assumes li
 absl::Status CheckImage(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != 3 * static_cast<size_t>(image.width) * image.height) {
-    return absl::InvalidArgumentError(absl::StrCat("image for '", path, "' is ", image.width,
-                                                   "x", image.height, " with ", image.rgb.size(),
+    return absl::InvalidArgumentError(absl::StrCat("image for '", path, "' is ", image.width, "x",
+                                                   image.height, " with ", image.rgb.size(),
                                                    " values"));
   }
   return absl::OkStatus();

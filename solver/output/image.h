@@ -19,9 +19,7 @@ struct Image {
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(3 * static_cast<size_t>(w) * h, 0.0f) {}
   float* Pixel(int x, int y) { return &rgb[3 * (static_cast<size_t>(y) * width + x)]; }
-  const float* Pixel(int x, int y) const {
-    return &rgb[3 * (static_cast<size_t>(y) * width + x)];
-  }
+  const float* Pixel(int x, int y) const { return &rgb[3 * (static_cast<size_t>(y) * width + x)]; }
 };
 
 // Portable float map: "PF\n<width> <height>\n-1.0\n" (little endian), then float RGB

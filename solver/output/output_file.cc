@@ -10,9 +10,9 @@ namespace radflux {
 namespace {
 
 absl::Status WriteError(absl::string_view kind, const std::string& path, int error) {
-  return absl::Status(absl::ErrnoToStatusCode(error),
-                      absl::StrCat("cannot write ", kind, " file '", path, "': ",
-                                   std::strerror(error)));
+  return absl::Status(
+      absl::ErrnoToStatusCode(error),
+      absl::StrCat("cannot write ", kind, " file '", path, "': ", std::strerror(error)));
 }
 
 }  // namespace

@@ -64,8 +64,8 @@ absl::StatusOr<PatchValue> ParseRow(const std::string& line) {
 
 }  // namespace
 
-absl::Status WritePatchValuesCsv(const std::string& path, const Scene& scene,
-                                 const PatchMesh& mesh, const std::vector<Rgb>& radiosity) {
+absl::Status WritePatchValuesCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                                 const std::vector<Rgb>& radiosity) {
   if (radiosity.size() != mesh.size()) {
     return absl::InvalidArgumentError(absl::StrCat("CSV file '", path, "': ", radiosity.size(),
                                                    " values for ", mesh.size(), " patches"));
@@ -101,8 +101,8 @@ absl::StatusOr<std::vector<PatchValue>> ReadPatchValuesCsv(const std::string& pa
     if (line.empty()) continue;
     auto row = ParseRow(line);
     if (!row.ok()) {
-      return absl::InvalidArgumentError(absl::StrCat(path, ":", number, ": ",
-                                                     row.status().message()));
+      return absl::InvalidArgumentError(
+          absl::StrCat(path, ":", number, ": ", row.status().message()));
     }
     rows.push_back(std::move(*row));
   }

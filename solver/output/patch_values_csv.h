@@ -30,8 +30,8 @@ struct PatchValue {
 };
 
 // Writes one row per patch of `mesh` (built from `scene`) with `radiosity` (one per patch).
-absl::Status WritePatchValuesCsv(const std::string& path, const Scene& scene,
-                                 const PatchMesh& mesh, const std::vector<Rgb>& radiosity);
+absl::Status WritePatchValuesCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                                 const std::vector<Rgb>& radiosity);
 
 // Reads a file written by WritePatchValuesCsv; errors name the file and line.
 absl::StatusOr<std::vector<PatchValue>> ReadPatchValuesCsv(const std::string& path);

@@ -24,13 +24,12 @@ std::string PlyHeader(size_t vertices, size_t faces) {
   return absl::StrCat(
       "ply\nformat binary_little_endian 1.0\n",
       "comment radflux lit mesh: positions in scene units, radiosity in W/m^2,\n",
-      "comment red/green/blue = tone-mapped radiance B/pi (as the PNG)\n",
-      "element vertex ", vertices, "\n",
-      "property float x\nproperty float y\nproperty float z\n",
+      "comment red/green/blue = tone-mapped radiance B/pi (as the PNG)\n", "element vertex ",
+      vertices, "\n", "property float x\nproperty float y\nproperty float z\n",
       "property float nx\nproperty float ny\nproperty float nz\n",
       "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n",
-      "property uchar red\nproperty uchar green\nproperty uchar blue\n",
-      "element face ", faces, "\n", "property list uchar int vertex_indices\nend_header\n");
+      "property uchar red\nproperty uchar green\nproperty uchar blue\n", "element face ", faces,
+      "\n", "property list uchar int vertex_indices\nend_header\n");
 }
 
 void AppendVertex(std::string& out, const Vec3& position, const Vec3& normal, const Rgb& b,

@@ -23,8 +23,8 @@ Rgb TraceRadiance(const PatchMesh& mesh, const RayCaster& caster,
 }
 
 void RenderRow(const PatchMesh& mesh, const RayCaster& caster,
-               const std::vector<Rgb>& vertex_radiosity, const PinholeProjection& projection,
-               int n, int y, Image& image) {
+               const std::vector<Rgb>& vertex_radiosity, const PinholeProjection& projection, int n,
+               int y, Image& image) {
   const double weight = 1.0 / (n * n);
   for (int x = 0; x < image.width; ++x) {
     Rgb sum{};
@@ -53,8 +53,7 @@ std::array<double, 4> PatchVertexWeights(const Patch& patch, double u, double v)
   return {0, 1 - v, u + v - 1, 1 - u};          // triangle (v2, v3, v1) with u = 1-u', v = 1-v'
 }
 
-Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_values,
-                     const Hit& hit) {
+Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_values, const Hit& hit) {
   const Patch& patch = mesh.patches[hit.patch];
   const std::array<double, 4> w = PatchVertexWeights(patch, hit.u, hit.v);
   Rgb value{};
@@ -66,13 +65,13 @@ Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_value
 }
 
 absl::StatusOr<Image> RenderRadiance(const PatchMesh& mesh, const RayCaster& caster,
-                                     const std::vector<Rgb>& vertex_radiosity,
-                                     const Camera& camera, const RenderOptions& options) {
+                                     const std::vector<Rgb>& vertex_radiosity, const Camera& camera,
+                                     const RenderOptions& options) {
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
   if (vertex_radiosity.size() != mesh.positions.size()) {
     return absl::InvalidArgumentError(absl::StrCat("render: ", vertex_radiosity.size(),
-                                                   " vertex values for ",
-                                                   mesh.positions.size(), " vertices"));
+                                                   " vertex values for ", mesh.positions.size(),
+                                                   " vertices"));
   }
   if (options.samples_per_axis < 1 || options.samples_per_axis > 64) {
     return absl::InvalidArgumentError("render: samples_per_axis must be in [1, 64]");

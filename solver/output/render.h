@@ -28,14 +28,13 @@ struct RenderOptions {
 std::array<double, 4> PatchVertexWeights(const Patch& patch, double u, double v);
 
 // Radiosity (W/m^2 per band) at `hit` from per-vertex values; `hit` must hit a patch.
-Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_values,
-                     const Hit& hit);
+Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_values, const Hit& hit);
 
 // Radiance image of `vertex_radiosity` (one Rgb per mesh vertex, W/m^2) seen by `camera`,
 // with rays cast by `caster`, which must report Embree's u,v (EmbreeRayCaster does).
 absl::StatusOr<Image> RenderRadiance(const PatchMesh& mesh, const RayCaster& caster,
-                                     const std::vector<Rgb>& vertex_radiosity,
-                                     const Camera& camera, const RenderOptions& options);
+                                     const std::vector<Rgb>& vertex_radiosity, const Camera& camera,
+                                     const RenderOptions& options);
 
 // Convenience: per-vertex radiosity from `patch_radiosity`, an EmbreeRayCaster, then
 // RenderRadiance.

@@ -14,7 +14,7 @@ namespace radflux {
 struct ToneMapOptions {
   double scale = 1.0;           // multiplier on radiance; radiance 1/scale W/m^2/sr is white
   double exposure_stops = 0.0;  // further multiplier 2^exposure_stops (photographic stops)
-  bool srgb = true;  // 8-bit outputs apply the sRGB transfer curve (off: linear bytes)
+  bool srgb = true;             // 8-bit outputs apply the sRGB transfer curve (off: linear bytes)
 };
 
 // Display value in [0, 1], linear light (what glTF COLOR_0 expects).

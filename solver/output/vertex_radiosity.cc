@@ -17,8 +17,8 @@ absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh,
     for (int k = 0; k < patch.VertexCount(); ++k) {
       const uint32_t vertex = patch.v[k];
       if (vertex >= sum.size()) {
-        return absl::InvalidArgumentError(absl::StrCat("patch ", p, " uses vertex ", vertex,
-                                                       " of ", sum.size()));
+        return absl::InvalidArgumentError(
+            absl::StrCat("patch ", p, " uses vertex ", vertex, " of ", sum.size()));
       }
       for (int b = 0; b < kBands; ++b) sum[vertex][b] += patch.area * patch_radiosity[p][b];
       weight[vertex] += patch.area;

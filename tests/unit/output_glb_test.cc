@@ -66,21 +66,21 @@ TEST(OutputGlb, TinyGltfLoadsItBackWithColoursAndUnlitMaterial) {
     for (int k = 0; k < 3; ++k) {
       EXPECT_FLOAT_EQ(positions[3 * i + k], mesh.positions[i][k] * 0.001);
       EXPECT_FLOAT_EQ(raw[3 * i + k], expected[i][k]);
-      EXPECT_FLOAT_EQ(colours[3 * i + k],
-                      std::min(1.0, expected[i][k] / std::numbers::pi * 0.5));
+      EXPECT_FLOAT_EQ(colours[3 * i + k], std::min(1.0, expected[i][k] / std::numbers::pi * 0.5));
     }
   }
   EXPECT_FLOAT_EQ(colours[3 * 11 + 2], 1.0f);  // B = 80 saturates
   // Quad 0 is split along v1-v3 as Embree splits it.
   const Patch& quad = mesh.patches[0];
-  EXPECT_EQ(std::vector<uint32_t>(indices.begin(), indices.begin() + 6),
-            (std::vector<uint32_t>{quad.v[0], quad.v[1], quad.v[3], quad.v[2], quad.v[3], quad.v[1]}));
+  EXPECT_EQ(
+      std::vector<uint32_t>(indices.begin(), indices.begin() + 6),
+      (std::vector<uint32_t>{quad.v[0], quad.v[1], quad.v[3], quad.v[2], quad.v[3], quad.v[1]}));
 
   ASSERT_EQ(model.materials.size(), 1u);
   EXPECT_TRUE(model.materials[0].extensions.count("KHR_materials_unlit"));
-  EXPECT_NE(std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
-                      "KHR_materials_unlit"),
-            model.extensionsUsed.end());
+  EXPECT_NE(
+      std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_unlit"),
+      model.extensionsUsed.end());
   EXPECT_EQ(model.asset.version, "2.0");
 }
 

@@ -74,7 +74,8 @@ TEST(OutputPly, WrittenFileParsesBackWithCountsAndValues) {
   const std::vector<Rgb> expected = *VertexRadiosity(mesh, b);
   size_t offset = 0;
   for (size_t i = 0; i < ply.vertices; ++i) {
-    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(Take<float>(ply.body, offset), mesh.positions[i][k]);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_FLOAT_EQ(Take<float>(ply.body, offset), mesh.positions[i][k]);
     const Vec3 normal = mesh.patches[i < 9 ? 0 : 4].normal;
     for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(Take<float>(ply.body, offset), normal[k]);
     for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(Take<float>(ply.body, offset), expected[i][k]);

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -63,7 +65,7 @@ TEST(OutputRender, CornellRedWallIsOnTheLeft) {
   }
   EXPECT_EQ(lit_right, 0);
   EXPECT_GT(lit_left, n * n / 20);
-  EXPECT_GT(image->Pixel(3, n / 2)[0], 0);     // left edge, mid height: the wall
+  EXPECT_GT(image->Pixel(3, n / 2)[0], 0);      // left edge, mid height: the wall
   EXPECT_EQ(image->Pixel(n - 4, n / 2)[0], 0);  // right edge: the (dark) green wall
 }
 
@@ -113,10 +115,10 @@ TEST(OutputRender, CornellPreviewHasRedLeftGreenRightAndIsThreadIndependent) {
   EXPECT_EQ(one->rgb, two->rgb);
   const float* left = one->Pixel(4, n / 2);
   const float* right = one->Pixel(n - 5, n / 2);
-  EXPECT_GT(left[0], 2 * left[1]);    // red wall
-  EXPECT_GT(right[1], 2 * right[0]);  // green wall
+  EXPECT_GT(left[0], 2 * left[1]);             // red wall
+  EXPECT_GT(right[1], 2 * right[0]);           // green wall
   const float* light = one->Pixel(n / 2, 18);  // the light panel seen from below
-  EXPECT_NEAR(light[0], 17, 1e-3);            // radiance L_e = Ke
+  EXPECT_NEAR(light[0], 17, 1e-3);             // radiance L_e = Ke
   ToneMapOptions tone;
   tone.scale = 1;
   ASSERT_TRUE(WritePng(TempPath("cornell_preview.png"), *one, tone).ok());
@@ -137,7 +139,7 @@ TEST(OutputRender, BackFacesAndMissesAreBlack) {
   ASSERT_TRUE(front.ok());
   EXPECT_FLOAT_EQ(front->Pixel(8, 8)[0], 1.0f);  // B/pi
   EXPECT_EQ(front->Pixel(0, 0)[0], 0.0f);        // corner ray misses
-  camera.position = {0, 0, -5};  // behind
+  camera.position = {0, 0, -5};                  // behind
   auto back = RenderRadiance(mesh, **caster, vertex_b, camera, {});
   ASSERT_TRUE(back.ok());
   for (float value : back->rgb) ASSERT_EQ(value, 0.0f);
@@ -155,18 +157,21 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
   const TiltedPlane plane{{1, 2, 3}, frame.s, frame.t};
   const TiltedPlane other{{-20, 0, 0}, Vec3{0, 0, 1}, Normalize(Vec3{1, 1, 0})};
   PatchMesh mesh;  // a general convex quad (not a parallelogram) and a triangle
-  AddFace(mesh, {plane.At(0, 0), plane.At(4, 0), plane.At(3, 2), plane.At(0.5, 3)},
-          {{0, 1, 2, 3}}, plane.Normal());
+  AddFace(mesh, {plane.At(0, 0), plane.At(4, 0), plane.At(3, 2), plane.At(0.5, 3)}, {{0, 1, 2, 3}},
+          plane.Normal());
   AddFace(mesh, {other.At(0, 0), other.At(3, 0.5), other.At(1, 2.5)}, {{0, 1, 2, 2}},
           other.Normal());
   const Vec3 slope[3] = {{1, 2, 3}, {-0.5, 0.25, 4}, {0, 0, -2}};
-  auto f = [&](const Vec3& p) { return Rgb{Dot(slope[0], p) + 1, Dot(slope[1], p), Dot(slope[2], p) - 3}; };
+  auto f = [&](const Vec3& p) {
+    return Rgb{Dot(slope[0], p) + 1, Dot(slope[1], p), Dot(slope[2], p) - 3};
+  };
   std::vector<Rgb> vertex_values;
   for (const Vec3& p : mesh.positions) vertex_values.push_back(f(p));
   auto embree = EmbreeRayCaster::Create(mesh);
   ASSERT_TRUE(embree.ok());
   const BruteForceRayCaster brute(mesh);
   int hits = 0, second_triangle_hits = 0;
+  double max_bilinear_error = 0;
   for (uint32_t p = 0; p < mesh.size(); ++p) {
     const Patch& patch = mesh.patches[p];
     for (int i = 1; i < 12; ++i) {
@@ -174,8 +179,9 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
         // Bilinear parameters of the target, kept off the v0-v2 diagonal (where the
         // brute-force caster, which splits quads there, can miss between its triangles).
         const double s = (i + 0.25) / 12.5, t = (j - 0.125) / 12.5;
-        const Vec3 target = mesh.Vertex(p, 0) * ((1 - s) * (1 - t)) + mesh.Vertex(p, 1) * (s * (1 - t)) +
-                            mesh.Vertex(p, 2) * (s * t) + mesh.Vertex(p, 3) * ((1 - s) * t);
+        const Vec3 target = mesh.Vertex(p, 0) * ((1 - s) * (1 - t)) +
+                            mesh.Vertex(p, 1) * (s * (1 - t)) + mesh.Vertex(p, 2) * (s * t) +
+                            mesh.Vertex(p, 3) * ((1 - s) * t);
         const Vec3 origin = target + patch.normal * 7 + Vec3{0.7, -0.4, 0.2};
         const Ray ray{origin, target - origin, 0, 10};
         const Hit hit = (*embree)->Intersect(ray);
@@ -188,13 +194,24 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
         if (hit.u + hit.v > 1) ++second_triangle_hits;
         const Rgb expected = f(ray.origin + ray.direction * exact.t);
         const Rgb got = InterpolateAtHit(mesh, vertex_values, hit);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 2e-4) << p << " " << i << " " << j;
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(got[k], expected[k], 2e-4) << p << " " << i << " " << j;
+        // Bilinear weights (1-u)(1-v), u(1-v), uv, (1-u)v on Embree's u,v would be exact
+        // only on a parallelogram: Embree's quad u,v are per-triangle, not bilinear.
+        const double u = hit.u, v = hit.v;
+        const std::array<double, 4> bilinear = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
+        double at_bilinear = 0;
+        for (int k = 0; k < 4; ++k) at_bilinear += bilinear[k] * vertex_values[patch.v[k]][0];
+        if (!patch.IsTriangle()) {
+          max_bilinear_error = std::max(max_bilinear_error, std::abs(at_bilinear - expected[0]));
+        }
         ++hits;
       }
     }
   }
   EXPECT_EQ(hits, 2 * 11 * 11);
   EXPECT_GT(second_triangle_hits, 20);  // both halves of the quad were exercised
+  EXPECT_GT(max_bilinear_error, 0.1);   // why PatchVertexWeights uses per-triangle weights
 }
 
 TEST(OutputRender, WeightsOfTheTwoQuadHalvesAndTriangle) {

@@ -59,11 +59,9 @@ inline void AddTriangleFace(PatchMesh& mesh) {
 // A fresh path in the test's temporary directory.
 inline std::string TempPath(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / "radflux_output_tests";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "radflux_output_tests";
   std::filesystem::create_directories(dir);
-  return (dir / (std::string(info->test_suite_name()) + "_" + info->name() + "_" + name))
-      .string();
+  return (dir / (std::string(info->test_suite_name()) + "_" + info->name() + "_" + name)).string();
 }
 
 }  // namespace radflux::output_testing
