@@ -7,6 +7,9 @@
 
 #include "client/solve_command.h"
 #include "client/viewfactors_command.h"
+#ifdef RADFLUX_WITH_SERVICE
+#include "client/service_commands.h"
+#endif
 
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
@@ -15,6 +18,9 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   radflux::cli::AddSolveCommand(app, exit_code);
   radflux::cli::AddViewFactorsCommand(app, exit_code);
+#ifdef RADFLUX_WITH_SERVICE
+  radflux::cli::AddServiceCommands(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -36,9 +36,8 @@ bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j) {
 std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed) {
   std::vector<Vec3> points;
   const uint32_t pattern = PatternSeed(seed, i, kPointStream);
-  for (int m = 0; m < s; ++m) {
-    points.push_back(SamplePatchPoint(mesh, i, MultiJitteredSample(m, s, pattern)));
-  }
+  const PatchPointSampler sample_point(mesh, i);
+  for (int m = 0; m < s; ++m) points.push_back(sample_point(MultiJitteredSample(m, s, pattern)));
   return points;
 }
 

@@ -11,13 +11,26 @@
 namespace radflux {
 namespace {
 
-constexpr uint64_t kPositionStream = 11;
-constexpr uint64_t kDirectionStream = 12;
+constexpr uint64_t kShiftStream = 11;
+constexpr uint32_t kPositionPattern = 0x2545f491u;
+constexpr uint32_t kDirectionPattern = 0x9e3779b9u;
+
+double Wrap(double x) { return x >= 1 ? x - 1 : x; }
 
 class MonteCarloBuilder final : public RowBuilder {
  public:
+  // The k position samples and k paired direction samples are one correlated
+  // multi-jittered set, computed once; each patch shifts both toroidally by its own
+  // random offsets (Cranley-Patterson rotation), which keeps them stratified and
+  // makes the estimate unbiased at a few additions per ray.
   MonteCarloBuilder(const RowContext& context, const FormFactorOptions& options)
       : context_(context), options_(options) {
+    const uint32_t k = static_cast<uint32_t>(options.rays);
+    for (uint32_t r = 0; r < k; ++r) {
+      positions_.push_back(MultiJitteredSample(r, k, kPositionPattern));
+      directions_.push_back(
+          MultiJitteredSample(PermuteIndex(r, k, kDirectionPattern), k, kDirectionPattern));
+    }
     for (uint32_t j = 0; j < context.mesh->size(); ++j) {
       if (context.emitter[j]) emitters_.push_back(j);
     }
@@ -27,24 +40,23 @@ class MonteCarloBuilder final : public RowBuilder {
     const PatchMesh& mesh = *context_.mesh;
     const Patch& patch = mesh.patches[i];
     const Frame frame = Frame::FromNormal(patch.normal);
-    const uint32_t k = static_cast<uint32_t>(options_.rays);
-    const uint32_t position_pattern = PatternSeed(options_.seed, i, kPositionStream);
-    const uint32_t direction_pattern = PatternSeed(options_.seed, i, kDirectionStream);
-    const double weight = 1.0 / k;
-    for (uint32_t r = 0; r < k; ++r) {
+    const uint32_t shift = PatternSeed(options_.seed, i, kShiftStream);
+    const Point2 ps{RandomFloat(0, shift), RandomFloat(1, shift)};
+    const Point2 ds{RandomFloat(2, shift), RandomFloat(3, shift)};
+    const Vec3 lift = patch.normal * context_.ray_epsilon;
+    const double weight = 1.0 / static_cast<double>(positions_.size());
+    const PatchPointSampler sample_point(mesh, i);
+    for (size_t r = 0; r < positions_.size(); ++r) {
       const Vec3 origin =
-          SamplePatchPoint(mesh, i, MultiJitteredSample(r, k, position_pattern)) +
-          patch.normal * context_.ray_epsilon;
-      // Pair position stratum r with a permuted direction stratum (decorrelated padding).
-      const uint32_t d = PermuteIndex(r, k, direction_pattern);
-      const Vec3 direction = frame.ToWorld(SampleCosineHemisphere(
-          MultiJitteredSample(d, k, direction_pattern ^ 0x9e3779b9u)));
+          sample_point({Wrap(positions_[r].x + ps.x), Wrap(positions_[r].y + ps.y)}) + lift;
+      const Vec3 direction = frame.ToWorld(
+          SampleCosineHemisphere({Wrap(directions_[r].x + ds.x), Wrap(directions_[r].y + ds.y)}));
       const Hit hit = context_.caster->Intersect({origin, direction});
       if (hit.patch == kNoPatch || context_.emitter[hit.patch]) continue;
       if (Dot(direction, mesh.patches[hit.patch].normal) >= 0) continue;  // back side: absorbed
       row.Add(hit.patch, weight);
     }
-    uint64_t rays = k;
+    uint64_t rays = positions_.size();
     if (!emitters_.empty()) {
       const std::vector<Vec3> points = PatchSamplePoints(mesh, i, options_.samples, options_.seed);
       for (uint32_t j : emitters_) {
@@ -58,6 +70,7 @@ class MonteCarloBuilder final : public RowBuilder {
  private:
   const RowContext& context_;
   FormFactorOptions options_;
+  std::vector<Point2> positions_, directions_;
   std::vector<uint32_t> emitters_;
 };
 

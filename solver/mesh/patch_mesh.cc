@@ -11,16 +11,19 @@ Vec3 TrianglePoint(const Vec3& a, const Vec3& b, const Vec3& c, Point2 u) {
 }
 }  // namespace
 
-Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u) {
+PatchPointSampler::PatchPointSampler(const PatchMesh& mesh, uint32_t p) {
   const Patch& patch = mesh.patches[p];
-  const Vec3& a = mesh.positions[patch.v[0]];
-  const Vec3& b = mesh.positions[patch.v[1]];
-  const Vec3& c = mesh.positions[patch.v[2]];
-  if (patch.IsTriangle()) return TrianglePoint(a, b, c, u);
-  const Vec3& d = mesh.positions[patch.v[3]];
-  const double first = TriangleArea(a, b, c) / patch.area;
-  if (u.x < first) return TrianglePoint(a, b, c, {u.x / first, u.y});
-  return TrianglePoint(a, c, d, {std::min((u.x - first) / (1 - first), 0x1.fffffffffffffp-1), u.y});
+  a_ = mesh.positions[patch.v[0]];
+  b_ = mesh.positions[patch.v[1]];
+  c_ = mesh.positions[patch.v[2]];
+  d_ = mesh.positions[patch.v[3]];
+  first_ = patch.IsTriangle() ? 1.0 : TriangleArea(a_, b_, c_) / patch.area;
+}
+
+Vec3 PatchPointSampler::operator()(Point2 u) const {
+  if (u.x < first_) return TrianglePoint(a_, b_, c_, {u.x / first_, u.y});
+  return TrianglePoint(a_, c_, d_,
+                       {std::min((u.x - first_) / (1 - first_), 0x1.fffffffffffffp-1), u.y});
 }
 
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch) {

@@ -34,8 +34,22 @@ struct PatchMesh {
   Vec3 Vertex(uint32_t patch, int k) const { return positions[patches[patch].v[k]]; }
 };
 
+// Uniform-by-area points on one patch, with its corners and split precomputed so that a
+// sample costs a few multiply-adds. Stratification of u is kept.
+class PatchPointSampler {
+ public:
+  PatchPointSampler(const PatchMesh& mesh, uint32_t p);
+  Vec3 operator()(Point2 u) const;
+
+ private:
+  Vec3 a_, b_, c_, d_;
+  double first_;  // area fraction of triangle (a, b, c); 1 for a triangle patch
+};
+
 // Point on patch p for sample u in [0,1)^2; uniform by area, stratification kept.
-Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u);
+inline Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u) {
+  return PatchPointSampler(mesh, p)(u);
+}
 
 // Fills area, centroid and normal of `patch` from its vertices and face normal.
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch);

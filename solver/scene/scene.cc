@@ -2,17 +2,16 @@
 
 #include <string>
 
+#include "absl/strings/str_cat.h"
+
 namespace radflux {
 
 std::string Scene::DescribeFace(size_t f) const {
   const Face& face = faces[f];
-  std::string where = source;
-  if (face.source_line > 0) where += ":" + std::to_string(face.source_line);
-  where += " (face " + std::to_string(f);
-  if (face.object < objects.size() && !objects[face.object].empty()) {
-    where += " of object '" + objects[face.object] + "'";
-  }
-  return where + ")";
+  const bool named = face.object < objects.size() && !objects[face.object].empty();
+  return absl::StrCat(source, face.source_line > 0 ? absl::StrCat(":", face.source_line) : "",
+                      " (face ", f, named ? absl::StrCat(" of object '", objects[face.object], "'") : "",
+                      ")");
 }
 
 Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon) {
