@@ -6,12 +6,18 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
+#include "absl/strings/str_cat.h"
 #include "client/job_flags.h"
+#include "client/output_flags.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
+#include "solver/mesh/subdivide.h"
+#include "solver/scene/obj_loader.h"
+#include "solver/scene/validation.h"
 
 namespace radflux::cli {
 namespace {
@@ -110,13 +116,131 @@ grpc::Status UploadScene(Client& client, const std::string& path, std::string* s
   return status;
 }
 
-// Streams a job's events to stderr until it ends; returns 0 when it SUCCEEDED.
-int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir) {
+// A job's scene fetched from the server (GetScene), re-loaded and re-meshed with the job's
+// options: with B, all that WriteOutputs needs. Meshing is deterministic, so this is the
+// mesh the server solved on (GetResult checks it against the mesh it streams).
+struct JobGeometry {
+  Scene scene;
+  PatchMesh mesh;
+};
+
+absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
+  v1::GetJobRequest request;
+  request.set_job_id(job_id);
+  return FromGrpcStatus(client.stub().GetJob(client.Context().get(), request, job));
+}
+
+absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
+  v1::GetSceneRequest request;
+  request.set_sha256(job.scene_sha256());
+  auto context = client.Context();
+  auto reader = client.stub().GetScene(context.get(), request);
+  v1::SceneChunk chunk;
+  v1::SceneHeader header;
+  std::string data;
+  while (reader->Read(&chunk)) {
+    if (chunk.has_header()) header = chunk.header();
+    data += chunk.data();
+  }
+  if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
+  if (data.size() != header.obj_size() + header.mtl_size()) {
+    return absl::DataLossError(absl::StrCat("scene ", job.scene_sha256(), ": got ", data.size(),
+                                            " bytes, expected ",
+                                            header.obj_size() + header.mtl_size()));
+  }
+  const std::string obj = data.substr(0, header.obj_size()), mtl = data.substr(header.obj_size());
+  if (SceneContentHash(obj, mtl) != job.scene_sha256()) {
+    return absl::DataLossError("scene " + job.scene_sha256() + " does not hash to its address");
+  }
+  absl::StatusOr<JobOptions> options = FromProto(job.options());
+  if (!options.ok()) return options.status();
+  JobGeometry geometry;
+  absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, header.name());
+  if (!scene.ok()) return scene.status();
+  geometry.scene = *std::move(scene);
+  if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(geometry.scene, options->mesh);
+  if (!mesh.ok()) return mesh.status();
+  geometry.mesh = *std::move(mesh);
+  return geometry;
+}
+
+// One line on stderr for a failure; server errors name the server, local ones do not.
+int Fail(const absl::Status& status, const ConnectionFlags& c) {
+  if (status.code() == absl::StatusCode::kUnavailable || status.code() == absl::StatusCode::kUnauthenticated ||
+      status.code() == absl::StatusCode::kNotFound || status.code() == absl::StatusCode::kFailedPrecondition) {
+    return Report(ToGrpcStatus(status), c);
+  }
+  std::cerr << "radflux: " << status.message() << "\n";
+  return 1;
+}
+
+bool WantsGeometry(const OutputFlags& f) {
+  return !f.out.empty() || !f.render.empty() || !f.patch_values.empty();
+}
+
+// What the flags of `radflux result` and `radflux watch` ask for.
+struct OutputArgs {
+  OutputFlags output;
+  int threads = 0;
+};
+
+// Writes snapshot B of `snapshot` as DIR/snapshot_<iteration>.png with the camera flags.
+absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& geometry,
+                              const std::string& dir, const OutputArgs& args) {
+  absl::StatusOr<std::vector<float>> values = SnapshotValues(snapshot);
+  if (!values.ok()) return values.status();
+  if (snapshot.patch_count() != geometry.mesh.size() || snapshot.bands_size() != kBands) {
+    return absl::DataLossError(absl::StrCat("snapshot of ", snapshot.patch_count(),
+                                            " patches and ", snapshot.bands_size(),
+                                            " bands for a mesh of ", geometry.mesh.size()));
+  }
+  std::vector<Rgb> radiosity(geometry.mesh.size());
+  for (size_t p = 0; p < radiosity.size(); ++p)
+    for (int b = 0; b < kBands; ++b) radiosity[p][b] = (*values)[p * kBands + b];
+  OutputFlags flags = args.output;
+  flags.out.clear();
+  flags.patch_values.clear();
+  char name[64];
+  std::snprintf(name, sizeof(name), "snapshot_%06d.png", snapshot.iteration());
+  flags.render = (fs::path(dir) / name).string();
+  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, args.threads);
+}
+
+// One progress line of a job event on stderr.
+void PrintEvent(const v1::JobEvent& event) {
+  const v1::Progress& p = event.progress();
+  std::cerr << "[" << event.sequence() << "] " << v1::JobState_Name(event.state()) << " "
+            << v1::Phase_Name(event.phase());
+  if (event.phase() == v1::PHASE_ROWS && p.rows_total() > 0) {
+    std::cerr << " rows " << p.rows_done() << "/" << p.rows_total() << " ("
+              << static_cast<int64_t>(p.rays_per_second()) << " rays/s, ETA "
+              << static_cast<int>(p.eta_seconds()) << " s)";
+  }
+  if (event.phase() == v1::PHASE_SOLVE && p.iteration() > 0) {
+    std::cerr << " iteration " << p.iteration() << " residual " << p.residual();
+  }
+  if (!event.message().empty()) std::cerr << ": " << event.message();
+  std::cerr << "\n";
+}
+
+// Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
+// snapshots_dir (if set); returns 0 when it SUCCEEDED.
+int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
+             const OutputArgs& args) {
   v1::WatchJobRequest request;
   request.set_job_id(job_id);
+  std::optional<JobGeometry> geometry;
   if (!snapshots_dir.empty()) {
+    v1::Job job;
+    if (absl::Status s = FetchJob(client, job_id, &job); !s.ok()) return Fail(s, client.flags());
+    absl::StatusOr<JobGeometry> fetched = FetchGeometry(client, job);
+    if (!fetched.ok()) return Fail(fetched.status(), client.flags());
+    geometry = *std::move(fetched);
     request.set_snapshot_every(1);
-    fs::create_directories(snapshots_dir);
+    request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT32);
+    std::error_code error;
+    fs::create_directories(snapshots_dir, error);
   }
   auto context = client.Context();
   auto reader = client.stub().WatchJob(context.get(), request);
@@ -125,34 +249,17 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   std::string message;
   while (reader->Read(&event)) {
     if (event.has_snapshot()) {
-      absl::StatusOr<std::vector<float>> values = SnapshotValues(event.snapshot());
-      if (!values.ok()) continue;
-      std::ofstream out(fs::path(snapshots_dir) /
-                        ("snapshot_" + std::to_string(event.snapshot().iteration()) + ".csv"));
-      out << "patch,r,g,b\n";
-      const size_t bands = static_cast<size_t>(event.snapshot().bands_size());
-      for (size_t p = 0; p < event.snapshot().patch_count(); ++p) {
-        out << p;
-        for (size_t b = 0; b < bands; ++b) out << "," << (*values)[p * bands + b];
-        out << "\n";
+      if (!geometry) continue;
+      if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
+          !s.ok()) {
+        std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
+                  << "\n";
       }
       continue;
     }
     state = event.state();
     message = event.message();
-    const v1::Progress& p = event.progress();
-    std::cerr << "[" << event.sequence() << "] " << v1::JobState_Name(event.state()) << " "
-              << v1::Phase_Name(event.phase());
-    if (event.phase() == v1::PHASE_ROWS && p.rows_total() > 0) {
-      std::cerr << " rows " << p.rows_done() << "/" << p.rows_total() << " ("
-                << static_cast<int64_t>(p.rays_per_second()) << " rays/s, ETA "
-                << static_cast<int>(p.eta_seconds()) << " s)";
-    }
-    if (event.phase() == v1::PHASE_SOLVE && p.iteration() > 0) {
-      std::cerr << " iteration " << p.iteration() << " residual " << p.residual();
-    }
-    if (!message.empty()) std::cerr << ": " << message;
-    std::cerr << "\n";
+    PrintEvent(event);
   }
   const grpc::Status status = reader->Finish();
   if (!status.ok()) return Report(status, client.flags());
@@ -164,46 +271,93 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   return 0;
 }
 
-struct ResultFlags {
-  std::string job_id, patch_values, report;
+// A finished job's result as streamed: the mesh the server solved on, B, the report.
+struct StreamedResult {
+  v1::Job job;
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> vertices, faces;
+  std::vector<Rgb> radiosity;
+  std::string report;
 };
 
-int GetResult(Client& client, const ResultFlags& flags) {
+absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id) {
   v1::GetResultRequest request;
-  request.set_job_id(flags.job_id);
+  request.set_job_id(job_id);
   auto context = client.Context();
   auto reader = client.stub().GetResult(context.get(), request);
   v1::ResultChunk chunk;
-  std::vector<double> radiosity;
-  std::vector<uint32_t> faces;
-  std::string report;
+  StreamedResult r;
+  uint64_t vertex_count = 0, patch_count = 0;
+  std::vector<double> xyz, b;
   while (reader->Read(&chunk)) {
+    if (chunk.has_header()) {
+      r.job = chunk.header().job();
+      vertex_count = chunk.header().vertex_count();
+      patch_count = chunk.header().patch_count();
+    }
+    if (chunk.has_vertices()) xyz.insert(xyz.end(), chunk.vertices().xyz().begin(), chunk.vertices().xyz().end());
     if (chunk.has_patches()) {
-      radiosity.insert(radiosity.end(), chunk.patches().radiosity().begin(),
-                       chunk.patches().radiosity().end());
-      faces.insert(faces.end(), chunk.patches().source_face().begin(),
-                   chunk.patches().source_face().end());
+      const v1::PatchChunk& p = chunk.patches();
+      r.vertices.insert(r.vertices.end(), p.vertices().begin(), p.vertices().end());
+      r.faces.insert(r.faces.end(), p.source_face().begin(), p.source_face().end());
+      b.insert(b.end(), p.radiosity().begin(), p.radiosity().end());
     }
-    if (chunk.part_case() == v1::ResultChunk::kReportJson) report = chunk.report_json();
+    if (chunk.part_case() == v1::ResultChunk::kReportJson) r.report = chunk.report_json();
   }
-  const grpc::Status status = reader->Finish();
-  if (!status.ok()) return Report(status, client.flags());
-  if (!flags.patch_values.empty()) {
-    std::ofstream out(flags.patch_values);
-    out.precision(17);
-    out << "patch,face,r,g,b\n";
-    for (size_t p = 0; p < faces.size(); ++p) {
-      out << p << "," << faces[p] << "," << radiosity[3 * p] << "," << radiosity[3 * p + 1] << ","
-          << radiosity[3 * p + 2] << "\n";
+  if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
+  if (xyz.size() != 3 * vertex_count || r.faces.size() != patch_count ||
+      r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
+    return absl::DataLossError("result stream does not match its header's counts");
+  }
+  for (size_t i = 0; i < vertex_count; ++i) r.positions.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  r.radiosity.resize(patch_count);
+  for (size_t p = 0; p < patch_count; ++p)
+    for (int k = 0; k < kBands; ++k) r.radiosity[p][k] = b[kBands * p + k];
+  return r;
+}
+
+// True when `mesh` is exactly the mesh the server streamed.
+bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
+  if (mesh.positions.size() != r.positions.size() || mesh.size() != r.faces.size()) return false;
+  for (size_t i = 0; i < r.positions.size(); ++i) {
+    const Vec3& a = mesh.positions[i];
+    const Vec3& b = r.positions[i];
+    if (a.x != b.x || a.y != b.y || a.z != b.z) return false;
+  }
+  for (size_t p = 0; p < mesh.size(); ++p) {
+    if (mesh.patches[p].face != r.faces[p]) return false;
+    for (int k = 0; k < 4; ++k)
+      if (mesh.patches[p].v[k] != r.vertices[4 * p + k]) return false;
+  }
+  return true;
+}
+
+// `radflux result`: the outputs of `radflux solve` from a finished job.
+int GetResult(Client& client, const std::string& job_id, const OutputArgs& args) {
+  if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
+  absl::StatusOr<StreamedResult> result = FetchResult(client, job_id);
+  if (!result.ok()) return Fail(result.status(), client.flags());
+  if (WantsGeometry(args.output)) {
+    absl::StatusOr<JobGeometry> geometry = FetchGeometry(client, result->job);
+    if (!geometry.ok()) return Fail(geometry.status(), client.flags());
+    if (!SameMesh(geometry->mesh, *result)) {
+      return Fail(absl::DataLossError("the scene re-meshed here differs from the server's mesh "
+                                      "(client and server of different radflux versions?)"),
+                  client.flags());
     }
-    if (!out) return std::cerr << "radflux: cannot write " << flags.patch_values << "\n", 1;
+    if (absl::Status s = WriteOutputs(args.output, geometry->scene, geometry->mesh,
+                                      result->radiosity, args.threads);
+        !s.ok()) {
+      return Fail(s, client.flags());
+    }
   }
-  if (!flags.report.empty()) {
-    std::ofstream out(flags.report);
-    out << report << "\n";
-    if (!out) return std::cerr << "radflux: cannot write " << flags.report << "\n", 1;
+  if (!args.output.report.empty()) {
+    std::ofstream out(args.output.report);
+    out << result->report << "\n";
+    out.close();
+    if (!out) return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
-  std::cout << faces.size() << " patches\n";
+  std::cout << result->faces.size() << " patches\n";
   return 0;
 }
 
@@ -248,30 +402,43 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     if (!status.ok()) return void(exit_code = Report(status, *c));
     std::cerr << "submitted " << job.job_id() << " (scene " << request.scene_sha256().substr(0, 12)
               << ")\n";
-    if (*watch) exit_code = WatchJob(client, job.job_id(), "");
+    if (*watch) exit_code = WatchJob(client, job.job_id(), "", OutputArgs{});
     std::cout << job.job_id() << std::endl;
   });
 
   auto* watch_cmd = app.add_subcommand("watch", "follow a job's progress");
   auto job_id = std::make_shared<std::string>();
   auto snapshots = std::make_shared<std::string>();
+  auto watch_args = std::make_shared<OutputArgs>();
   watch_cmd->add_option("job", *job_id, "job id")->required();
-  watch_cmd->add_option("--snapshots", *snapshots, "write each snapshot as CSV into DIR");
+  watch_cmd->add_option("--snapshots", *snapshots,
+                        "write each snapshot as a rendered PNG into DIR (camera flags apply)");
+  AddOutputFlags(*watch_cmd, watch_args->output);
+  watch_cmd->add_option("--threads", watch_args->threads, "render threads (0 = all cores)");
   AddConnectionFlags(*watch_cmd, *c);
   watch_cmd->callback([=, &exit_code] {
+    if (absl::Status s = ValidateOutputFlags(watch_args->output); !s.ok()) {
+      return void(exit_code = Fail(s, *c));
+    }
     Client client(*c);
-    exit_code = WatchJob(client, *job_id, *snapshots);
+    exit_code = WatchJob(client, *job_id, *snapshots, *watch_args);
+    const OutputFlags& f = watch_args->output;
+    if (exit_code == 0 && (WantsGeometry(f) || !f.report.empty())) {
+      exit_code = GetResult(client, *job_id, *watch_args);
+    }
   });
 
-  auto* result = app.add_subcommand("result", "fetch a finished job's result");
-  auto result_flags = std::make_shared<ResultFlags>();
-  result->add_option("job", result_flags->job_id, "job id")->required();
-  result->add_option("--patch-values", result_flags->patch_values, "per-patch B as CSV");
-  result->add_option("--report", result_flags->report, "the job's report as JSON");
+  auto* result = app.add_subcommand(
+      "result", "fetch a finished job's result: the outputs of `radflux solve`");
+  auto result_id = std::make_shared<std::string>();
+  auto result_args = std::make_shared<OutputArgs>();
+  result->add_option("job", *result_id, "job id")->required();
+  AddOutputFlags(*result, result_args->output);
+  result->add_option("--threads", result_args->threads, "render threads (0 = all cores)");
   AddConnectionFlags(*result, *c);
   result->callback([=, &exit_code] {
     Client client(*c);
-    exit_code = GetResult(client, *result_flags);
+    exit_code = GetResult(client, *result_id, *result_args);
   });
 
   auto* cancel = app.add_subcommand("cancel", "cancel a queued or running job");

@@ -1,4 +1,6 @@
 // The client verbs that talk to radfluxd: submit, watch, result, cancel, list.
+// `result` (and `watch`) take the output flags of `radflux solve`: they fetch the job's
+// scene (GetScene), re-mesh it with the job's options and write what `solve` writes.
 // Each accepts --server HOST:PORT (default localhost:50051), --token and --tls-ca, before
 // or after the verb. Failures print one line ("radflux: ...") and set exit_code to 1.
 #pragma once

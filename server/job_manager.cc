@@ -215,6 +215,10 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
 
 absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) { return store_.GetJob(job_id); }
 
+absl::StatusOr<StoredScene> JobManager::GetScene(const std::string& sha256) {
+  return store_.GetScene(sha256);
+}
+
 absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest& request) {
   JobFilter filter;
   for (int s : request.states()) filter.states.push_back(static_cast<v1::JobState>(s));
@@ -337,6 +341,8 @@ void JobManager::RunOne(const std::string& job_id) {
   context.store = &store_;
   context.hub = hub.get();
   context.stop = &running->stop;
+  context.checkpoint_seconds = options_.checkpoint_seconds;
+  context.solve_delay_ms = options_.solve_delay_ms;
   const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
   context.threads = std::max(1, threads / std::max(1, options_.jobs));
   context.on_phase = [&](v1::Phase phase, int64_t patches) {

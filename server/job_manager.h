@@ -29,6 +29,9 @@ struct ManagerOptions {
   uint64_t max_memory = 0;       // bytes per job by EstimateJobBytes (0 = half the RAM)
   uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
   size_t max_queued = 1000;      // queued jobs beyond this are refused
+  double checkpoint_seconds = 1.0;  // at most one solver checkpoint per job per interval
+  int solve_delay_ms = 0;        // testing: sleep after each solver iteration (widens the
+                                 // window in which a test can kill the server mid-solve)
 };
 
 class JobManager {
@@ -55,6 +58,8 @@ class JobManager {
   // Cancels a queued or running job (a finished job is returned unchanged).
   absl::StatusOr<v1::Job> Cancel(const std::string& job_id);
   absl::StatusOr<v1::Job> Get(const std::string& job_id);
+  // The texts of a stored scene (NOT_FOUND when no scene has that address).
+  absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
   absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
   // The event hub of a job (live, or a closed one-event history for a finished job).
   absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);

@@ -3,10 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
+#include "solver/report.h"
 #include "solver/scene/obj_loader.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
@@ -99,29 +101,79 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   return result;
 }
 
-bool ResumableSolver(SolverMethod method) {
-  return method == SolverMethod::kJacobi || method == SolverMethod::kGaussSeidel;
+// Every iterative method resumes from a checkpoint: jacobi and gauss_seidel from B
+// (their next iterate depends on B alone: bit-identical), southwell from B and its unshot
+// radiosity (bit-identical), cg warm-started from B (it restarts its Krylov space, so the
+// result agrees within the tolerance, not bit for bit). direct restarts its solve.
+bool ResumableSolver(SolverMethod method) { return method != SolverMethod::kDirect; }
+
+// The checkpoint to resume from, if the job has a usable one for this method.
+std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMethod method,
+                                                 size_t n, const RunContext& c) {
+  if (!ResumableSolver(method)) return std::nullopt;
+  absl::StatusOr<SolverCheckpoint> checkpoint = c.store->GetCheckpoint(job.job_id());
+  const size_t unshot = method == SolverMethod::kSouthwell ? n : 0;
+  if (!checkpoint.ok() || checkpoint->radiosity.size() != n ||
+      checkpoint->method != static_cast<int32_t>(method) || checkpoint->unshot.size() != unshot) {
+    return std::nullopt;
+  }
+  return *std::move(checkpoint);
 }
 
-std::string ReportJson(const PreparedJob& prepared, const FormFactorResult& rows,
-                       const SolveResult& solve, double solve_seconds) {
-  nlohmann::json report;
-  report["patches"] = prepared.mesh.size();
-  report["nonzeros"] = rows.matrix.nnz();
-  report["rays"] = rows.stats.rays;
-  report["dropped_sum"] = rows.stats.dropped_sum;
-  report["max_row_dropped"] = rows.stats.max_row_dropped;
-  report["iterations"] = solve.iterations;
-  report["residual"] = solve.residual;
-  report["converged"] = solve.converged;
-  report["bands_solved"] = solve.bands_solved;
-  report["reciprocity_error"] = solve.reciprocity_error;
-  report["residual_history"] = solve.residual_history;
-  report["seconds"] = {{"mesh", prepared.mesh_seconds},
-                       {"embree", prepared.embree_seconds},
-                       {"rows", rows.seconds},
-                       {"solve", solve_seconds}};
-  return report.dump(2);
+// The solve phase: resumes from the job's checkpoint when there is a usable one, publishes
+// progress and snapshots every iteration, checkpoints every context.checkpoint_seconds.
+absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
+                                        const CsrMatrix& rows, SolverOptions so,
+                                        const RunContext& c) {
+  const int64_t n = static_cast<int64_t>(p.mesh.size());
+  so.threads = c.threads;
+  so.cancel = c.stop;
+  so.snapshot_every = 1;
+  const std::optional<SolverCheckpoint> checkpoint =
+      UsableCheckpoint(job, so.method, static_cast<size_t>(n), c);
+  const int offset = checkpoint ? checkpoint->iteration : 0;
+  if (checkpoint) {
+    so.initial = &checkpoint->radiosity;
+    if (!checkpoint->unshot.empty()) so.initial_unshot = &checkpoint->unshot;
+    so.max_iterations = std::max(0, so.max_iterations - offset);
+    spdlog::info("job {}: resuming the solve at iteration {}", job.job_id(), offset);
+  }
+  SolverCheckpoint last;
+  last.method = static_cast<int32_t>(so.method);
+  auto last_checkpoint = Clock::now();
+  const auto on_progress = [&](const SolveProgress& sp) {
+    v1::Progress progress;
+    progress.set_rows_done(n);
+    progress.set_rows_total(n);
+    progress.set_iteration(offset + sp.iteration);
+    progress.set_residual(sp.residual);
+    progress.set_unshot_fraction(sp.unshot_fraction);
+    PublishProgress(c, v1::PHASE_SOLVE, progress);
+    if (c.solve_delay_ms > 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(c.solve_delay_ms));
+    }
+    if (!sp.snapshot) return;
+    c.hub->PublishSnapshot(
+        {offset + sp.iteration, std::make_shared<const std::vector<Rgb>>(*sp.snapshot)});
+    if (!ResumableSolver(so.method) || sp.state == nullptr) return;
+    last.iteration = offset + sp.iteration;
+    last.radiosity = *sp.state;
+    if (sp.state_unshot != nullptr) last.unshot = *sp.state_unshot;
+    if (SecondsSince(last_checkpoint) >= c.checkpoint_seconds) {
+      if (absl::Status s = c.store->PutCheckpoint(job.job_id(), last); !s.ok()) {
+        spdlog::warn("job {}: checkpoint failed: {}", job.job_id(), std::string(s.message()));
+      }
+      last_checkpoint = Clock::now();
+    }
+  };
+  absl::StatusOr<SolveResult> solved = Solve(RadiositySystem{&rows, &p.attributes}, so, on_progress);
+  if (!solved.ok()) return solved.status();
+  if (solved->cancelled || Stopped(c)) {
+    if (!last.radiosity.empty()) (void)c.store->PutCheckpoint(job.job_id(), last);
+    return absl::CancelledError("stopped during the solve");
+  }
+  solved->iterations += offset;
+  return solved;
 }
 
 }  // namespace
@@ -146,53 +198,21 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   if (!rows.ok()) return rows.status();
 
   c.on_phase(v1::PHASE_SOLVE, n);
-  SolverOptions so = options->solver;
-  so.threads = c.threads;
-  so.cancel = c.stop;
-  so.snapshot_every = 1;
-  const bool resumable = ResumableSolver(so.method);
-  int offset = 0;
-  absl::StatusOr<SolverCheckpoint> checkpoint = c.store->GetCheckpoint(job.job_id());
-  if (resumable && checkpoint.ok() && checkpoint->radiosity.size() == static_cast<size_t>(n)) {
-    offset = checkpoint->iteration;
-    so.initial = &checkpoint->radiosity;
-    so.max_iterations = std::max(0, so.max_iterations - offset);
-    spdlog::info("job {}: resuming the solve at iteration {}", job.job_id(), offset);
-  }
-  SolverCheckpoint last;
-  auto last_checkpoint = Clock::now();
   const auto solve_start = Clock::now();
-  const auto on_progress = [&](const SolveProgress& sp) {
-    v1::Progress progress;
-    progress.set_rows_done(n);
-    progress.set_rows_total(n);
-    progress.set_iteration(offset + sp.iteration);
-    progress.set_residual(sp.residual);
-    progress.set_unshot_fraction(sp.unshot_fraction);
-    PublishProgress(c, v1::PHASE_SOLVE, progress);
-    if (!sp.snapshot) return;
-    auto b = std::make_shared<const std::vector<Rgb>>(*sp.snapshot);
-    c.hub->PublishSnapshot({offset + sp.iteration, b});
-    if (!resumable) return;
-    last.iteration = offset + sp.iteration;
-    last.radiosity = *b;
-    if (SecondsSince(last_checkpoint) >= 1.0) {
-      if (absl::Status s = c.store->PutCheckpoint(job.job_id(), last); !s.ok()) {
-        spdlog::warn("job {}: checkpoint failed: {}", job.job_id(), std::string(s.message()));
-      }
-      last_checkpoint = Clock::now();
-    }
-  };
-  absl::StatusOr<SolveResult> solved =
-      Solve(RadiositySystem{&rows->matrix, &p.attributes}, so, on_progress);
+  absl::StatusOr<SolveResult> solved = SolveStored(job, p, rows->matrix, options->solver, c);
   if (!solved.ok()) return solved.status();
-  if (solved->cancelled || Stopped(c)) {
-    if (resumable && !last.radiosity.empty()) (void)c.store->PutCheckpoint(job.job_id(), last);
-    return absl::CancelledError("stopped during the solve");
-  }
-  solved->iterations += offset;
-  const std::string report = ReportJson(p, *rows, *solved, SecondsSince(solve_start));
-  return EncodeResultChunks(MakeResultChunks(p.mesh, *solved, report));
+  // The report of `radflux solve` (MakeJobReport), from the same pieces.
+  JobResult result;
+  result.job = *std::move(prepared);
+  result.form_factors = std::move(rows->matrix);
+  result.row_stats = rows->stats;
+  result.solve = *std::move(solved);
+  result.timings.mesh = result.job->mesh_seconds;
+  result.timings.embree = result.job->embree_seconds;
+  result.timings.rows = rows->seconds;
+  result.timings.solve = SecondsSince(solve_start);
+  const std::string report = MakeJobReport(result, *options, stored->name).dump(2);
+  return EncodeResultChunks(MakeResultChunks(result.job->mesh, result.solve, report));
 }
 
 }  // namespace radflux

@@ -1,9 +1,9 @@
 // RunStoredJob: the phases of one job as the server runs them: prepare, form-factor rows
 // block by block (each stored as it completes, stored blocks reused), then the solve
 // (checkpointed). A job resumed after a crash computes exactly what an uninterrupted run
-// computes: rows are deterministic per patch, and the solve resumes from a checkpoint only
-// for the methods whose next iterate depends on B alone (jacobi, gauss_seidel); the others
-// restart their solve from the stored rows.
+// computes: rows are deterministic per patch; the solve resumes from its checkpoint bit for
+// bit for jacobi, gauss_seidel (B) and southwell (B and the unshot radiosity), and cg warm
+// starts from the checkpointed B (same answer within the tolerance); direct restarts.
 #pragma once
 
 #include <atomic>
@@ -22,6 +22,8 @@ struct RunContext {
   JobHub* hub = nullptr;                    // receives progress events and snapshots
   const std::atomic<bool>* stop = nullptr;  // cancel or shutdown: stop at the next safe point
   int threads = 0;                          // OpenMP threads for this job (0 = all cores)
+  double checkpoint_seconds = 1.0;          // at most one solver checkpoint per this interval
+  int solve_delay_ms = 0;                   // testing: sleep after each solver iteration
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };

@@ -143,6 +143,12 @@ int main(int argc, char** argv) {
   app.add_option("--max-memory", flags.manager.max_memory,
                  "refuse jobs whose estimated memory exceeds BYTES (default: half the RAM)");
   app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
+  app.add_option("--checkpoint-seconds", flags.manager.checkpoint_seconds,
+                 "at most one solver checkpoint per job per this many seconds (0 = every iteration)")
+      ->check(CLI::Range(0.0, 86400.0));
+  app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
+                 "testing: sleep this long after every solver iteration")
+      ->check(CLI::Range(0, 60000));
   CLI11_PARSE(app, argc, argv);
   return Serve(flags);
 }

@@ -1,5 +1,7 @@
 #include "server/radiosity_service.h"
 
+#include <functional>
+
 #include "absl/strings/str_cat.h"
 #include "server/auth.h"
 #include "server/proto_convert.h"
@@ -77,12 +79,14 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   std::string data_;
 };
 
-// Streams the stored result chunks of a job, one write in flight.
-class ResultReactor final : public grpc::ServerWriteReactor<v1::ResultChunk> {
+// Streams messages produced off the reactor thread by `produce` (a result's chunks, a
+// scene's chunks), one write in flight, Finish exactly once.
+template <typename T>
+class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
  public:
-  ResultReactor(JobManager& manager, WorkQueue& work, std::string job_id) {
-    work.Post([this, &manager, job_id = std::move(job_id)] {
-      absl::StatusOr<std::vector<v1::ResultChunk>> chunks = manager.Result(job_id);
+  ChunkStreamReactor(WorkQueue& work, std::function<absl::StatusOr<std::vector<T>>()> produce) {
+    work.Post([this, produce = std::move(produce)] {
+      absl::StatusOr<std::vector<T>> chunks = produce();
       {
         std::lock_guard lock(mu_);
         if (chunks.ok()) chunks_ = *std::move(chunks); else status_ = ToGrpcStatus(chunks.status());
@@ -110,20 +114,39 @@ class ResultReactor final : public grpc::ServerWriteReactor<v1::ResultChunk> {
     if (cancelled_ || !status_.ok() || next_ == chunks_.size()) {
       const grpc::Status status = cancelled_ ? grpc::Status::CANCELLED : status_;
       lock.unlock();
-      Finish(status);
+      this->Finish(status);
       return;
     }
-    const v1::ResultChunk* chunk = &chunks_[next_++];
+    const T* chunk = &chunks_[next_++];
     lock.unlock();
-    StartWrite(chunk);
+    this->StartWrite(chunk);
   }
 
   std::mutex mu_;
-  std::vector<v1::ResultChunk> chunks_;
+  std::vector<T> chunks_;
   size_t next_ = 0;
   grpc::Status status_;
   bool cancelled_ = false;
 };
+
+// A stored scene as the chunks GetScene streams: the header, then data of at most 1 MiB.
+absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
+                                                        const std::string& sha256) {
+  absl::StatusOr<StoredScene> scene = manager.GetScene(sha256);
+  if (!scene.ok()) return scene.status();
+  constexpr size_t kChunkBytes = 1 << 20;
+  std::vector<v1::SceneChunk> chunks(1);
+  v1::SceneHeader* header = chunks[0].mutable_header();
+  header->set_name(scene->name);
+  header->set_obj_size(scene->obj.size());
+  header->set_mtl_size(scene->mtl.size());
+  header->set_sha256(sha256);
+  const std::string data = scene->obj + scene->mtl;
+  for (size_t at = 0; at < data.size(); at += kChunkBytes) {
+    chunks.emplace_back().set_data(data.substr(at, kChunkBytes));
+  }
+  return chunks;
+}
 
 // A unary call: the token check on the reactor thread, `work` on the work queue.
 template <typename Work>
@@ -178,7 +201,27 @@ grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(
   if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
     return new ErrorWriteReactor<v1::ResultChunk>(auth);
   }
-  return new ResultReactor(manager_, work_, request->job_id());
+  return new ChunkStreamReactor<v1::ResultChunk>(
+      work_, [this, job_id = request->job_id()] { return manager_.Result(job_id); });
+}
+
+grpc::ServerUnaryReactor* RadiosityService::GetJob(grpc::CallbackServerContext* context,
+                                                   const v1::GetJobRequest* request,
+                                                   v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Get(request->job_id());
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerWriteReactor<v1::SceneChunk>* RadiosityService::GetScene(
+    grpc::CallbackServerContext* context, const v1::GetSceneRequest* request) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    return new ErrorWriteReactor<v1::SceneChunk>(auth);
+  }
+  return new ChunkStreamReactor<v1::SceneChunk>(
+      work_, [this, sha = request->sha256()] { return SceneChunks(manager_, sha); });
 }
 
 grpc::ServerUnaryReactor* RadiosityService::CancelJob(grpc::CallbackServerContext* context,

@@ -34,6 +34,10 @@ class RadiosityService final : public v1::Radiosity::CallbackService {
   grpc::ServerUnaryReactor* ListJobs(grpc::CallbackServerContext* context,
                                      const v1::ListJobsRequest* request,
                                      v1::ListJobsResponse* response) override;
+  grpc::ServerUnaryReactor* GetJob(grpc::CallbackServerContext* context,
+                                   const v1::GetJobRequest* request, v1::Job* response) override;
+  grpc::ServerWriteReactor<v1::SceneChunk>* GetScene(grpc::CallbackServerContext* context,
+                                                     const v1::GetSceneRequest* request) override;
 
  private:
   JobManager& manager_;

@@ -7,7 +7,8 @@ namespace radflux {
 namespace {
 
 constexpr uint32_t kRowBlockTag = 0x52424c31;    // "RBL1"
-constexpr uint32_t kCheckpointTag = 0x43504b31;  // "CPK1"
+constexpr uint32_t kCheckpointTag = 0x43504b31;  // "CPK1": iteration, B
+constexpr uint32_t kCheckpointTag2 = 0x43504b32;  // "CPK2": iteration, B, method, unshot
 
 // Appends trivially copyable values (the platforms radflux runs on are little-endian).
 class Writer {
@@ -86,9 +87,11 @@ absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
 
 std::string EncodeCheckpoint(const SolverCheckpoint& checkpoint) {
   Writer w;
-  w.Put(kCheckpointTag);
+  w.Put(kCheckpointTag2);
   w.Put(checkpoint.iteration);
   w.PutVector(checkpoint.radiosity);
+  w.Put(checkpoint.method);
+  w.PutVector(checkpoint.unshot);
   return w.Take();
 }
 
@@ -96,8 +99,11 @@ absl::StatusOr<SolverCheckpoint> DecodeCheckpoint(std::string_view bytes) {
   Reader r(bytes);
   SolverCheckpoint c;
   uint32_t tag = 0;
-  if (!(r.Get(tag) && tag == kCheckpointTag && r.Get(c.iteration) && r.GetVector(c.radiosity) &&
-        r.AtEnd())) {
+  const bool ok = r.Get(tag) && (tag == kCheckpointTag || tag == kCheckpointTag2) &&
+                  r.Get(c.iteration) && r.GetVector(c.radiosity) &&
+                  (tag == kCheckpointTag || (r.Get(c.method) && r.GetVector(c.unshot))) &&
+                  r.AtEnd();
+  if (!ok || (!c.unshot.empty() && c.unshot.size() != c.radiosity.size())) {
     return absl::DataLossError("not a solver checkpoint");
   }
   return c;

@@ -24,10 +24,14 @@ std::string EncodeRowBlock(const StoredRowBlock& stored);
 // DATA_LOSS when the bytes are not a row block.
 absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes);
 
-// The solver's state after `iteration` iterations: B per patch per band.
+// The solver's state after `iteration` iterations: B per patch per band, and for
+// southwell the unshot radiosity with it (empty for the other methods). `method` is the
+// SolverMethod that wrote it (as int; -1 in checkpoints of the first format).
 struct SolverCheckpoint {
   int iteration = 0;
   std::vector<Rgb> radiosity;
+  int32_t method = -1;
+  std::vector<Rgb> unshot;
 };
 
 std::string EncodeCheckpoint(const SolverCheckpoint& checkpoint);

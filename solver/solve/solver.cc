@@ -63,6 +63,10 @@ absl::Status CheckInputs(const RadiositySystem& system, const SolverOptions& opt
     return absl::InvalidArgumentError(
         absl::StrCat("initial radiosity has ", options.initial->size(), " patches, not ", n));
   }
+  if (options.initial_unshot != nullptr &&
+      (options.initial == nullptr || options.initial_unshot->size() != n)) {
+    return absl::InvalidArgumentError("initial unshot radiosity needs initial radiosity of size n");
+  }
   if (absl::Status s = CheckPatches(*system.patches); !s.ok()) return s;
   return CheckMatrix(*system.form_factors, n);
 }

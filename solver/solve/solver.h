@@ -44,6 +44,9 @@ struct SolverOptions {
   int snapshot_every = 0;     // include B in the callback every N iterations (0 = never)
   const std::atomic<bool>* cancel = nullptr;  // set by the caller to stop at the next sweep
   const std::vector<Rgb>* initial = nullptr;  // warm start / checkpoint resume (size n) or null
+  // Southwell only, with `initial`: the unshot radiosity saved with it (SolveProgress::
+  // state_unshot); the solve then continues exactly (bit for bit) where that state was taken.
+  const std::vector<Rgb>* initial_unshot = nullptr;
 };
 
 // One progress report. `snapshot` is non-null only on snapshot iterations and is valid
@@ -55,6 +58,11 @@ struct SolveProgress {
                                // reciprocal rows), its true residual is in SolveResult
   double unshot_fraction = 0;  // southwell: unshot power / emitted power (else 0)
   const std::vector<Rgb>* snapshot = nullptr;
+  // On snapshot iterations, the solver state to resume from (SolverOptions::initial and,
+  // for southwell, initial_unshot): the iterate B (equal to `snapshot` except for southwell,
+  // whose snapshot adds the ambient term) and southwell's unshot radiosity (else null).
+  const std::vector<Rgb>* state = nullptr;
+  const std::vector<Rgb>* state_unshot = nullptr;
 };
 using SolveCallback = std::function<void(const SolveProgress&)>;
 

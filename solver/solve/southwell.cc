@@ -142,17 +142,24 @@ std::vector<Rgb> WithAmbient(const BandSystem& bands, const ShootState& st,
   return display;
 }
 
-ShootState StartShooting(const BandSystem& bands, std::vector<Rgb>& b) {
+// The shooting state for B = b: from its residual, or (resume) from the unshot radiosity
+// saved with b, in which case shooting continues exactly where it stopped.
+ShootState StartShooting(const BandSystem& bands, const std::vector<Rgb>* unshot,
+                         std::vector<Rgb>& b) {
   ShootState st;
-  LaneResiduals(bands, b, &st.db);  // dB = r(B0); B = B0 + r keeps the invariant
+  if (unshot != nullptr) {
+    st.db = PackLanes(bands, *unshot);
+  } else {
+    LaneResiduals(bands, b, &st.db);  // dB = r(B0); B = B0 + r keeps the invariant
+  }
   for (uint32_t i = 0; i < bands.n; ++i)
     for (int k = 0; k < bands.lanes; ++k) {
-      b[i][k] += st.db[i][k];
+      if (unshot == nullptr) b[i][k] += st.db[i][k];
       st.emitted[k] += (*bands.area)[i] * std::abs(bands.emission[i][k]);
       st.max_rho = std::max(st.max_rho, bands.rho[i][k]);
     }
   st.power.assign(bands.n, 0);
-  ShootRowless(bands, st, b);
+  if (unshot == nullptr) ShootRowless(bands, st, b);
   return st;
 }
 
@@ -161,9 +168,10 @@ ShootState StartShooting(const BandSystem& bands, std::vector<Rgb>& b) {
 absl::Status SolveSouthwell(const BandSystem& bands, const SolverOptions& options,
                             const SolveCallback& callback, std::vector<Rgb>& b,
                             SolveResult& result) {
-  ShootState st = StartShooting(bands, b);
+  ShootState st = StartShooting(bands, options.initial_unshot, b);
   auto [fraction, residual] = Measure(bands, st);
   IterationMonitor monitor(bands, options, callback, result);
+  monitor.SetShootingState(&b, &st.db);
   const size_t m = BatchSize(bands.n);
   while (!monitor.ShouldStop()) {
     ShootBatch(bands, SelectBatch(st.power, m), st, b);

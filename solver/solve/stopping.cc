@@ -33,6 +33,15 @@ bool IterationMonitor::Record(double measure, double residual, double unshot_fra
     if (snapshot) {
       UnpackLanes(bands_, display, snapshot_);
       progress.snapshot = &snapshot_;
+      progress.state = &snapshot_;
+      if (state_b_ != nullptr) {
+        UnpackLanes(bands_, *state_b_, state_);
+        progress.state = &state_;
+      }
+      if (state_unshot_ != nullptr) {
+        UnpackLanes(bands_, *state_unshot_, unshot_);
+        progress.state_unshot = &unshot_;
+      }
     }
     callback_(progress);
   }

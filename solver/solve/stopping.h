@@ -28,6 +28,13 @@ class IterationMonitor {
   bool Record(double measure, double residual, double unshot_fraction,
               const std::vector<Rgb>& display);
   int iteration() const { return iteration_; }
+  // Shooting methods: the iterate and unshot radiosity (lane values) the next Record
+  // reports as SolveProgress::state / state_unshot when a snapshot is due (default: the
+  // display values and no unshot).
+  void SetShootingState(const std::vector<Rgb>* b, const std::vector<Rgb>* unshot) {
+    state_b_ = b;
+    state_unshot_ = unshot;
+  }
 
  private:
   const BandSystem& bands_;
@@ -36,6 +43,9 @@ class IterationMonitor {
   SolveResult& result_;
   int iteration_ = 0;
   std::vector<Rgb> snapshot_;
+  const std::vector<Rgb>* state_b_ = nullptr;
+  const std::vector<Rgb>* state_unshot_ = nullptr;
+  std::vector<Rgb> state_, unshot_;
 };
 
 }  // namespace radflux

@@ -16,7 +16,7 @@ echo "server at $ADDR"
 JOB=$(tail -n 1 "$DIR/submit.out")
 [[ "$JOB" =~ ^job-[0-9a-f]{16}$ ]] || { echo "bad job id line: $JOB"; exit 1; }
 "$CLI" --server "$ADDR" result "$JOB" --patch-values "$DIR/b.csv" --report "$DIR/report.json"
-[ "$(head -n 1 "$DIR/b.csv")" = "patch,face,r,g,b" ]
+[ "$(head -n 1 "$DIR/b.csv")" = "patch,face,object,area,cx,cy,cz,r,g,b" ]
 [ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
 grep -q '"iterations"' "$DIR/report.json"
 "$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"

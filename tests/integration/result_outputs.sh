@@ -1,0 +1,69 @@
+#!/bin/bash
+# `radflux result` writes what `radflux solve` writes, and `radflux watch --snapshots` writes
+# rendered PNGs. radfluxd on a loopback port it picks itself; the client re-loads the job's
+# scene (GetScene) and re-meshes it. Checks:
+#  - the PNG, PLY, GLB, PFM and patch-values CSV of `result` equal those of `solve` with the
+#    same options byte for byte;
+#  - the report JSONs agree on patches, non-zeros, rays, iterations, residual and energy
+#    balance (timings differ);
+#  - `watch --snapshots DIR` leaves at least one PNG in DIR, and every PNG decodes (chunk
+#    CRCs, zlib stream, size of the raw scanlines = height * (1 + 3 * width)).
+set -euo pipefail
+RADFLUXD=$1 SOLVE_CLI=$2 SERVICE_CLI=$3 SCENE=$4
+DIR=$(mktemp -d /tmp/radflux_result_XXXXXX)
+trap 'kill $PID 2>/dev/null || true; wait $PID 2>/dev/null || true; rm -rf "$DIR"' EXIT
+mkfifo "$DIR/out"
+"$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data" --threads 2 >"$DIR/out" 2>"$DIR/server.log" &
+PID=$!
+read -r LINE <"$DIR/out"
+ADDR=${LINE#radfluxd listening on }
+
+OPTS=(--patches 500 --rays 96 --seed 3 --solver southwell --tolerance 1e-5)
+CAMERA=(--size 96x72 --camera-pos 278,273,-800 --camera-look-at 278,273,0 --fov-deg 40)
+"$SERVICE_CLI" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" >"$DIR/submit.out" 2>/dev/null
+JOB=$(tail -n 1 "$DIR/submit.out")
+# Watch from the start with snapshots; then the outputs of the finished job.
+"$SERVICE_CLI" watch "$JOB" --server "$ADDR" --snapshots "$DIR/snaps" "${CAMERA[@]}" 2>"$DIR/watch.err"
+"$SERVICE_CLI" result "$JOB" --server "$ADDR" --render "$DIR/r.png" --out "$DIR/r.ply" \
+  --patch-values "$DIR/r.csv" --report "$DIR/r.json" "${CAMERA[@]}" >/dev/null
+"$SERVICE_CLI" result "$JOB" --server "$ADDR" --render "$DIR/r.pfm" --out "$DIR/r.glb" \
+  "${CAMERA[@]}" >/dev/null
+"$SOLVE_CLI" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.png" --out "$DIR/s.ply" \
+  --patch-values "$DIR/s.csv" --report "$DIR/s.json" "${CAMERA[@]}"
+"$SOLVE_CLI" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}"
+for f in png ply csv pfm glb; do
+  cmp "$DIR/r.$f" "$DIR/s.$f" || { echo "result .$f differs from solve .$f"; exit 1; }
+done
+
+python3 - "$DIR" <<'PY'
+import json, struct, sys, zlib, glob, os
+d = sys.argv[1]
+r, s = json.load(open(f"{d}/r.json")), json.load(open(f"{d}/s.json"))
+for path in (("mesh", "patches"), ("matrix", "nnz"), ("rays",), ("solve", "iterations"),
+             ("solve", "residual"), ("energy_balance", "relative_imbalance")):
+    a, b = r, s
+    for k in path: a, b = a[k], b[k]
+    assert a == b, f"report {'.'.join(path)}: result {a} != solve {b}"
+
+def decode_png(path):
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "signature"
+    at, idat, width = 8, b"", None
+    while at < len(data):
+        n, kind = struct.unpack(">I4s", data[at:at + 8])
+        body = data[at + 8:at + 8 + n]
+        assert zlib.crc32(kind + body) == struct.unpack(">I", data[at + 8 + n:at + 12 + n])[0], "crc"
+        if kind == b"IHDR": width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        if kind == b"IDAT": idat += body
+        at += 12 + n
+    assert depth == 8 and colour == 2, "8-bit RGB"
+    assert len(zlib.decompress(idat)) == height * (1 + 3 * width), "scanlines"
+    return width, height
+
+snaps = sorted(glob.glob(f"{d}/snaps/*.png"))
+assert snaps, "watch --snapshots wrote no PNG"
+for p in snaps: assert decode_png(p) == (96, 72), p
+assert decode_png(f"{d}/r.png") == (96, 72)
+print(f"{len(snaps)} snapshot PNGs decode; result outputs equal solve outputs")
+PY
+echo "result outputs ok"
