@@ -37,7 +37,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
       if (expected_ > manager_.options().max_upload) {
         return Fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
                     absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
-                                 manager_.options().max_upload, " bytes"));
+                                 manager_.options().max_upload, " bytes (--max-upload)"));
       }
       data_.reserve(expected_);
     }
@@ -148,6 +148,24 @@ absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
   return chunks;
 }
 
+// INVALID_ARGUMENT for a snapshot cadence < 0 or bands that are not distinct values 0..2.
+grpc::Status CheckWatchRequest(const v1::WatchJobRequest& request) {
+  if (request.snapshot_every() < 0) {
+    return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                        absl::StrCat("snapshot_every must be >= 0, not ", request.snapshot_every()));
+  }
+  bool seen[3] = {false, false, false};
+  for (int band : request.bands()) {
+    if (band < 0 || band > 2 || seen[band]) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          absl::StrCat("bands must be distinct values of 0 (red), 1 (green), "
+                                       "2 (blue); got ", band));
+    }
+    seen[band] = true;
+  }
+  return grpc::Status::OK;
+}
+
 // A unary call: the token check on the reactor thread, `work` on the work queue.
 template <typename Work>
 grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const std::string& token,
@@ -190,6 +208,9 @@ grpc::ServerWriteReactor<v1::JobEvent>* RadiosityService::WatchJob(
     grpc::CallbackServerContext* context, const v1::WatchJobRequest* request) {
   if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
     return new ErrorWriteReactor<v1::JobEvent>(auth);
+  }
+  if (grpc::Status valid = CheckWatchRequest(*request); !valid.ok()) {
+    return new ErrorWriteReactor<v1::JobEvent>(valid);
   }
   absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request->job_id());
   if (!hub.ok()) return new ErrorWriteReactor<v1::JobEvent>(ToGrpcStatus(hub.status()));

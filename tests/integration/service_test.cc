@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,7 +36,7 @@ const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
 const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
 
 class ServiceTest : public ::testing::Test {
- protected:
+ public:
   void SetUp() override {
     char pattern[] = "/tmp/radflux_it_XXXXXX";
     data_dir_ = mkdtemp(pattern);
@@ -115,7 +118,8 @@ class ServiceTest : public ::testing::Test {
   }
 
   // The per-patch radiosity of a finished job, exactly as the server sent it.
-  grpc::Status Result(const std::string& job_id, std::vector<double>* radiosity) {
+  grpc::Status Result(const std::string& job_id, std::vector<double>* radiosity,
+                      std::string* report = nullptr) {
     v1::GetResultRequest request;
     request.set_job_id(job_id);
     auto context = Context();
@@ -126,6 +130,7 @@ class ServiceTest : public ::testing::Test {
         radiosity->insert(radiosity->end(), chunk.patches().radiosity().begin(),
                           chunk.patches().radiosity().end());
       }
+      if (report && chunk.part_case() == v1::ResultChunk::kReportJson) *report = chunk.report_json();
     }
     return reader->Finish();
   }
@@ -272,6 +277,81 @@ TEST_F(ServiceTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
   ExpectBitIdentical(again, served);
 }
 
+// Starts a job, kills the server (kill -9) once the solve has reported iteration 5 (the
+// server checkpoints every iteration and sleeps 20 ms after each, so the kill lands mid
+// solve), restarts it (no delay) and returns the finished job's B. *first_iteration is the
+// first solve iteration the restarted server reported: >= 5 proves it resumed from the
+// checkpoint of iteration 4 or later (iteration 5's may not be on disk when the kill lands).
+std::vector<double> KillDuringSolveAndResume(ServiceTest& t, const v1::SolveOptions& options,
+                                             int* first_iteration, std::string* report) {
+  const std::vector<std::string> flags = {"--checkpoint-seconds", "0", "--solve-delay-ms", "20"};
+  t.StartServer(flags);
+  const std::string sha = t.UploadCornell();
+  v1::Job job;
+  EXPECT_TRUE(t.Submit(options, &job, sha).ok());
+  const std::vector<v1::JobEvent> before = t.Watch(job.job_id(), [](const v1::JobEvent& e) {
+    return e.phase() == v1::PHASE_SOLVE && e.progress().iteration() >= 5;
+  });
+  EXPECT_NE(before.back().state(), v1::JOB_STATE_SUCCEEDED);
+  t.server_->Kill();
+  EXPECT_TRUE(fs::exists(t.data_dir_ + "/jobs/" + job.job_id() + "/checkpoint.rfb"));
+
+  t.StartServer();
+  const std::vector<v1::JobEvent> after = t.Watch(job.job_id());
+  EXPECT_EQ(after.back().state(), v1::JOB_STATE_SUCCEEDED) << after.back().message();
+  *first_iteration = 0;
+  for (const v1::JobEvent& e : after) {
+    if (e.phase() == v1::PHASE_SOLVE && e.progress().iteration() > 0) {
+      *first_iteration = e.progress().iteration();
+      break;
+    }
+  }
+  std::vector<double> served;
+  EXPECT_TRUE(t.Result(job.job_id(), &served, report).ok());
+  return served;
+}
+
+TEST_F(ServiceTest, KillNineDuringSouthwellSolveResumesBitIdentical) {
+  v1::SolveOptions options = SmallOptions(1200, "southwell");
+  options.set_tolerance(1e-5);
+  int first_iteration = 0;
+  std::string report;
+  const std::vector<double> served =
+      KillDuringSolveAndResume(*this, options, &first_iteration, &report);
+  EXPECT_GE(first_iteration, 5) << "the restarted solve resumes from its checkpoint";
+  // Southwell's checkpoint is its whole state (B and the unshot radiosity): the resumed
+  // run computes exactly what an uninterrupted run computes.
+  ExpectBitIdentical(served, InProcess(options));
+}
+
+TEST_F(ServiceTest, KillNineDuringCgSolveResumesWithinTolerance) {
+  constexpr double kTolerance = 1e-6;
+  v1::SolveOptions options = SmallOptions(1200, "cg");
+  options.set_tolerance(kTolerance);
+  int first_iteration = 0;
+  std::string report;
+  const std::vector<double> served =
+      KillDuringSolveAndResume(*this, options, &first_iteration, &report);
+  EXPECT_GE(first_iteration, 5) << "the restarted solve resumes from its checkpoint";
+  // CG warm-starts from the checkpointed B (its Krylov space restarts), so the result is
+  // not bit-identical. Invariants: the resumed result converged (relative residual <=
+  // tolerance, as the report says), and it differs from the uninterrupted run by at most
+  // 10 * tolerance relative to the largest B of its band, per patch and band.
+  const nlohmann::json json = nlohmann::json::parse(report);
+  EXPECT_TRUE(json["solve"]["converged"].get<bool>());
+  EXPECT_LE(json["solve"]["residual"].get<double>(), kTolerance);
+  const std::vector<double> reference = InProcess(options);
+  ASSERT_EQ(served.size(), reference.size());
+  std::array<double, 3> band_max{};
+  for (size_t i = 0; i < reference.size(); ++i)
+    band_max[i % 3] = std::max(band_max[i % 3], std::abs(reference[i]));
+  double worst = 0;
+  for (size_t i = 0; i < reference.size(); ++i)
+    worst = std::max(worst, std::abs(served[i] - reference[i]) / band_max[i % 3]);
+  EXPECT_LE(worst, 10 * kTolerance);
+  EXPECT_GT(worst, 0.0) << "bit-identical would mean the resume did not warm-start";
+}
+
 TEST_F(ServiceTest, BadInputGetsTheRightStatusAndTheServerKeepsServing) {
   StartServer({"--max-patches", "100000"});
   v1::SceneRef ref;
@@ -308,6 +388,93 @@ TEST_F(ServiceTest, BadInputGetsTheRightStatusAndTheServerKeepsServing) {
   v1::ListJobsResponse list;
   EXPECT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
   EXPECT_EQ(list.jobs_size(), 0) << "refused submits leave no job behind";
+}
+
+TEST_F(ServiceTest, CorruptOversizeAndAbsurdInputGetTheirStatusAndTheServerKeepsServing) {
+  StartServer({"--max-upload", "4096"});
+  v1::SceneRef ref;
+  // A chunk altered in transit: the content no longer hashes to the declared address.
+  std::string corrupt = kObj;
+  corrupt[1500] ^= 0x20;
+  grpc::Status s = Upload(corrupt, kMtl, &ref, SceneContentHash(kObj, kMtl));
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::DATA_LOSS);
+  EXPECT_NE(s.error_message().find("hashes to " + SceneContentHash(corrupt, kMtl)),
+            std::string::npos) << s.error_message();
+
+  // Beyond --max-upload (4096 bytes): refused on the header, before the data.
+  const std::string big = kObj + "#" + std::string(4000, 'x') + "\n";
+  s = Upload(big, kMtl, &ref, SceneContentHash(big, kMtl));
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(s.error_message().find("upload limit of 4096 bytes (--max-upload)"), std::string::npos)
+      << s.error_message();
+
+  // A small scene that fits, then absurd options, each refused with the option named.
+  const std::string obj =
+      "usemtl lamp\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
+      "usemtl wall\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 5 8 7 6\n";
+  const std::string mtl = "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl wall\nKd 0.8 0.8 0.8\n";
+  s = Upload(obj, mtl, &ref);
+  ASSERT_TRUE(s.ok()) << s.error_message();
+  const std::string sha = ref.sha256();
+  struct Case {
+    std::function<void(v1::SolveOptions&)> set;
+    std::string named;
+  };
+  const std::vector<Case> cases = {
+      {[](v1::SolveOptions& o) { o.set_tolerance(std::nan("")); }, "--tolerance"},
+      {[](v1::SolveOptions& o) { o.set_tolerance(-1); }, "--tolerance"},
+      {[](v1::SolveOptions& o) { o.set_max_iterations(-1); }, "--max-iterations"},
+      {[](v1::SolveOptions& o) { o.set_target_patches(-5); }, "--patches"},
+      {[](v1::SolveOptions& o) { o.set_max_edge(INFINITY); o.clear_target_patches(); },
+       "--max-edge"},
+      {[](v1::SolveOptions& o) { o.set_cutoff(2); }, "--cutoff"},
+      {[](v1::SolveOptions& o) { o.set_block_size(-1); }, "block size"},
+      {[](v1::SolveOptions& o) { o.set_form_factor_method("hemicube"); o.set_hemicube_res(3); },
+       "--hemicube-res"},
+  };
+  v1::Job job;
+  for (const Case& c : cases) {
+    v1::SolveOptions options = SmallOptions(10, "cg");
+    c.set(options);
+    s = Submit(options, &job, sha);
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << c.named;
+    EXPECT_NE(s.error_message().find(c.named), std::string::npos) << s.error_message();
+  }
+
+  // Absurd watch requests: negative cadence, out-of-range or repeated bands.
+  for (const std::vector<int>& bands : {std::vector<int>{7}, std::vector<int>{-1}, {0, 0}}) {
+    v1::WatchJobRequest request;
+    request.set_job_id("job-unknown");
+    for (int b : bands) request.add_bands(b);
+    auto context = Context();
+    auto reader = stub_->WatchJob(context.get(), request);
+    v1::JobEvent event;
+    EXPECT_FALSE(reader->Read(&event));
+    s = reader->Finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("bands must be"), std::string::npos) << s.error_message();
+  }
+  {
+    v1::WatchJobRequest request;
+    request.set_job_id("job-unknown");
+    request.set_snapshot_every(-3);
+    auto context = Context();
+    auto reader = stub_->WatchJob(context.get(), request);
+    v1::JobEvent event;
+    EXPECT_FALSE(reader->Read(&event));
+    s = reader->Finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("snapshot_every"), std::string::npos) << s.error_message();
+  }
+
+  // The server keeps serving: a valid job runs to SUCCEEDED and is the only job listed.
+  ASSERT_TRUE(Submit(SmallOptions(10, "cg"), &job, sha).ok());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  v1::ListJobsResponse list;
+  ASSERT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
+  EXPECT_EQ(list.jobs_size(), 1);
 }
 
 TEST_F(ServiceTest, MemoryLimitRefusesBeforeAnyWork) {
