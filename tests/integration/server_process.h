@@ -17,6 +17,7 @@ class ServerProcess {
   ~ServerProcess();
 
   const std::string& address() const { return address_; }
+  pid_t pid() const { return pid_; }
   // Graceful stop (SIGTERM); returns the exit status.
   int Stop();
   // kill -9, no chance to clean up.

@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <array>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -475,6 +478,108 @@ TEST_F(ServiceTest, CorruptOversizeAndAbsurdInputGetTheirStatusAndTheServerKeeps
   v1::ListJobsResponse list;
   ASSERT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
   EXPECT_EQ(list.jobs_size(), 1);
+}
+
+// Resident memory of a process in KiB (VmRSS of /proc/PID/status), 0 if unreadable.
+int64_t ResidentKiB(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) return std::stoll(line.substr(6));
+  }
+  return 0;
+}
+
+// Ten jobs at once and fifty watchers asking for a float32 snapshot every iteration:
+// 20 read as fast as they can, 15 sleep 20 ms between reads, 10 read one event and then
+// stop reading until every job has finished, 5 disconnect after three events. Asserts:
+// every job ends SUCCEEDED while the stalled watchers are not reading (so no watcher holds
+// a job back); every watcher that stays gets a gap-free event history ending SUCCEEDED;
+// the server's resident memory stays below 1 GiB.
+TEST_F(ServiceTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
+  StartServer({"--jobs", "10"});
+  const int64_t rss_before = ResidentKiB(server_->pid());
+  const std::string sha = UploadCornell();
+  std::vector<std::string> jobs;
+  for (int i = 0; i < 10; ++i) {
+    v1::SolveOptions options = SmallOptions(500, i % 2 ? "cg" : "jacobi");
+    options.set_seed(100 + i);
+    v1::Job job;
+    ASSERT_TRUE(Submit(options, &job, sha).ok());
+    jobs.push_back(job.job_id());
+  }
+  std::mutex mu;
+  std::condition_variable all_done_cv;
+  bool all_done = false;
+  std::vector<std::string> failures;
+  const auto watcher = [&](int w) {
+    // Its own connection, so a watcher that does not read fills only its own windows.
+    grpc::ChannelArguments args;
+    args.SetInt("radflux.test.watcher", w);
+    auto stub = v1::Radiosity::NewStub(grpc::CreateCustomChannel(
+        server_->address(), grpc::InsecureChannelCredentials(), args));
+    v1::WatchJobRequest request;
+    request.set_job_id(jobs[static_cast<size_t>(w % 10)]);
+    request.set_snapshot_every(1);
+    request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT32);
+    grpc::ClientContext context;
+    auto reader = stub->WatchJob(&context, request);
+    v1::JobEvent event;
+    uint64_t last = 0;
+    int read = 0;
+    v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
+    while (reader->Read(&event)) {
+      ++read;
+      if (!event.has_snapshot()) {
+        if (event.sequence() != last + 1) {
+          std::lock_guard lock(mu);
+          failures.push_back("watcher " + std::to_string(w) + ": sequence gap");
+        }
+        last = event.sequence();
+        state = event.state();
+      }
+      if (w >= 45 && read == 3) {  // disconnects early
+        context.TryCancel();
+        break;
+      }
+      if (w >= 35 && w < 45 && read == 1) {  // stalls until every job has finished
+        std::unique_lock lock(mu);
+        all_done_cv.wait(lock, [&] { return all_done; });
+      }
+      if (w >= 20 && w < 35) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    reader->Finish();
+    if (w < 45 && state != v1::JOB_STATE_SUCCEEDED) {
+      std::lock_guard lock(mu);
+      failures.push_back("watcher " + std::to_string(w) + ": ended " + v1::JobState_Name(state));
+    }
+  };
+  std::vector<std::thread> watchers;
+  for (int w = 0; w < 50; ++w) watchers.emplace_back(watcher, w);
+
+  // Every job finishes while ten watchers are not reading at all.
+  for (;;) {
+    v1::ListJobsResponse list;
+    ASSERT_TRUE(stub_->ListJobs(Context().get(), {}, &list).ok());
+    int succeeded = 0;
+    for (const v1::Job& job : list.jobs()) {
+      ASSERT_NE(job.state(), v1::JOB_STATE_FAILED) << job.message();
+      succeeded += job.state() == v1::JOB_STATE_SUCCEEDED;
+    }
+    if (succeeded == 10) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  {
+    std::lock_guard lock(mu);
+    all_done = true;
+  }
+  all_done_cv.notify_all();
+  for (std::thread& t : watchers) t.join();
+  EXPECT_TRUE(failures.empty()) << failures.front();
+  const int64_t rss_after = ResidentKiB(server_->pid());
+  EXPECT_GT(rss_before, 0);
+  EXPECT_LT(rss_after, 1 << 20) << "server RSS " << rss_after << " KiB (was " << rss_before << ")";
+  std::cerr << "server RSS before " << rss_before << " KiB, after " << rss_after << " KiB\n";
 }
 
 TEST_F(ServiceTest, MemoryLimitRefusesBeforeAnyWork) {
