@@ -1,12 +1,17 @@
 // ray_rate [PATCHES]: rays per second of each form-factor builder on the Cornell box
-// against Embree's own rate for the same rays in a bare rtcIntersect1 / rtcOccluded1
-// loop on this machine. Median of 5 runs each; one line per method.
+// against Embree's own rate for the same kind of rays in a bare rtcIntersect1 /
+// rtcOccluded1 loop on this machine. The bare loop and the builder run alternately, 7
+// times; the ratio reported is the median of the 7 per-pair ratios (robust to a shared,
+// noisy machine), with the median rates beside it.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "solver/core/parallel.h"
@@ -21,80 +26,114 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-template <typename F>
-double MedianSeconds(F f) {
-  std::vector<double> t;
-  for (int r = 0; r < 5; ++r) {
-    const auto s = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count());
-  }
-  return Median(t);
+double Seconds(const std::function<void()>& f) {
+  const auto s = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count();
 }
 
-// The bare loop: rays from patch centroids in cosine-weighted directions, traced with
-// rtcIntersect1 (closest hit, as monte_carlo and hemicube do) or rtcOccluded1.
-double BareRate(RTCScene scene, const PatchMesh& mesh, bool occluded, int per_patch) {
-  std::vector<RTCRayHit> rays;
-  for (uint32_t p = 0; p < mesh.size(); ++p) {
-    const Frame frame = Frame::FromNormal(mesh.patches[p].normal);
-    for (int k = 0; k < per_patch; ++k) {
-      const Vec3 d = frame.ToWorld(SampleCosineHemisphere(MultiJitteredSample(k, per_patch, p)));
-      const Vec3 o = mesh.patches[p].centroid + mesh.patches[p].normal * 0.01;
+// Records every ray a builder casts (then forwards it), so that the bare loop can
+// trace exactly the same rays.
+class RecordingCaster final : public RayCaster {
+ public:
+  explicit RecordingCaster(const RayCaster& inner) : inner_(inner) {}
+  Hit Intersect(const Ray& ray) const override { return Record(ray, false), inner_.Intersect(ray); }
+  bool Occluded(const Ray& ray) const override { return Record(ray, true), inner_.Occluded(ray); }
+  void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const override {
+    for (const Ray& r : rays) Record(r, false);
+    inner_.IntersectBatch(rays, hits);
+  }
+  std::vector<std::pair<Ray, bool>> rays;  // (ray, occlusion query)
+
+ private:
+  void Record(const Ray& ray, bool occluded) const {
+#pragma omp critical(record_ray)
+    const_cast<RecordingCaster*>(this)->rays.push_back({ray, occluded});
+  }
+  const RayCaster& inner_;
+};
+
+// The bare loop: one rtcIntersect1 or rtcOccluded1 per recorded ray, nothing else.
+class BareLoop {
+ public:
+  BareLoop(RTCScene scene, const std::vector<std::pair<Ray, bool>>& rays) : scene_(scene) {
+    for (const auto& [ray, occluded] : rays) {
       RTCRayHit rh{};
-      rh.ray = {float(o.x), float(o.y), float(o.z), 0.f, float(d.x), float(d.y), float(d.z), 0.f,
-                occluded ? 500.f : 1e30f, 0xffffffffu, 0, 0};
+      rh.ray = {float(ray.origin.x), float(ray.origin.y), float(ray.origin.z), float(ray.t_near),
+                float(ray.direction.x), float(ray.direction.y), float(ray.direction.z), 0.f,
+                std::isinf(ray.t_far) ? 1e30f : float(ray.t_far), 0xffffffffu, 0, 0};
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rays.push_back(rh);
+      rays_.push_back(rh);
+      occluded_.push_back(occluded);
     }
   }
-  const double seconds = MedianSeconds([&] {
+  // Rays per second of one pass over all rays.
+  double Rate() const {
+    return rays_.size() / Seconds([&] {
 #pragma omp parallel for schedule(dynamic, 1024)
-    for (size_t i = 0; i < rays.size(); ++i) {
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      RTCRayHit rh = rays[i];
-      if (occluded) {
-        rtcOccluded1(scene, &context, &rh.ray);
-      } else {
-        rtcIntersect1(scene, &context, &rh);
-      }
-    }
-  });
-  return rays.size() / seconds;
-}
+             for (size_t i = 0; i < rays_.size(); ++i) {
+               RTCIntersectContext context;
+               rtcInitIntersectContext(&context);
+               RTCRayHit rh = rays_[i];
+               if (occluded_[i]) {
+                 rtcOccluded1(scene_, &context, &rh.ray);
+               } else {
+                 rtcIntersect1(scene_, &context, &rh);
+               }
+             }
+           });
+  }
 
-int Run(int patches) {
+ private:
+  RTCScene scene_;
+  std::vector<RTCRayHit> rays_;
+  std::vector<uint8_t> occluded_;
+};
+
+int Run(int patches, const char* only, int knob) {
   absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
   JobOptions options;
   options.mesh.target_patches = patches;
   auto job = PrepareJob(*scene, options);
   if (!job.ok()) return 1;
   const PatchMesh& mesh = (*job)->mesh;
-  const double bare_hit = BareRate((*job)->caster->scene(), mesh, false, 64);
-  const double bare_occ = BareRate((*job)->caster->scene(), mesh, true, 64);
-  std::printf("patches %zu threads %d\nbare rtcIntersect1 %.3g rays/s, bare rtcOccluded1 %.3g rays/s\n",
-              mesh.size(), DefaultThreadCount(), bare_hit, bare_occ);
-  struct Case { FormFactorMethod method; int knob; double bare; };
-  for (const Case& c : {Case{FormFactorMethod::kMonteCarlo, 64, bare_hit},
-                        Case{FormFactorMethod::kHemicube, 8, bare_hit},
-                        Case{FormFactorMethod::kAnalytic, 1, bare_occ}}) {
+  std::printf("patches %zu threads %d\n", mesh.size(), DefaultThreadCount());
+  struct Case {
+    FormFactorMethod method;
+    int knob;
+  };
+  for (const Case& c : {Case{FormFactorMethod::kMonteCarlo, 64},
+                        Case{FormFactorMethod::kHemicube, 8}, Case{FormFactorMethod::kAnalytic, 1}}) {
+    if (only && MethodName(c.method) != only) continue;
     FormFactorOptions f;
     f.method = c.method;
-    f.rays = c.knob;
-    f.hemicube_res = c.knob;
-    f.samples = c.knob;
+    const int k = knob > 0 ? knob : c.knob;
+    f.rays = k;
+    f.hemicube_res = k;
+    f.samples = k;
     RowContext context = (*job)->rows;
+    // Pure ray work: monte_carlo without analytic emitter columns; analytic on every
+    // 50th row only (it is O(n^2)).
     if (c.method == FormFactorMethod::kMonteCarlo) context.emitter.assign(mesh.size(), 0);
-    if (c.method == FormFactorMethod::kAnalytic) {  // O(n^2): time every 50th row only
+    if (c.method == FormFactorMethod::kAnalytic) {
       for (size_t p = 0; p < mesh.size(); ++p) context.needs_row[p] = p % 50 == 0;
     }
+    RecordingCaster recorder(*(*job)->caster);
+    RowContext recording = context;
+    recording.caster = &recorder;
+    (void)BuildFormFactors(recording, f);
+    const BareLoop bare((*job)->caster->scene(), recorder.rays);
+    std::vector<double> ratios, rates, bare_rates;
     uint64_t rays = 0;
-    const double seconds = MedianSeconds([&] { rays = BuildFormFactors(context, f)->stats.rays; });
-    const double rate = rays / seconds;
-    std::printf("%-12s knob %3d: %.3g rays/s = %.0f%% of bare Embree (%.3f s for %llu rays)\n",
-                std::string(MethodName(c.method)).c_str(), c.knob, rate, 100 * rate / c.bare,
-                seconds, static_cast<unsigned long long>(rays));
+    for (int rep = 0; rep < 7; ++rep) {
+      bare_rates.push_back(bare.Rate());
+      rates.push_back(1 / Seconds([&] { rays = BuildFormFactors(context, f)->stats.rays; }));
+      rates.back() *= rays;
+      ratios.push_back(rates.back() / bare_rates.back());
+    }
+    std::printf("%-12s knob %3d: %.3g rays/s, bare Embree %.3g rays/s: %.0f%% (median of 7 pairs)\n",
+                std::string(MethodName(c.method)).c_str(), k, Median(rates),
+                Median(bare_rates), 100 * Median(ratios));
   }
   return 0;
 }
@@ -102,4 +141,8 @@ int Run(int patches) {
 }  // namespace
 }  // namespace radflux
 
-int main(int argc, char** argv) { return radflux::Run(argc > 1 ? std::atoi(argv[1]) : 10000); }
+// Usage: ray_rate [PATCHES [METHOD|all [KNOB]]]
+int main(int argc, char** argv) {
+  const char* only = argc > 2 && std::string(argv[2]) != "all" ? argv[2] : nullptr;
+  return radflux::Run(argc > 1 ? std::atoi(argv[1]) : 10000, only, argc > 3 ? std::atoi(argv[3]) : 0);
+}

@@ -52,12 +52,18 @@ class HemicubeBuilder final : public RowBuilder {
     const Vec3 s = Normalize(mesh.Vertex(i, 1) - mesh.Vertex(i, 0));
     const Frame frame{s, Cross(patch.normal, s), patch.normal};
     const Vec3 origin = patch.centroid + patch.normal * context_.ray_epsilon;
-    for (const Cell& cell : cells_) {
-      const Vec3 direction = frame.ToWorld(cell.direction);
-      const Hit hit = context_.caster->Intersect({origin, direction});
-      if (hit.patch == kNoPatch) continue;
-      if (Dot(direction, mesh.patches[hit.patch].normal) >= 0) continue;
-      row.Add(hit.patch, cell.delta_form_factor);
+    thread_local std::vector<Ray> ray_batch;  // per-thread scratch, reused row to row
+    thread_local std::vector<Hit> hit_batch;
+    ray_batch.resize(cells_.size());
+    hit_batch.resize(cells_.size());
+    for (size_t c = 0; c < cells_.size(); ++c) {
+      ray_batch[c] = {origin, frame.ToWorld(cells_[c].direction)};
+    }
+    context_.caster->IntersectBatch(ray_batch, hit_batch);
+    for (size_t c = 0; c < cells_.size(); ++c) {
+      const uint32_t j = hit_batch[c].patch;
+      if (j == kNoPatch || Dot(ray_batch[c].direction, mesh.patches[j].normal) >= 0) continue;
+      row.Add(j, cells_[c].delta_form_factor);
     }
     return cells_.size();
   }

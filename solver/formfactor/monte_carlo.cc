@@ -46,15 +46,22 @@ class MonteCarloBuilder final : public RowBuilder {
     const Vec3 lift = patch.normal * context_.ray_epsilon;
     const double weight = 1.0 / static_cast<double>(positions_.size());
     const PatchPointSampler sample_point(mesh, i);
+    thread_local std::vector<Ray> ray_batch;  // per-thread scratch, reused row to row
+    thread_local std::vector<Hit> hit_batch;
+    ray_batch.resize(positions_.size());
+    hit_batch.resize(positions_.size());
     for (size_t r = 0; r < positions_.size(); ++r) {
-      const Vec3 origin =
+      ray_batch[r].origin =
           sample_point({Wrap(positions_[r].x + ps.x), Wrap(positions_[r].y + ps.y)}) + lift;
-      const Vec3 direction = frame.ToWorld(
+      ray_batch[r].direction = frame.ToWorld(
           SampleCosineHemisphere({Wrap(directions_[r].x + ds.x), Wrap(directions_[r].y + ds.y)}));
-      const Hit hit = context_.caster->Intersect({origin, direction});
-      if (hit.patch == kNoPatch || context_.emitter[hit.patch]) continue;
-      if (Dot(direction, mesh.patches[hit.patch].normal) >= 0) continue;  // back side: absorbed
-      row.Add(hit.patch, weight);
+    }
+    context_.caster->IntersectBatch(ray_batch, hit_batch);
+    for (size_t r = 0; r < ray_batch.size(); ++r) {
+      const uint32_t j = hit_batch[r].patch;
+      if (j == kNoPatch || context_.emitter[j]) continue;
+      if (Dot(ray_batch[r].direction, mesh.patches[j].normal) >= 0) continue;  // back side: absorbed
+      row.Add(j, weight);
     }
     uint64_t rays = positions_.size();
     if (!emitters_.empty()) {

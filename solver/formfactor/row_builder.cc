@@ -32,6 +32,7 @@ RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, dou
                        uint32_t first, uint32_t count, RowAccumulator& row, RowBlockStats& stats) {
   RowBlock block;
   block.first_row = first;
+  block.row_begin.reserve(count + 1);
   for (uint32_t i = first; i < first + count; ++i) {
     if (context.needs_row[i]) stats.rays += builder.BuildRow(i, row);
     const double dropped = row.Flush(cutoff, block);
@@ -84,6 +85,9 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
 
   FormFactorResult result;
   result.matrix.cols = n;
+  size_t nnz = 0;
+  for (const RowBlock& block : blocks) nnz += block.col.size();
+  result.matrix.Reserve(n, nnz);
   for (uint32_t b = 0; b < block_count; ++b) {
     result.matrix.Append(blocks[b]);
     result.stats.Merge(block_stats[b]);

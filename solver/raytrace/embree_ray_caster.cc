@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <vector>
 
 namespace radflux {
 namespace {
@@ -94,6 +95,37 @@ Hit EmbreeRayCaster::Intersect(const Ray& ray) const {
   rtcIntersect1(scene_, &context, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {rayhit.hit.primID, rayhit.ray.tfar, rayhit.hit.u, rayhit.hit.v};
+}
+
+void EmbreeRayCaster::IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const {
+  thread_local std::vector<RTCRayHit> stream;  // per-thread scratch
+  stream.resize(rays.size());
+  for (size_t k = 0; k < rays.size(); ++k) {
+    stream[k].ray = ToRTCRay(rays[k]);
+    stream[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    stream[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
+                 sizeof(RTCRayHit));
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const RTCRayHit& rh = stream[k];
+    hits[k] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                  ? Hit{}
+                  : Hit{rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v};
+  }
+}
+
+void EmbreeRayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
+  thread_local std::vector<RTCRay> stream;
+  stream.resize(rays.size());
+  for (size_t k = 0; k < rays.size(); ++k) stream[k] = ToRTCRay(rays[k]);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
+                sizeof(RTCRay));
+  for (size_t k = 0; k < rays.size(); ++k) occluded[k] = stream[k].tfar < 0;
 }
 
 bool EmbreeRayCaster::Occluded(const Ray& ray) const {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include "solver/core/vec3.h"
 
@@ -31,6 +32,12 @@ class RayCaster {
   virtual Hit Intersect(const Ray& ray) const = 0;
   // True when any patch lies in (t_near, t_far).
   virtual bool Occluded(const Ray& ray) const = 0;
+
+  // Many rays at once (hits.size() == rays.size()): the same answers as Intersect on each
+  // ray, but an implementation may trace them as a stream. The default loops.
+  virtual void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const;
+  // occluded[k] = Occluded(rays[k]), possibly as a stream.
+  virtual void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 };
 
 }  // namespace radflux

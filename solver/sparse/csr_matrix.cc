@@ -23,6 +23,12 @@ float CsrMatrix::At(uint32_t i, uint32_t j) const {
   return value[row_begin[i] + static_cast<uint64_t>(it - c.begin())];
 }
 
+void CsrMatrix::Reserve(uint32_t row_count, size_t nnz) {
+  row_begin.reserve(row_count + 1);
+  col.reserve(nnz);
+  value.reserve(nnz);
+}
+
 void CsrMatrix::Append(const RowBlock& block) {
   assert(block.first_row == rows);
   const uint64_t base = col.size();
