@@ -1,5 +1,7 @@
 #include "client/solve_command.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -70,6 +72,9 @@ absl::Status RunSolve(const SolveArgs& args) {
     report["seconds"]["load"] = load_seconds;
     report["seconds"]["output"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    report["peak_rss_bytes"] = static_cast<int64_t>(usage.ru_maxrss) * 1024;
     if (absl::Status s = WriteReport(args.output.report, report); !s.ok()) return s;
   }
   return absl::OkStatus();
