@@ -225,11 +225,13 @@ void PrintEvent(const v1::JobEvent& event) {
 }
 
 // Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
-// snapshots_dir (if set); returns 0 when it SUCCEEDED.
+// snapshots_dir (if set); snapshots are asked every `snapshot_every` iterations (without a
+// directory they are only counted). Returns 0 when the job SUCCEEDED.
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
-             const OutputArgs& args) {
+             const OutputArgs& args, int snapshot_every = 0) {
   v1::WatchJobRequest request;
   request.set_job_id(job_id);
+  request.set_snapshot_every(snapshot_every);
   std::optional<JobGeometry> geometry;
   if (!snapshots_dir.empty()) {
     v1::Job job;
@@ -237,7 +239,7 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
     absl::StatusOr<JobGeometry> fetched = FetchGeometry(client, job);
     if (!fetched.ok()) return Fail(fetched.status(), client.flags());
     geometry = *std::move(fetched);
-    request.set_snapshot_every(1);
+    request.set_snapshot_every(std::max(1, snapshot_every));
     request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT32);
     std::error_code error;
     fs::create_directories(snapshots_dir, error);
@@ -247,8 +249,10 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   v1::JobEvent event;
   v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
   std::string message;
+  int64_t snapshots = 0;
   while (reader->Read(&event)) {
     if (event.has_snapshot()) {
+      ++snapshots;
       if (!geometry) continue;
       if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
           !s.ok()) {
@@ -263,6 +267,7 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   }
   const grpc::Status status = reader->Finish();
   if (!status.ok()) return Report(status, client.flags());
+  if (request.snapshot_every() > 0) std::cerr << snapshots << " snapshots received\n";
   if (state != v1::JOB_STATE_SUCCEEDED) {
     std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(state)
               << (message.empty() ? "" : ": " + message) << "\n";
@@ -410,9 +415,14 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   auto job_id = std::make_shared<std::string>();
   auto snapshots = std::make_shared<std::string>();
   auto watch_args = std::make_shared<OutputArgs>();
+  auto snapshot_every = std::make_shared<int>(0);
   watch_cmd->add_option("job", *job_id, "job id")->required();
   watch_cmd->add_option("--snapshots", *snapshots,
                         "write each snapshot as a rendered PNG into DIR (camera flags apply)");
+  watch_cmd->add_option("--snapshot-every", *snapshot_every,
+                        "ask for a snapshot every N solver iterations (default with --snapshots: "
+                        "1; without it they are received and counted only)")
+      ->check(CLI::NonNegativeNumber);
   AddOutputFlags(*watch_cmd, watch_args->output);
   watch_cmd->add_option("--threads", watch_args->threads, "render threads (0 = all cores)");
   AddConnectionFlags(*watch_cmd, *c);
@@ -421,7 +431,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
       return void(exit_code = Fail(s, *c));
     }
     Client client(*c);
-    exit_code = WatchJob(client, *job_id, *snapshots, *watch_args);
+    exit_code = WatchJob(client, *job_id, *snapshots, *watch_args, *snapshot_every);
     const OutputFlags& f = watch_args->output;
     if (exit_code == 0 && (WantsGeometry(f) || !f.report.empty())) {
       exit_code = GetResult(client, *job_id, *watch_args);

@@ -200,6 +200,7 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
     std::lock_guard lock(mu_);
     if (auto it = running_.find(job_id); it != running_.end()) {
       it->second->cancel_requested = true;
+      it->second->cancelled = true;
       it->second->stop = true;
       spdlog::info("job {}: cancel requested", job_id);
       return *job;
@@ -341,6 +342,7 @@ void JobManager::RunOne(const std::string& job_id) {
   context.store = &store_;
   context.hub = hub.get();
   context.stop = &running->stop;
+  context.cancelled = &running->cancelled;
   context.checkpoint_seconds = options_.checkpoint_seconds;
   context.solve_delay_ms = options_.solve_delay_ms;
   const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();

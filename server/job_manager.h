@@ -69,6 +69,7 @@ class JobManager {
  private:
   struct Running {
     std::atomic<bool> stop{false};
+    std::atomic<bool> cancelled{false};  // stop is for a cancel: the job's files will go
     bool cancel_requested = false;  // guarded by mu_
   };
 

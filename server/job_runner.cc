@@ -12,6 +12,7 @@
 #include "solver/scene/obj_loader.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
+#include "server/row_block_writer.h"
 
 namespace radflux {
 namespace {
@@ -34,10 +35,10 @@ void PublishProgress(const RunContext& c, v1::Phase phase, const v1::Progress& p
 }
 
 // All row blocks of the job: stored ones are read back, missing ones built (in parallel)
-// and stored as each completes.
+// and handed to `writer` as each completes.
 absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
                                                  const FormFactorOptions& options,
-                                                 const RunContext& c) {
+                                                 const RunContext& c, RowBlockWriter& writer) {
   const auto start = Clock::now();
   const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
@@ -62,9 +63,8 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(prepared.rows, options);
   const int threads = c.threads > 0 ? c.threads : DefaultThreadCount();
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
-  std::mutex mu;  // guards done, rays, error and event publishing order
+  std::mutex mu;  // guards done, rays and event publishing order
   uint64_t rays = 0;
-  absl::Status error;
   ParallelFor(static_cast<int64_t>(missing.size()), 1, threads, [&](int64_t begin, int64_t end) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];
     if (!row) row = std::make_unique<RowAccumulator>(n);
@@ -74,9 +74,8 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
       const uint32_t count = std::min(block_size, n - first);
       StoredRowBlock& s = blocks[b];
       s.block = BuildRowBlock(*builder, prepared.rows, options.cutoff, first, count, *row, s.stats);
-      absl::Status put = c.store->PutRowBlock(job.job_id(), b, s);
+      writer.Put(b, s);
       std::lock_guard lock(mu);
-      if (!put.ok() && error.ok()) error = put;
       done += count;
       rays += s.stats.rays;
       v1::Progress progress;
@@ -88,7 +87,6 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
       PublishProgress(c, v1::PHASE_ROWS, progress);
     }
   });
-  if (!error.ok()) return error;
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   FormFactorResult result;
   result.matrix.cols = n;
@@ -194,13 +192,23 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
 
   c.on_phase(v1::PHASE_ROWS, n);
-  absl::StatusOr<FormFactorResult> rows = BuildStoredRows(job, p, options->form_factors, c);
+  // Stores row blocks behind the row builders, into the solve; on an early return
+  // (shutdown, error) it stores what is queued so that it is kept for the resume.
+  RowBlockWriter writer(*c.store, job.job_id());
+  struct FinishWriter {  // on every return: drop the queue when cancelled, else store it
+    RowBlockWriter& writer;
+    const RunContext& c;
+    ~FinishWriter() { writer.Finish(!(c.cancelled && c.cancelled->load())); }
+  } finish_writer{writer, c};
+  absl::StatusOr<FormFactorResult> rows =
+      BuildStoredRows(job, p, options->form_factors, c, writer);
   if (!rows.ok()) return rows.status();
 
   c.on_phase(v1::PHASE_SOLVE, n);
   const auto solve_start = Clock::now();
   absl::StatusOr<SolveResult> solved = SolveStored(job, p, rows->matrix, options->solver, c);
   if (!solved.ok()) return solved.status();
+  writer.Finish(/*drain=*/false);  // solved: the row blocks are about to be deleted
   // The report of `radflux solve` (MakeJobReport), from the same pieces.
   JobResult result;
   result.job = *std::move(prepared);

@@ -252,12 +252,17 @@ TEST_F(ServiceTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
   v1::Job job;
   ASSERT_TRUE(Submit(options, &job, sha).ok());
   Watch(job.job_id(), [](const v1::JobEvent& e) { return e.progress().rows_done() >= 64; });
+  // Blocks are stored behind the row builders: kill once the first one is on disk.
+  const auto stored_blocks = [&] {
+    size_t blocks = 0;
+    for (const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id())) {
+      blocks += f.path().filename().string().rfind("rows_", 0) == 0;
+    }
+    return blocks;
+  };
+  while (stored_blocks() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   server_->Kill();
-  size_t stored_blocks = 0;
-  for (const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id())) {
-    stored_blocks += f.path().filename().string().rfind("rows_", 0) == 0;
-  }
-  EXPECT_GT(stored_blocks, 0u) << "row blocks survive kill -9";
+  EXPECT_GT(stored_blocks(), 0u) << "row blocks survive kill -9";
 
   StartServer();
   v1::ListJobsRequest list_request;
