@@ -32,6 +32,16 @@ std::pair<int, int> FaceSteps(const std::vector<Vec3>& p, double h) {
   return {n, n};
 }
 
+// Emitters are meshed no finer than kMaxEmitterSteps along an edge: their radiosity is
+// almost all their own uniform E, so finer patches buy nothing, and every emitter patch
+// costs an analytic column in every monte_carlo row.
+double FaceEdgeLength(const std::vector<Vec3>& p, bool emitter, double h) {
+  if (!emitter || h <= 0) return h;
+  double longest = 0;
+  for (size_t i = 0; i < p.size(); ++i) longest = std::max(longest, Length(p[(i + 1) % p.size()] - p[i]));
+  return std::max(h, longest / kMaxEmitterSteps);
+}
+
 int64_t FacePatchCount(const std::vector<Vec3>& p, double h) {
   const auto [nu, nv] = FaceSteps(p, h);
   if (p.size() == 4) return int64_t{nu} * nv;
@@ -124,14 +134,18 @@ double ChooseEdgeLength(const Scene& scene, const MeshOptions& options) {
   if (options.max_edge > 0) return options.max_edge;
   if (options.target_patches <= 0) return 0;
   std::vector<std::vector<Vec3>> polygons;
+  std::vector<bool> emitter;
   double longest = 0;
   for (const Face& face : scene.faces) {
     polygons.push_back(FacePolygon(scene, face));
+    emitter.push_back(scene.materials[face.material].IsEmitter());
     for (const Vec3& q : polygons.back()) longest = std::max(longest, Length(q - polygons.back()[0]));
   }
   auto count = [&](double h) {
     int64_t total = 0;
-    for (const auto& p : polygons) total += FacePatchCount(p, h);
+    for (size_t f = 0; f < polygons.size(); ++f) {
+      total += FacePatchCount(polygons[f], FaceEdgeLength(polygons[f], emitter[f], h));
+    }
     return total;
   };
   // Bisect (log scale) for the boundary where count(h) falls to <= target; pick the closer side.
@@ -156,7 +170,8 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
     mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
     const std::vector<Vec3> polygon = FacePolygon(scene, scene.faces[f]);
-    const auto [nu, nv] = FaceSteps(polygon, h);
+    const bool emitter = scene.materials[scene.faces[f].material].IsEmitter();
+    const auto [nu, nv] = FaceSteps(polygon, FaceEdgeLength(polygon, emitter, h));
     if (int64_t{nu} * nv > (int64_t{1} << 31)) {
       return absl::ResourceExhaustedError(absl::StrCat(scene.DescribeFace(f),
                                                        ": subdivision would exceed 2^31 patches"));

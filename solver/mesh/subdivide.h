@@ -10,6 +10,10 @@
 
 namespace radflux {
 
+// An emitting face is split into at most this many steps along each edge (see
+// FaceEdgeLength in subdivide.cc): its B is almost all its own E.
+inline constexpr int kMaxEmitterSteps = 8;
+
 struct MeshOptions {
   int64_t target_patches = 0;  // aim for this many patches in the scene (closest count wins)
   double max_edge = 0;         // or: no patch edge longer than this (scene units)
