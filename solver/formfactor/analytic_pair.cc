@@ -67,4 +67,17 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
   return sum / s;
 }
 
+uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
+                            std::span<const uint32_t> columns, int samples, uint64_t seed,
+                            RowAccumulator& row) {
+  const PatchMesh& mesh = *context.mesh;
+  const std::vector<Vec3> points = PatchSamplePoints(mesh, i, samples, seed);
+  uint64_t rays = 0;
+  for (uint32_t j : columns) {
+    if (!PatchesCanExchange(mesh, i, j)) continue;
+    row.Add(j, AnalyticPairFormFactor(context, i, points, j, seed, rays));
+  }
+  return rays;
+}
+
 }  // namespace radflux

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "solver/formfactor/row_builder.h"
@@ -22,5 +23,11 @@ std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, ui
 double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays);
+
+// Adds the analytic F_ij of row i for every j in `columns` that can exchange light with
+// i, from s = `samples` points on i; returns the shadow rays cast.
+uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
+                            std::span<const uint32_t> columns, int samples, uint64_t seed,
+                            RowAccumulator& row);
 
 }  // namespace radflux

@@ -63,15 +63,9 @@ class MonteCarloBuilder final : public RowBuilder {
       if (Dot(ray_batch[r].direction, mesh.patches[j].normal) >= 0) continue;  // back side: absorbed
       row.Add(j, weight);
     }
-    uint64_t rays = positions_.size();
-    if (!emitters_.empty()) {
-      const std::vector<Vec3> points = PatchSamplePoints(mesh, i, options_.samples, options_.seed);
-      for (uint32_t j : emitters_) {
-        if (!PatchesCanExchange(mesh, i, j)) continue;
-        row.Add(j, AnalyticPairFormFactor(context_, i, points, j, options_.seed, rays));
-      }
-    }
-    return rays;
+    if (emitters_.empty()) return ray_batch.size();
+    return ray_batch.size() +
+           AddAnalyticColumns(context_, i, emitters_, options_.samples, options_.seed, row);
   }
 
  private:

@@ -21,6 +21,10 @@ class RowAccumulator {
     value_[j] += v;
   }
 
+  // The row so far (read-only; for checks that need the double values before Flush).
+  double Value(uint32_t j) const { return value_[j]; }
+  const std::vector<uint32_t>& Touched() const { return touched_; }
+
   // Moves the row into `block` (ascending columns, entries >= cutoff) and clears it;
   // returns the sum of the entries the cut-off dropped.
   double Flush(double cutoff, RowBlock& block) {
