@@ -2,8 +2,10 @@
 // Transfer Configuration Factors), the references the row builders are tested against.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace radflux::testing {
 
@@ -42,6 +44,96 @@ inline double PointToCornerRectangle(double a, double b, double c) {
   const double A = a / c, B = b / c;
   const double sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
   return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * std::numbers::pi);
+}
+
+// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre recurrence).
+struct GaussLegendre {
+  std::vector<double> x, w;
+  explicit GaussLegendre(int n) {
+    for (int i = 1; i <= n; ++i) {
+      double z = std::cos(std::numbers::pi * (i - 0.25) / (n + 0.5)), dp = 1;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1, p1 = z;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (z * p1 - p0) / (z * z - 1);
+        const double dz = p1 / dp;
+        z -= dz;
+        if (std::abs(dz) < 1e-16) break;
+      }
+      x.push_back(z);
+      w.push_back(2 / ((1 - z * z) * dp * dp));
+    }
+  }
+};
+
+namespace detail {
+
+// u ln(u^2 + q2), 0 at u = q2 = 0.
+inline double ULog(double u, double q2) {
+  const double r = u * u + q2;
+  return r > 0 ? u * std::log(r) : 0;
+}
+
+// int_a^b ln(u^2 + q^2) du, q >= 0.
+inline double LogQuadratic(double a, double b, double q) {
+  auto f = [&](double u) { return ULog(u, q * q) - 2 * u + (q > 0 ? 2 * q * std::atan(u / q) : 0); };
+  return f(b) - f(a);
+}
+
+// int_0^l int_0^l ln r dy1 dy2 for two parallel, aligned segments of length l at distance d
+// (d = 0: the same segment, l^2 (ln l - 3/2)).
+inline double ParallelEdges(double l, double d) {
+  auto f1 = [&](double u) { return ULog(u, d * d) - 2 * u + (d > 0 ? 2 * d * std::atan(u / d) : 0); };
+  auto f2 = [&](double u) {
+    const double r = u * u + d * d;
+    return 0.5 * ((r > 0 ? r * std::log(r) : 0) - u * u);
+  };
+  return l * (f1(l) - f1(0)) - (f2(l) - f2(0));
+}
+
+// int_0^w int_0^h ln r dxi dx for segments from a common line-point pair at angle phi,
+// offset by t along the common edge: r^2 = x^2 + xi^2 - 2 x xi cos(phi) + t^2. The inner
+// integral is closed form; the outer one is Gauss-Legendre on intervals graded toward
+// x = 0, where (t = 0) the integrand has an x ln x corner.
+inline double ObliqueEdges(double w, double h, double phi, double t) {
+  static const GaussLegendre g(24);
+  const double c = std::cos(phi), s = std::sin(phi);
+  double sum = 0, b = w;
+  for (int level = 0; level < 48 && b > 0; ++level) {
+    const double a = level == 47 ? 0 : 0.5 * b;
+    for (size_t k = 0; k < g.x.size(); ++k) {
+      const double x = a + (b - a) * (g.x[k] + 1) / 2;
+      const double q = std::sqrt(x * x * s * s + t * t);
+      sum += g.w[k] * (b - a) / 2 * 0.5 * LogQuadratic(-x * c, h - x * c, q);
+    }
+    b = a;
+  }
+  return sum;
+}
+
+}  // namespace detail
+
+// Howell's "two finite rectangles of the same length l with a common edge at angle phi"
+// (C-15 in the numbering issue 6 cites; C-17 in the web catalogue): from rectangle 1
+// (w x l) to rectangle 2 (h x l), both facing into the wedge of opening angle phi
+// (radians, 0 < phi < pi). Howell's entry is closed form except for one 1D integral. We
+// evaluate it from its derivation, Stokes' double contour integral
+//   A_1 F_12 = (1 / 2 pi) sum over edge pairs (e1 . e2) int int ln r ds1 ds2,
+// where only edges along the common direction (parallel pairs, closed form above, the
+// common edge against itself included) and the edges across it (oblique pairs,
+// e1 . e2 = cos phi, one closed-form integral and one Gauss quadrature) contribute. At
+// 90 degrees the oblique terms vanish and this is C-14 exactly (checked in a test to 1e-12).
+inline double AngledRectangles(double w, double h, double l, double phi) {
+  const double d = std::sqrt(std::max(0.0, w * w + h * h - 2 * w * h * std::cos(phi)));
+  const double parallel = -detail::ParallelEdges(l, 0) + detail::ParallelEdges(l, h) +
+                          detail::ParallelEdges(l, w) - detail::ParallelEdges(l, d);
+  const double oblique = 2 * std::cos(phi) *
+                         (detail::ObliqueEdges(w, h, phi, l) - detail::ObliqueEdges(w, h, phi, 0));
+  return 0.5 * (parallel + oblique) / (std::numbers::pi * w * l);
 }
 
 }  // namespace radflux::testing
