@@ -94,7 +94,7 @@ def wedges():
                 f"sharing the edge x = z = 0, y in [0, 1.3], at an opening angle of {deg} degrees, both\n"
                 "facing into the wedge. Closed form: Howell's two rectangles with a common edge at\n"
                 "angle phi (testing::AngledRectangles; C-14 at 90 degrees). F_ab = "
-                f"see hard_wedge_test.cc.\nTest: tests/unit/hard_wedge_test.cc (HardWedge.*).")
+                f"see hard_geometry_test.cc.\nTest: tests/unit/hard_geometry_test.cc (HardWedge.*).")
         o.rect("a", "white", (0, 0, 0), (1, 0, 0), (0, 1.3, 0))
         d = (0.7 * math.cos(phi), 0, 0.7 * math.sin(phi))
         o.rect("b", "lamp", (0, 0, 0), (0, 1.3, 0), d)
@@ -102,13 +102,14 @@ def wedges():
 
 
 def slivers():
-    write_mtl("slivers.mtl", "Closed unit box, every face rho 0.5 and Ke 1: B = pi / 0.5 everywhere.",
-              [("white", 0.5, 1)])
+    write_mtl("slivers.mtl", "Closed unit box: white rho 0.5; the wall y = 1 is a lamp (rho 0.5, Ke 1).",
+              [("white", 0.5, 0), ("lamp", 0.5, 1)])
     o = Obj("Hard case: closed unit box whose floor is ten 1 x 0.001 slivers (aspect 1:1000) plus one\n"
             "large piece, and whose ceiling holds a tiny 0.001 x 0.001 patch (1e-6 of the face)\n"
             "framed by two 0.001 x 0.5 slivers and two large halves. Mesh: one patch per face.\n"
-            "Invariants: closed box, so every row sums to 1; reciprocity A_i F_ij = A_j F_ji; furnace\n"
-            "B = pi / (1 - 0.5). Test: tests/unit/hard_sliver_test.cc (HardSliver.*).")
+            "The wall y = 1 glows (only it: monte_carlo traces every other column).\n"
+            "Invariants: closed box, so every row sums to 1; reciprocity A_i F_ij = A_j F_ji.\n"
+            "Test: tests/unit/hard_geometry_test.cc (HardSliver.*).")
     t = 0.001
     for k in range(10):
         o.rect(f"sliver{k}", "white", (0, k * t, 0), (1, 0, 0), (0, t, 0))
@@ -119,7 +120,8 @@ def slivers():
     o.rect("ceil_right", "white", (0.5 + t, 0, 1), (0, 1, 0), (0.5 - t, 0, 0))
     o.rect("ceil_front", "white", (0.5, 0, 1), (0, 0.5, 0), (t, 0, 0))
     o.rect("ceil_back", "white", (0.5, 0.5 + t, 1), (0, 0.5 - t, 0), (t, 0, 0))
-    box(o, "white", 0, 1, 0, 1, 0, 1, skip=("floor", "ceiling"))
+    box(o, "white", 0, 1, 0, 1, 0, 1, skip=("floor", "ceiling", "wall_y1"))
+    o.rect("wall_y1", "lamp", (0, 1, 0), (1, 0, 0), (0, 0, 1))
     o.write("slivers.obj", "slivers.mtl")
 
 
@@ -132,7 +134,7 @@ def leak():
             f"normals) that stop a hairline gap g = {g} m above the floor; room A's floor also carries a\n"
             "coplanar overlapping 'rug' face. Bound: light can reach B only through the gap, so the\n"
             "power arriving on B's surfaces is at most max_A(B) * g * 1 m (radiance <= B/pi through an\n"
-            "opening of area g * 1 m). Test: tests/unit/hard_leak_test.cc (HardLeak.*).")
+            "opening of area g * 1 m). Test: tests/unit/hard_geometry_test.cc (HardLeak.*).")
     box(o, "white", 0, 1, 0, 1, 0, 1, prefix="a_", skip=("wall_x1",))
     box(o, "white", 1, 2, 0, 1, 0, 1, prefix="b_", skip=("wall_x0",))
     o.rect("a_rug", "white", (0.2, 0.2, 0), (0.6, 0, 0), (0, 0.6, 0))
@@ -148,7 +150,7 @@ def tiny_emitter():
     o = Obj("Hard case: a 0.01 x 0.01 emitter (1e-4 of the scene area) of radiance 1e6 (E = pi e6\n"
             "W/m^2), centred 0.5 above a 1 x 1 receiver and facing it. Closed form: power reflected by\n"
             "the receiver = rho A_e F_er E (B-3 by corner superposition, integrated over the emitter),\n"
-            "plus a second bounce below 1e-5 relative. Test: tests/unit/hard_light_test.cc.")
+            "plus a second bounce below 1e-5 relative. Test: tests/unit/hard_light_test.cc (HardLight.TinyBrightEmitterMatchesEtimesF).")
     o.rect("receiver", "white", (-0.5, -0.5, 0), (1, 0, 0), (0, 1, 0))
     o.rect("emitter", "lamp", (-0.005, -0.005, 0.5), (0, 0.01, 0), (0.01, 0, 0))
     o.write("tiny_emitter.obj", "tiny_emitter.mtl")
@@ -180,7 +182,7 @@ def scaled_rooms():
         o = Obj(f"Hard case: the same 5 x 4 x 3 room with a lamp and a block, in {unit} (coordinates =\n"
                 f"metres x {s:g}). Invariant: B (W/m^2) does not depend on the unit; the micrometre and\n"
                 "kilometre rooms must give the same B per patch (relative 1e-5).\n"
-                "Test: tests/unit/hard_scale_test.cc (HardScale.*).")
+                "Test: tests/unit/hard_room_test.cc (HardScale.*).")
         box(o, "white", 0, 5, 0, 4, 0, 3, s=s, skip=("ceiling", "wall_x0"))
         o.rect("wall_x0", "red", (0, 0, 0), (0, 4 * s, 0), (0, 0, 3 * s))
         # ceiling z = 3 facing -z (du = +y, dv = +x), split around a 1 x 1 lamp at x, y in [2, 3]

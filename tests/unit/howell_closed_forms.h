@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace radflux::testing {
@@ -95,22 +96,49 @@ inline double ParallelEdges(double l, double d) {
   return l * (f1(l) - f1(0)) - (f2(l) - f2(0));
 }
 
+// Intervals covering [a, b] that halve geometrically toward both ends and toward every
+// break point inside, for Gauss-Legendre on integrands with (near-)singular corners there.
+inline std::vector<std::pair<double, double>> GradedIntervals(double a, double b,
+                                                               std::vector<double> breaks,
+                                                               int levels) {
+  breaks.push_back(a);
+  breaks.push_back(b);
+  std::sort(breaks.begin(), breaks.end());
+  std::vector<std::pair<double, double>> out;
+  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double lo = breaks[k], hi = breaks[k + 1];
+    if (!(hi > lo) || lo < a || hi > b) continue;
+    const double mid = 0.5 * (lo + hi);
+    for (const auto& [end, half] : {std::pair{lo, mid - lo}, std::pair{hi, mid - hi}}) {
+      double t = 1;
+      for (int l = 0; l < levels; ++l, t *= 0.5) {
+        const double inner = l + 1 == levels ? 0 : 0.5 * t;
+        double x0 = end + half * inner, x1 = end + half * t;
+        if (x0 > x1) std::swap(x0, x1);
+        out.emplace_back(x0, x1);
+      }
+    }
+  }
+  return out;
+}
+
 // int_0^w int_0^h ln r dxi dx for segments from a common line-point pair at angle phi,
 // offset by t along the common edge: r^2 = x^2 + xi^2 - 2 x xi cos(phi) + t^2. The inner
 // integral is closed form; the outer one is Gauss-Legendre on intervals graded toward
-// x = 0, where (t = 0) the integrand has an x ln x corner.
+// x = 0 (the x ln x corner when t = 0) and toward x = h / cos(phi), where the foot of x
+// on the other segment's line passes its end (width ~ h tan(phi): sharp as phi -> 0).
 inline double ObliqueEdges(double w, double h, double phi, double t) {
-  static const GaussLegendre g(24);
+  static const GaussLegendre g(16);
   const double c = std::cos(phi), s = std::sin(phi);
-  double sum = 0, b = w;
-  for (int level = 0; level < 48 && b > 0; ++level) {
-    const double a = level == 47 ? 0 : 0.5 * b;
+  std::vector<double> breaks;
+  if (c > 0 && h / c < w) breaks.push_back(h / c);
+  double sum = 0;
+  for (const auto& [a, b] : GradedIntervals(0, w, breaks, 40)) {
     for (size_t k = 0; k < g.x.size(); ++k) {
       const double x = a + (b - a) * (g.x[k] + 1) / 2;
       const double q = std::sqrt(x * x * s * s + t * t);
       sum += g.w[k] * (b - a) / 2 * 0.5 * LogQuadratic(-x * c, h - x * c, q);
     }
-    b = a;
   }
   return sum;
 }

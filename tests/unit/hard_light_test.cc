@@ -1,0 +1,111 @@
+// Hard cases of issue 6 in lighting: a tiny very bright emitter, and a room lit only
+// through a small opening.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "hard_cases.h"
+#include "howell_closed_forms.h"
+#include "solver/solve/energy_balance.h"
+
+namespace radflux {
+namespace {
+
+using testing::HardOptions;
+using testing::LoadHardScene;
+using testing::Name;
+using testing::RowFixture;
+using testing::SolveOrDie;
+
+// F from the 0.01 x 0.01 emitter (height 0.5, facing down) to the 1 x 1 receiver below:
+// B-3 (differential area to a parallel rectangle, normal through a corner) summed over the
+// four quadrants around each point, integrated over the emitter by 4 x 4 Gauss-Legendre.
+double EmitterToReceiver() {
+  const testing::GaussLegendre g(4);
+  const double half = 0.005, c = 0.5;
+  double sum = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      const double x = half * g.x[i], y = half * g.x[j];
+      double f = 0;
+      for (double sx : {-1.0, 1.0})
+        for (double sy : {-1.0, 1.0}) f += testing::PointToCornerRectangle(0.5 + sx * x, 0.5 + sy * y, c);
+      sum += g.w[i] * g.w[j] / 4 * f;
+    }
+  return sum;
+}
+
+// Tiny emitter (1e-4 of the scene area, radiance 1e6): the power the receiver reflects,
+// sum_j A_j B_j, equals rho E A_e F_er (first bounce; the second bounce back off the emitter
+// adds rho^2 F_er F_re ~ 1e-5 relative) within 1e-3, and the energy balance closes: 1e-3
+// for analytic, 1e-2 for monte_carlo, whose emitter row (k = 1024 rays, F_er ~ 0.6) carries
+// a statistical error of order sqrt(F (1 - F) / k) = 1.5e-2 into "escaped". hemicube fails
+// (no cell ray of a receiver patch hits the 0.01 emitter): printed, in bench/RESULTS.md.
+TEST(HardLight, TinyBrightEmitterMatchesEtimesF) {
+  RowFixture fixture(LoadHardScene("tiny_emitter.obj"), MeshOptions{0, 1.0 / 16});
+  const double rho = 0.5, e = std::numbers::pi * 1e6, area_e = 1e-4;
+  const double exact = rho * e * area_e * EmitterToReceiver();
+  for (FormFactorMethod m : testing::kHardMethods) {
+    const CsrMatrix f = fixture.Rows(HardOptions(m));
+    ASSERT_TRUE(testing::AllFinite(f)) << Name(m);
+    const SolveResult r = SolveOrDie(f, fixture.attributes, SolverMethod::kConjugateGradient, 1e-12, 1000);
+    double reflected = 0;
+    for (uint32_t i = 0; i < fixture.mesh.size(); ++i) {
+      if (fixture.ObjectOf(i) == "receiver") reflected += fixture.mesh.patches[i].area * r.radiosity[i][0];
+    }
+    const double imbalance = ComputeEnergyBalance({&f, &fixture.attributes}, r.radiosity).RelativeImbalance();
+    std::printf("tiny emitter %-12s: receiver power %.6e W, rho E A_e F %.6e W, error %+.2e, "
+                "energy imbalance %.2e\n",
+                Name(m).c_str(), reflected, exact, reflected / exact - 1, imbalance);
+    EXPECT_TRUE(std::isfinite(reflected));
+    if (m != FormFactorMethod::kHemicube) {
+      EXPECT_NEAR(reflected / exact, 1, 1e-3) << Name(m);
+      EXPECT_LT(imbalance, m == FormFactorMethod::kAnalytic ? 1e-3 : 1e-2) << Name(m);
+    }
+  }
+}
+
+// A closed room lit only through a 0.2 x 0.2 window by a black sky panel (E = pi) 0.1
+// outside. Closed form: power entering = E A_w F_C-11(0.2, 0.2, 0.1) (the room is closed,
+// so all the sky sends through the window lands inside). Conservation: entering = absorbed
+// inside + leaving back through the window, with absorbed = sum (1 - rho_j) A_j (B_j - E_j) /
+// rho_j and leaving = sum_i A_i B_i (1 - sum_{j inside} F_ij).
+TEST(HardLight, RoomLitThroughASmallOpening) {
+  RowFixture fixture(LoadHardScene("opening_room.obj"), MeshOptions{0, 0.25});
+  const uint32_t n = static_cast<uint32_t>(fixture.mesh.size());
+  const double e = std::numbers::pi;
+  const double exact_in = e * 0.04 * testing::ParallelRectangles(0.2, 0.2, 0.1);
+  uint32_t sky = 0;
+  while (fixture.ObjectOf(sky) != "sky") ++sky;
+  for (FormFactorMethod m : testing::kHardMethods) {
+    FormFactorOptions o = HardOptions(m);
+    o.samples = 4;
+    const CsrMatrix f = fixture.Rows(o);
+    ASSERT_TRUE(testing::AllFinite(f)) << Name(m);
+    const SolveResult r = SolveOrDie(f, fixture.attributes, SolverMethod::kConjugateGradient, 1e-12, 1000);
+    double in = 0, absorbed = 0, out = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      if (i == sky) continue;
+      const double a = fixture.mesh.patches[i].area, b = r.radiosity[i][0];
+      const double rho = fixture.attributes.reflectance[i][0];
+      in += a * f.At(i, sky) * e;
+      absorbed += (1 - rho) * a * b / rho;
+      out += a * b * (1 - (f.RowSum(i) - f.At(i, sky)));
+    }
+    const double imbalance = (in - absorbed - out) / in;
+    std::printf("opening room %-12s: entering %.5e W (closed form %.5e, %+.2e), absorbed %.4e, "
+                "leaving %.4e, imbalance %+.2e\n",
+                Name(m).c_str(), in, exact_in, in / exact_in - 1, absorbed, out, imbalance);
+    // Stated: 4% for analytic and monte_carlo (whose sky column is analytic). Both estimate a
+    // partly hidden emitter as the unoccluded point form factor times one 0/1 shadow ray to a
+    // uniform point on it, biased when the visible part is not a uniform sample of the form
+    // factor (here +2.7% at s = 4, +2.9% at s = 16; bench/RESULTS.md). hemicube: 10%.
+    EXPECT_NEAR(in / exact_in, 1, m == FormFactorMethod::kHemicube ? 0.1 : 0.04) << Name(m);
+    EXPECT_LT(std::abs(imbalance), m == FormFactorMethod::kHemicube ? 0.5 : 0.01) << Name(m);
+  }
+}
+
+}  // namespace
+}  // namespace radflux
