@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "absl/strings/str_format.h"
+#include "client/exit_status.h"
 #include "client/job_flags.h"
 #include "client/output_flags.h"
 #include "client/progress_display.h"
@@ -90,13 +91,7 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   AddJobFlags(*solve, args->job);
   AddOutputFlags(*solve, args->output);
   solve->add_flag("--quiet,-q", args->quiet, "no progress output");
-  solve->callback([args, &exit_code] {
-    const absl::Status status = RunSolve(*args);
-    if (!status.ok()) {
-      std::fprintf(stderr, "radflux solve: %s\n", std::string(status.message()).c_str());
-      exit_code = status.code() == absl::StatusCode::kInvalidArgument ? 2 : 1;
-    }
-  });
+  solve->callback([args, &exit_code] { exit_code = ReportStatus("solve", RunSolve(*args)); });
 }
 
 }  // namespace radflux::cli

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "client/exit_status.h"
 #include "client/job_flags.h"
 #include "solver/formfactor/surface_view_factors.h"
 #include "solver/pipeline.h"
@@ -47,13 +48,8 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "view-factor CSV to write")->required();
   AddJobFlags(*cmd, args->job);
-  cmd->callback([args, &exit_code] {
-    const absl::Status status = RunViewFactors(*args);
-    if (!status.ok()) {
-      std::fprintf(stderr, "radflux viewfactors: %s\n", std::string(status.message()).c_str());
-      exit_code = status.code() == absl::StatusCode::kInvalidArgument ? 2 : 1;
-    }
-  });
+  cmd->callback(
+      [args, &exit_code] { exit_code = ReportStatus("viewfactors", RunViewFactors(*args)); });
 }
 
 }  // namespace radflux::cli
