@@ -1,5 +1,12 @@
 #include "server/job_hub.h"
 
+#include <condition_variable>
+#include <deque>
+#include <thread>
+#include <utility>
+
+#include "server/proto_convert.h"
+
 namespace radflux {
 
 void JobHub::Publish(v1::JobEvent event) {
@@ -42,6 +49,21 @@ bool JobHub::NewestSnapshot(int min_iteration, SnapshotData* out) const {
   return true;
 }
 
+std::shared_ptr<const v1::Snapshot> JobHub::EncodedSnapshot(const SnapshotData& snapshot,
+                                                            const std::vector<int>& bands,
+                                                            v1::SnapshotFormat format) {
+  std::string key = std::to_string(static_cast<int>(format)) + ":";
+  for (int b : bands) key += std::to_string(b) + ",";
+  std::lock_guard lock(encoded_mu_);
+  Encoded& entry = encoded_[key];
+  if (entry.source != snapshot.radiosity || !entry.message) {
+    entry.source = snapshot.radiosity;
+    entry.message = std::make_shared<const v1::Snapshot>(
+        ToProtoSnapshot(snapshot.iteration, *snapshot.radiosity, bands, format));
+  }
+  return entry.message;
+}
+
 bool JobHub::closed() const {
   std::lock_guard lock(mu_);
   return closed_;
@@ -63,10 +85,70 @@ void JobHub::Unsubscribe(int id) {
   subscribers_.erase(id);
 }
 
+namespace {
+
+// One thread that runs the wakes of every hub, in the order they were scheduled.
+class Notifier {
+ public:
+  static Notifier& Get() {
+    static Notifier notifier;
+    return notifier;
+  }
+  void Post(std::shared_ptr<JobHub> hub, void (JobHub::*run)()) {
+    {
+      std::lock_guard lock(mu_);
+      queue_.emplace_back(std::move(hub), run);
+    }
+    cv_.notify_one();
+  }
+  ~Notifier() {
+    {
+      std::lock_guard lock(mu_);
+      stopping_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  Notifier() : thread_([this] { Loop(); }) {}
+  void Loop() {
+    for (;;) {
+      std::pair<std::shared_ptr<JobHub>, void (JobHub::*)()> next;
+      {
+        std::unique_lock lock(mu_);
+        cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        next = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      ((*next.first).*next.second)();
+    }
+  }
+
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::pair<std::shared_ptr<JobHub>, void (JobHub::*)()>> queue_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
 void JobHub::WakeAll() {
+  {
+    std::lock_guard lock(mu_);
+    if (wake_pending_ || subscribers_.empty()) return;
+    wake_pending_ = true;
+  }
+  Notifier::Get().Post(shared_from_this(), &JobHub::RunWakes);
+}
+
+void JobHub::RunWakes() {
   std::vector<std::function<void()>> wakes;
   {
     std::lock_guard lock(mu_);
+    wake_pending_ = false;
     for (const auto& [id, wake] : subscribers_) wakes.push_back(wake);
   }
   for (const auto& wake : wakes) wake();

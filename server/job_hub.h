@@ -22,7 +22,7 @@ struct SnapshotData {
   std::shared_ptr<const std::vector<Rgb>> radiosity;
 };
 
-class JobHub {
+class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
   explicit JobHub(std::string job_id) : job_id_(std::move(job_id)) {}
 
@@ -37,23 +37,41 @@ class JobHub {
   bool NextEvent(uint64_t after, v1::JobEvent* out) const;
   // The newest snapshot, if its iteration is at least min_iteration.
   bool NewestSnapshot(int min_iteration, SnapshotData* out) const;
+  // `snapshot` as a message with these bands and format, encoded once and shared by every
+  // watcher asking the same (the newest snapshot reaches N watchers at the cost of one
+  // encoding). Never takes the lock the publisher needs.
+  std::shared_ptr<const v1::Snapshot> EncodedSnapshot(const SnapshotData& snapshot,
+                                                      const std::vector<int>& bands,
+                                                      v1::SnapshotFormat format);
   bool closed() const;
   uint64_t last_sequence() const;
 
-  // `wake` is called (outside the hub's lock, possibly on the runner's thread) after
-  // every change, until Unsubscribe(returned id).
+  // `wake` is called after changes, until Unsubscribe(returned id): on the hub's notifier
+  // thread (one for all hubs), never on the publisher's, so that a job never does its
+  // watchers' writes; changes made while a round of wakes is pending share that round.
+  // The hub must be owned by a shared_ptr.
   int Subscribe(std::function<void()> wake);
   void Unsubscribe(int id);
 
  private:
+  // Schedules a round of wakes on the notifier thread unless one is pending.
   void WakeAll();
+  // The round of wakes itself (notifier thread).
+  void RunWakes();
 
   const std::string job_id_;
   mutable std::mutex mu_;
   std::vector<v1::JobEvent> events_;  // events_[k].sequence() == k + 1
   SnapshotData snapshot_;
   bool closed_ = false;
+  bool wake_pending_ = false;
   int next_subscriber_ = 0;
+  struct Encoded {
+    std::shared_ptr<const std::vector<Rgb>> source;  // the snapshot it encodes
+    std::shared_ptr<const v1::Snapshot> message;
+  };
+  std::mutex encoded_mu_;                   // guards encoded_ (not mu_: encoding is slow)
+  std::map<std::string, Encoded> encoded_;  // by format and bands (validated: a few keys)
   std::map<int, std::function<void()>> subscribers_;
 };
 

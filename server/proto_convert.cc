@@ -103,17 +103,19 @@ v1::Snapshot ToProtoSnapshot(int iteration, const std::vector<Rgb>& radiosity,
   s.set_patch_count(static_cast<uint32_t>(radiosity.size()));
   s.set_format(half ? v1::SNAPSHOT_FORMAT_FLOAT16 : v1::SNAPSHOT_FORMAT_FLOAT32);
   for (int b : chosen) s.add_bands(b);
-  std::string data;
-  data.reserve(radiosity.size() * chosen.size() * (half ? 2 : 4));
+  const size_t width = half ? 2 : 4;
+  std::string data(radiosity.size() * chosen.size() * width, '\0');
+  char* out = data.data();
   for (const Rgb& b : radiosity) {
     for (int band : chosen) {
       const float v = static_cast<float>(b[static_cast<size_t>(band)]);
       if (half) {
         const uint16_t h = FloatToHalf(v);
-        data.append(reinterpret_cast<const char*>(&h), sizeof(h));
+        std::memcpy(out, &h, sizeof(h));
       } else {
-        data.append(reinterpret_cast<const char*>(&v), sizeof(v));
+        std::memcpy(out, &v, sizeof(v));
       }
+      out += width;
     }
   }
   s.set_data(std::move(data));
