@@ -1,0 +1,80 @@
+// Hierarchical radiosity (Hanrahan, Salzman and Aupperle 1991): every input face is the
+// root of a quadtree (quads) or 4-way triangle subdivision; light moves along links between
+// elements at whatever level the link's error estimate allows, and B is solved by gathering
+// over the links with push-pull. No clustering above the faces (every pair of root faces
+// that can see each other starts with one link, O(faces^2)).
+//
+// Refinement: a link p <- q (p gathers from q) is refined when
+//   rho_p * B_q * F_pq * A_p > link_epsilon * (total emitted power)
+// where F_pq is Lambert's exact point-to-polygon form factor at `samples` points of p, times
+// visibility by one shadow ray per point; when those rays disagree (partial visibility) the
+// unoccluded F_pq is used instead, so shadow boundaries refine first. The larger element of
+// the link is split, down to min_area_fraction of the scene's total area.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/core/bands.h"
+#include "solver/mesh/adaptive_tree.h"
+#include "solver/mesh/patch_mesh.h"
+#include "solver/scene/scene.h"
+#include "solver/solve/solver.h"
+
+namespace radflux {
+
+struct HierarchicalOptions {
+  bool enabled = false;             // `radflux solve --solver hierarchical`
+  double link_epsilon = 1e-4;       // BFA threshold, relative to the total emitted power
+  double min_area_fraction = 2e-5;  // no element smaller than this fraction of total area
+  int samples = 4;                  // points per receiver element (one shadow ray each)
+  int max_passes = 6;               // refine-then-solve passes (stops early when stable)
+  uint64_t seed = 1;                // sample patterns are seeded per element from it
+};
+
+// Sparse link set: the links gathered by element p are [begin[p], begin[p+1]) (CSR).
+struct LinkSet {
+  std::vector<uint64_t> begin{0};
+  std::vector<uint32_t> source;  // element gathered from
+  std::vector<float> ff;         // F_pq with visibility
+  std::vector<float> bound;      // F_pq for the error estimate (unoccluded when partial)
+
+  size_t size() const { return source.size(); }
+  size_t Bytes() const {
+    return begin.size() * sizeof(uint64_t) + source.size() * (sizeof(uint32_t) + 2 * sizeof(float));
+  }
+};
+
+struct HierarchicalStats {
+  size_t roots = 0, elements = 0, leaves = 0;
+  size_t links = 0;          // final link count
+  size_t link_bytes = 0;     // bytes of the final LinkSet
+  size_t element_bytes = 0;  // bytes of the element tree
+  size_t patches = 0;        // patches of the conforming output mesh
+  int passes = 0, refine_rounds = 0;
+  uint64_t rays = 0;
+  double refine_seconds = 0, solve_seconds = 0;
+};
+
+struct HierarchicalResult {
+  ElementTree tree;
+  LinkSet links;
+  std::vector<uint32_t> leaves;       // leaf elements in output order
+  std::vector<Rgb> leaf_radiosity;    // B per leaf, W/m^2 per band
+  PatchMesh mesh;                     // conforming mesh of the leaves (BuildLeafMesh)
+  std::vector<uint32_t> patch_leaf;   // mesh patch -> index into leaves
+  SolveResult solve;                  // radiosity per mesh patch (its leaf's B)
+  HierarchicalStats stats;
+};
+
+// Solves a validated scene. `solver` supplies tolerance (on the area-weighted relative change
+// of B per gathering sweep), max_iterations, threads, snapshot_every and cancel. The callback
+// gets every sweep; snapshots hold one entry per current leaf in depth-first order (the leaf
+// set grows between refinement passes; the final one maps to mesh patches by patch_leaf).
+absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
+                                                     const HierarchicalOptions& options,
+                                                     const SolverOptions& solver,
+                                                     const SolveCallback& callback = {});
+
+}  // namespace radflux

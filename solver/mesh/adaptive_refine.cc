@@ -1,0 +1,261 @@
+#include "solver/mesh/adaptive_refine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "solver/core/parallel.h"
+#include "solver/formfactor/analytic_pair.h"
+#include "solver/formfactor/row_context.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/raytrace/embree_ray_caster.h"
+
+namespace radflux {
+namespace {
+
+constexpr uint64_t kLeafPointStream = 21;
+constexpr uint64_t kShadowStream = 22;
+using Row = std::vector<std::pair<uint32_t, float>>;
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Sample points of leaf patch i, seeded by its element (so they survive renumbering).
+std::vector<Vec3> LeafPoints(const ElementTree& tree, uint32_t node, int s, uint64_t seed) {
+  std::vector<Vec3> points;
+  const uint32_t pattern = PatternSeed(seed, node, kLeafPointStream);
+  for (int m = 0; m < s; ++m) {
+    points.push_back(SampleElementPoint(tree.nodes[node], MultiJitteredSample(m, s, pattern)));
+  }
+  return points;
+}
+
+CsrMatrix ToCsr(const std::vector<Row>& rows) {
+  CsrMatrix m;
+  m.rows = m.cols = static_cast<uint32_t>(rows.size());
+  size_t nnz = 0;
+  for (const Row& r : rows) nnz += r.size();
+  m.Reserve(m.rows, nnz);
+  for (const Row& r : rows) {
+    for (const auto& [j, v] : r) {
+      m.col.push_back(j);
+      m.value.push_back(v);
+    }
+    m.row_begin.push_back(m.col.size());
+  }
+  return m;
+}
+
+struct Pass {
+  const ElementTree* tree = nullptr;
+  const std::vector<uint32_t>* leaves = nullptr;
+  PatchMesh mesh;
+  PatchAttributes attributes;
+  RowContext context;
+};
+
+// Which leaves to split: radiosity jumps to same-face neighbours, or shadow boundaries.
+std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, const Pass& pass,
+                                  const std::vector<Rgb>& b, const AdaptiveOptions& options,
+                                  uint64_t seed, int threads, uint64_t& rays) {
+  const std::vector<uint32_t>& leaves = *pass.leaves;
+  const size_t n = leaves.size();
+  std::vector<uint8_t> split(n, 0);
+  std::vector<uint32_t> patch_leaf;
+  const PatchMesh display = BuildLeafMesh(tree, leaves, true, &patch_leaf);
+  std::vector<std::vector<uint32_t>> around(display.positions.size());
+  for (uint32_t p = 0; p < display.size(); ++p) {
+    for (int k = 0; k < display.patches[p].VertexCount(); ++k) {
+      auto& list = around[display.patches[p].v[k]];
+      if (std::find(list.begin(), list.end(), patch_leaf[p]) == list.end()) {
+        list.push_back(patch_leaf[p]);
+      }
+    }
+  }
+  for (const auto& list : around) {
+    for (uint32_t x : list) {
+      for (uint32_t y : list) {
+        const double bx = MaxComponent(b[x]), by = MaxComponent(b[y]);
+        if (std::abs(bx - by) > options.threshold * std::max(bx, by) ||
+            (options.threshold == 0 && x != y)) {
+          split[x] = 1;
+        }
+      }
+    }
+  }
+  // Shadow boundaries: rays from the leaf to each emitting face, some blocked and some not.
+  std::vector<uint32_t> emitters;
+  for (uint32_t r : tree.roots) {
+    if (scene.materials[scene.faces[tree.nodes[r].face].material].IsEmitter()) emitters.push_back(r);
+  }
+  std::vector<uint64_t> block_rays((n + 63) / 64, 0);
+  ParallelFor(static_cast<int64_t>(n), 64, threads, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      if (split[i] || !pass.context.needs_row[i]) continue;
+      const Element& e = tree.nodes[leaves[i]];
+      const int s = options.visibility_rays;
+      for (uint32_t r : emitters) {
+        const Element& light = tree.nodes[r];
+        if (light.face == e.face) continue;
+        int blocked = 0, open = 0;
+        const uint32_t pattern = PatternSeed(seed ^ leaves[i], r, kShadowStream);
+        for (int m = 0; m < s; ++m) {
+          const Point2 u = MultiJitteredSample(m, s, pattern);
+          const Vec3 x = SampleElementPoint(e, u) + e.normal * pass.context.ray_epsilon;
+          const Vec3 y = SampleElementPoint(light, {u.y, u.x}) +
+                         light.normal * pass.context.ray_epsilon;
+          if (Dot(y - x, e.normal) <= 0 || Dot(x - y, light.normal) <= 0) continue;
+          ++block_rays[begin / 64];
+          (pass.context.caster->Occluded({x, y - x, 0, 1 - 1e-6}) ? blocked : open)++;
+        }
+        if (blocked > 0 && open > 0) split[i] = 1;
+      }
+    }
+  });
+  for (uint64_t r : block_rays) rays += r;
+  return split;
+}
+
+}  // namespace
+
+absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptions& mesh_options,
+                                             const FormFactorOptions& ff,
+                                             const SolverOptions& solver,
+                                             const AdaptiveOptions& options,
+                                             const SolveCallback& callback) {
+  absl::StatusOr<PatchMesh> roots = SubdivideScene(scene, mesh_options);
+  if (!roots.ok()) return roots.status();
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(*roots);
+  if (!caster.ok()) return caster.status();
+  AdaptiveResult result;
+  ElementTree& tree = result.tree;
+  tree = ElementTree::FromMesh(*roots);
+  std::vector<uint32_t> leaves = tree.Leaves();
+  std::vector<Row> rows;
+  std::vector<Rgb> b;                // per leaf, warm start for the next solve
+  std::vector<uint32_t> new_of_old;  // previous leaf -> first new leaf (children consecutive)
+  std::vector<uint8_t> was_split;
+  for (int pass_index = 0; pass_index <= options.passes; ++pass_index) {
+    const auto start = std::chrono::steady_clock::now();
+    Pass pass;
+    pass.tree = &tree;
+    pass.leaves = &leaves;
+    pass.mesh = BuildLeafMesh(tree, leaves, false, nullptr);
+    pass.attributes = ComputePatchAttributes(scene, pass.mesh);
+    pass.context = MakeRowContext(pass.mesh, pass.attributes, **caster);
+    const uint32_t n = static_cast<uint32_t>(leaves.size());
+    // Which new leaves are new (need a full row) and the old row each unchanged leaf keeps.
+    std::vector<int64_t> old_row(n, -1);
+    if (pass_index > 0) {
+      for (uint32_t o = 0; o < was_split.size(); ++o)
+        if (!was_split[o]) old_row[new_of_old[o]] = o;
+    }
+    std::vector<Row> next(n);
+    std::vector<uint8_t> recomputed(n, 0);
+    std::vector<uint64_t> entries(n, 0), row_rays(n, 0);
+    ParallelFor(n, 16, ff.threads, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        if (!pass.context.needs_row[i]) continue;
+        const std::vector<Vec3> points = LeafPoints(tree, leaves[i], ff.samples, ff.seed);
+        auto add = [&](uint32_t j) {
+          if (!PatchesCanExchange(pass.mesh, static_cast<uint32_t>(i), j)) return;
+          ++entries[i];
+          const double f = AnalyticPairFormFactor(pass.context, static_cast<uint32_t>(i), points,
+                                                  j, ff.seed, row_rays[i]);
+          if (f > 0 && f >= ff.cutoff) next[i].push_back({j, static_cast<float>(f)});
+        };
+        if (old_row[i] < 0) {  // a new patch (or the first pass): the whole row
+          recomputed[i] = 1;
+          for (uint32_t j = 0; j < n; ++j) add(j);
+          continue;
+        }
+        for (const auto& [j_old, f] : rows[old_row[i]]) {
+          if (!was_split[j_old]) {
+            next[i].push_back({new_of_old[j_old], f});
+            continue;
+          }
+          recomputed[i] = 1;
+          for (uint32_t c = 0; c < 4; ++c) add(new_of_old[j_old] + c);
+        }
+      }
+    });
+    rows = std::move(next);
+    AdaptivePass stats;
+    stats.patches = n;
+    for (uint32_t i = 0; i < n; ++i) {
+      stats.rows_recomputed += recomputed[i];
+      stats.entries_computed += entries[i];
+      result.rays += row_rays[i];
+    }
+    if (pass_index > 0) stats.split = (n - was_split.size()) / 3;
+    result.form_factors = ToCsr(rows);
+    SolverOptions warm = solver;
+    std::vector<Rgb> previous = b;
+    if (pass_index > 0) warm.initial = &previous;
+    absl::StatusOr<SolveResult> solved =
+        Solve(RadiositySystem{&result.form_factors, &pass.attributes}, warm, callback);
+    if (!solved.ok()) return solved.status();
+    result.solve.iterations += solved->iterations;
+    const int iterations = result.solve.iterations;
+    result.solve = *std::move(solved);
+    result.solve.iterations = iterations;
+    b = result.solve.radiosity;
+    if (pass_index > 0) {
+      double d2 = 0, b2 = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        for (int k = 0; k < kBands; ++k) {
+          const double d = b[i][k] - previous[i][k];
+          d2 += pass.attributes.area[i] * d * d;
+          b2 += pass.attributes.area[i] * b[i][k] * b[i][k];
+        }
+      }
+      stats.change_in_b = b2 > 0 ? std::sqrt(d2 / b2) : 0;
+    }
+    if (pass_index == options.passes || result.solve.cancelled) {
+      stats.seconds = Seconds(start);
+      result.passes.push_back(stats);
+      result.leaf_mesh = std::move(pass.mesh);
+      break;
+    }
+    std::vector<uint8_t> split =
+        ChooseSplits(scene, tree, pass, b, options, ff.seed, ff.threads, result.rays);
+    int64_t budget = options.max_patches - static_cast<int64_t>(n);
+    size_t splits = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      if (split[i] && (tree.nodes[leaves[i]].depth >= static_cast<uint32_t>(options.max_depth) ||
+                       budget < 3)) {
+        split[i] = 0;
+      }
+      if (split[i]) {
+        budget -= 3;
+        ++splits;
+      }
+    }
+    stats.seconds = Seconds(start);
+    result.passes.push_back(stats);
+    if (splits == 0) {
+      result.leaf_mesh = std::move(pass.mesh);
+      break;
+    }
+    for (uint32_t i = 0; i < n; ++i)
+      if (split[i]) tree.Split(leaves[i]);
+    std::vector<uint32_t> next_leaves = tree.Leaves();
+    new_of_old.assign(n, 0);
+    std::vector<Rgb> warm_b;
+    for (uint32_t i = 0, k = 0; i < n; ++i) {
+      new_of_old[i] = k;
+      for (uint32_t c = 0; c < (split[i] ? 4u : 1u); ++c, ++k) warm_b.push_back(b[i]);
+    }
+    b = std::move(warm_b);
+    was_split = std::move(split);
+    leaves = std::move(next_leaves);
+  }
+  result.leaves = leaves;
+  result.leaf_radiosity = result.solve.radiosity;
+  result.mesh = BuildLeafMesh(tree, leaves, true, &result.patch_leaf);
+  return result;
+}
+
+}  // namespace radflux

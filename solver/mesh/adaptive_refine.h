@@ -1,0 +1,60 @@
+// Adaptive meshing: solve on a coarse uniform mesh, then split the patches whose radiosity
+// differs from a same-face neighbour's by more than `threshold` (relative), or across which
+// an emitter's visibility changes (of the shadow rays from the patch to an emitting face some
+// are blocked and some not); recompute only the rows of new patches and the entries of other
+// rows that point at them (analytic form factors, sample points fixed per element so an
+// unchanged row keeps its points), and re-solve warm-started from the previous answer.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/formfactor/form_factor_options.h"
+#include "solver/mesh/adaptive_tree.h"
+#include "solver/mesh/subdivide.h"
+#include "solver/scene/scene.h"
+#include "solver/solve/solver.h"
+#include "solver/sparse/csr_matrix.h"
+
+namespace radflux {
+
+struct AdaptiveOptions {
+  int passes = 0;            // refinement passes after the first solve (0: adaptive off)
+  double threshold = 0.1;    // split where |B_i - B_j| > threshold * max(B_i, B_j); 0 splits all
+  int64_t max_patches = 200000;  // patch budget
+  int max_depth = 6;         // splits below one initial patch
+  int visibility_rays = 8;   // shadow rays per patch per emitting face
+};
+
+struct AdaptivePass {
+  size_t patches = 0;          // leaves after this pass's splits
+  size_t split = 0;            // patches split
+  size_t rows_recomputed = 0;  // rows built in full (new patches) or patched (pointing at them)
+  size_t entries_computed = 0;
+  double seconds = 0;          // rows + solve of this pass
+  double change_in_b = 0;      // area-weighted RMS of B(new) - B(previous), relative to RMS B
+};
+
+struct AdaptiveResult {
+  ElementTree tree;
+  std::vector<uint32_t> leaves;
+  PatchMesh leaf_mesh;                  // one patch per leaf (the solved unknowns)
+  CsrMatrix form_factors;               // rows of leaf_mesh
+  std::vector<Rgb> leaf_radiosity;
+  PatchMesh mesh;                       // conforming display mesh (BuildLeafMesh)
+  std::vector<uint32_t> patch_leaf;
+  SolveResult solve;                    // of the last pass, radiosity per leaf
+  std::vector<AdaptivePass> passes;     // passes[0] is the initial uniform solve
+  uint64_t rays = 0;
+};
+
+// `mesh` gives the initial uniform mesh; form_factors.samples / seed / threads are used
+// (always the analytic estimator, whatever the method).
+absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptions& mesh,
+                                             const FormFactorOptions& form_factors,
+                                             const SolverOptions& solver,
+                                             const AdaptiveOptions& options,
+                                             const SolveCallback& callback = {});
+
+}  // namespace radflux
