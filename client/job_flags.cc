@@ -17,12 +17,21 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
                  "analytic: points per patch s; monte_carlo: points for emitter columns (default 4)");
   app.add_option("--cutoff", f.cutoff, "drop form factors below this (default 1e-6)");
   app.add_option("--solver", f.solver, "linear solver")
-      ->check(CLI::IsMember({"jacobi", "gauss_seidel", "southwell", "cg", "direct"}))
+      ->check(CLI::IsMember({"jacobi", "gauss_seidel", "southwell", "cg", "direct", "hierarchical"}))
       ->capture_default_str();
   app.add_option("--tolerance", f.tolerance, "stop at this relative residual")->capture_default_str();
   app.add_option("--max-iterations", f.max_iterations, "stop after this many sweeps")
       ->capture_default_str();
   app.add_option("--threads", f.threads, "threads (0 = all cores)")->capture_default_str();
+  app.add_option("--link-epsilon", f.link_epsilon,
+                 "hierarchical: refine links with rho*B*F*A above this fraction of emitted power")
+      ->capture_default_str();
+  app.add_option("--adaptive-passes", f.adaptive_passes,
+                 "adaptive meshing: refinement passes after the first solve (analytic rows)")
+      ->capture_default_str();
+  app.add_option("--adaptive-threshold", f.adaptive_threshold,
+                 "adaptive meshing: split where neighbours' B differ by more than this fraction")
+      ->capture_default_str();
   app.add_option("--seed", f.seed, "job seed; samples are seeded per patch from it")
       ->capture_default_str();
 }
@@ -39,7 +48,11 @@ absl::StatusOr<JobOptions> ToJobOptions(const JobFlags& f) {
   if (f.cutoff >= 0) o.form_factors.cutoff = f.cutoff;
   o.form_factors.threads = f.threads;
   o.form_factors.seed = f.seed;
-  o.solver.method = *ParseSolver(f.solver);
+  o.hierarchical.enabled = f.solver == "hierarchical";
+  o.hierarchical.link_epsilon = f.link_epsilon;
+  o.adaptive.passes = f.adaptive_passes;
+  o.adaptive.threshold = f.adaptive_threshold;
+  o.solver.method = o.hierarchical.enabled ? SolverMethod::kJacobi : *ParseSolver(f.solver);
   o.solver.tolerance = f.tolerance;
   o.solver.max_iterations = f.max_iterations;
   o.solver.threads = f.threads;

@@ -22,6 +22,9 @@ struct JobFlags {
   int max_iterations = 1000;
   int threads = 0;
   uint64_t seed = 1;
+  double link_epsilon = 1e-4;     // --solver hierarchical: BFA refinement threshold
+  int adaptive_passes = 0;        // adaptive meshing passes after the first solve
+  double adaptive_threshold = 0.1;
 };
 
 // The scene's patch count when neither --patches nor --max-edge is given.

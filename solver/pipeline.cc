@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/formfactor/row_context.h"
+#include "solver/hierarchical/hierarchical_job.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
@@ -88,6 +89,8 @@ uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
 
 absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
                                  const JobCallbacks& callbacks) {
+  if (options.hierarchical.enabled) return RunHierarchicalJob(std::move(scene), options, callbacks);
+  if (options.adaptive.passes > 0) return RunAdaptiveJob(std::move(scene), options, callbacks);
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(std::move(scene), options);
   if (!job.ok()) return job.status();

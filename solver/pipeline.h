@@ -13,6 +13,8 @@
 #include "solver/core/cancel.h"
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_builder.h"
+#include "solver/hierarchical/hierarchical.h"
+#include "solver/mesh/adaptive_refine.h"
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
@@ -25,6 +27,8 @@ struct JobOptions {
   MeshOptions mesh;
   FormFactorOptions form_factors;
   SolverOptions solver;  // its cancel/initial pointers are the caller's to set
+  HierarchicalOptions hierarchical;  // enabled: RunJob solves hierarchically (issue 7)
+  AdaptiveOptions adaptive;          // passes > 0: RunJob meshes adaptively (issue 7)
 };
 
 // Checks option values (ranges, hemicube resolution even, ...); INVALID_ARGUMENT names

@@ -1,0 +1,131 @@
+#include "solver/hierarchical/hierarchical_job.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "solver/formfactor/row_context.h"
+#include "solver/scene/validation.h"
+
+namespace radflux {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A PreparedJob around an already built output mesh.
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareFromMesh(Scene scene, PatchMesh mesh) {
+  auto job = std::make_unique<PreparedJob>();
+  job->scene = std::move(scene);
+  job->mesh = std::move(mesh);
+  job->mesh_stats = ComputeMeshStats(job->mesh);
+  job->attributes = ComputePatchAttributes(job->scene, job->mesh);
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
+  if (!caster.ok()) return caster.status();
+  job->caster = *std::move(caster);
+  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster);
+  return job;
+}
+
+absl::Status Validate(const Scene& scene, const JobOptions& options) {
+  if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
+  return ValidateScene(scene);
+}
+
+SolverOptions WithThreads(const JobOptions& options) {
+  SolverOptions s = options.solver;
+  if (s.threads == 0) s.threads = options.form_factors.threads;
+  return s;
+}
+
+}  // namespace
+
+absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& options,
+                                             const JobCallbacks& callbacks) {
+  if (absl::Status s = Validate(scene, options); !s.ok()) return s;
+  HierarchicalOptions h = options.hierarchical;
+  h.samples = options.form_factors.samples;
+  h.seed = options.form_factors.seed;
+  const auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<HierarchicalResult> solved =
+      SolveHierarchical(scene, h, WithThreads(options), callbacks.solve);
+  if (!solved.ok()) return solved.status();
+  const double seconds = Seconds(start);
+  const HierarchicalStats& st = solved->stats;
+  spdlog::warn(
+      "hierarchical: {} roots, {} elements, {} leaves -> {} conforming patches; {} links "
+      "({:.2f} MB links, {:.2f} MB elements); {} passes, {} refine rounds, {} rays; "
+      "refine {:.3f}s gather {:.3f}s",
+      st.roots, st.elements, st.leaves, st.patches, st.links, st.link_bytes / 1e6,
+      st.element_bytes / 1e6, st.passes, st.refine_rounds, st.rays, st.refine_seconds,
+      st.solve_seconds);
+  JobResult result;
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
+      PrepareFromMesh(std::move(scene), std::move(solved->mesh));
+  if (!job.ok()) return job.status();
+  result.job = *std::move(job);
+  const uint32_t n = static_cast<uint32_t>(result.job->mesh.size());
+  result.form_factors.rows = result.form_factors.cols = n;
+  result.form_factors.row_begin.assign(n + 1, 0);
+  result.row_stats.rays = st.rays;
+  result.solve = std::move(solved->solve);
+  result.timings.rows = st.refine_seconds;
+  result.timings.solve = st.solve_seconds;
+  result.timings.mesh = seconds - st.refine_seconds - st.solve_seconds;
+  return result;
+}
+
+absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
+                                         const JobCallbacks& callbacks) {
+  if (absl::Status s = Validate(scene, options); !s.ok()) return s;
+  absl::StatusOr<AdaptiveResult> solved =
+      SolveAdaptive(scene, options.mesh, options.form_factors, WithThreads(options),
+                    options.adaptive, callbacks.solve);
+  if (!solved.ok()) return solved.status();
+  double rows_seconds = 0;
+  for (size_t k = 0; k < solved->passes.size(); ++k) {
+    const AdaptivePass& p = solved->passes[k];
+    rows_seconds += p.seconds;
+    spdlog::warn("adaptive pass {}: {} patches ({} split), {} rows recomputed, {} entries, "
+                 "{:.3f}s, change in B {:.3e}",
+                 k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds,
+                 p.change_in_b);
+  }
+  // Expand leaf rows to the display patches.
+  const AdaptiveResult& a = *solved;
+  const PatchMesh& display = a.mesh;
+  std::vector<uint32_t> first(a.leaves.size() + 1, 0);
+  for (uint32_t p = 0; p < display.size(); ++p) first[a.patch_leaf[p] + 1] = p + 1;
+  for (size_t l = 1; l < first.size(); ++l) first[l] = std::max(first[l], first[l - 1]);
+  CsrMatrix f;
+  f.rows = f.cols = static_cast<uint32_t>(display.size());
+  for (uint32_t p = 0; p < display.size(); ++p) {
+    const uint32_t leaf = a.patch_leaf[p];
+    const auto cols = a.form_factors.RowCols(leaf);
+    const auto vals = a.form_factors.RowValues(leaf);
+    for (size_t k = 0; k < cols.size(); ++k) {
+      const double leaf_area = a.tree.nodes[a.leaves[cols[k]]].area;
+      for (uint32_t q = first[cols[k]]; q < first[cols[k] + 1]; ++q) {
+        f.col.push_back(q);
+        f.value.push_back(static_cast<float>(vals[k] * display.patches[q].area / leaf_area));
+      }
+    }
+    f.row_begin.push_back(f.col.size());
+  }
+  JobResult result;
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
+      PrepareFromMesh(std::move(scene), display);
+  if (!job.ok()) return job.status();
+  result.job = *std::move(job);
+  result.form_factors = std::move(f);
+  result.row_stats.rays = a.rays;
+  result.solve = a.solve;
+  result.solve.radiosity.resize(display.size());
+  for (uint32_t p = 0; p < display.size(); ++p)
+    result.solve.radiosity[p] = a.leaf_radiosity[a.patch_leaf[p]];
+  result.timings.rows = rows_seconds;
+  return result;
+}
+
+}  // namespace radflux

@@ -1,0 +1,99 @@
+// Refining further never increases the error on the Cornell box: hierarchical at three
+// link epsilons and adaptive at three pass counts, each against a finer hierarchical
+// reference, error = RMS over scene objects of the relative error of the object's
+// area-weighted mean B (a measure that works across different meshes).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "solver/hierarchical/hierarchical.h"
+#include "solver/mesh/adaptive_refine.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux {
+namespace {
+
+std::map<std::string, double> ObjectMeans(const Scene& scene, const PatchMesh& mesh,
+                                          const std::vector<Rgb>& b) {
+  std::map<std::string, double> sum, area;
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const std::string& o = scene.objects[scene.faces[mesh.patches[p].face].object];
+    sum[o] += mesh.patches[p].area * (b[p][0] + b[p][1] + b[p][2]);
+    area[o] += mesh.patches[p].area;
+  }
+  for (auto& [o, s] : sum) s /= area[o];
+  return sum;
+}
+
+double Error(const std::map<std::string, double>& run, const std::map<std::string, double>& ref) {
+  double sq = 0;
+  for (const auto& [o, r] : ref) {
+    if (o == "light") continue;
+    const double e = run.at(o) / r - 1;
+    sq += e * e;
+  }
+  return std::sqrt(sq / (ref.size() - 1));
+}
+
+class CornellRefinement : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scene_ = new Scene(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"));
+    const HierarchicalResult r = Hierarchical(3e-6);
+    reference_ = new std::map<std::string, double>(ObjectMeans(*scene_, r.mesh, r.solve.radiosity));
+  }
+  static void TearDownTestSuite() {
+    delete scene_;
+    delete reference_;
+  }
+  static HierarchicalResult Hierarchical(double epsilon) {
+    HierarchicalOptions h;
+    h.link_epsilon = epsilon;
+    h.min_area_fraction = 5e-6;
+    SolverOptions s;
+    s.tolerance = 1e-7;
+    return *SolveHierarchical(*scene_, h, s);
+  }
+  static Scene* scene_;
+  static std::map<std::string, double>* reference_;
+};
+Scene* CornellRefinement::scene_ = nullptr;
+std::map<std::string, double>* CornellRefinement::reference_ = nullptr;
+
+TEST_F(CornellRefinement, HierarchicalErrorNeverIncreasesOverThreeEpsilons) {
+  std::vector<double> errors;
+  for (double eps : {1e-3, 1e-4, 1e-5}) {
+    const HierarchicalResult r = Hierarchical(eps);
+    errors.push_back(Error(ObjectMeans(*scene_, r.mesh, r.solve.radiosity), *reference_));
+    std::printf("hierarchical eps %g: %zu leaves %zu links error %.3e\n", eps, r.stats.leaves,
+                r.stats.links, errors.back());
+  }
+  EXPECT_LE(errors[1], errors[0]);
+  EXPECT_LE(errors[2], errors[1]);
+}
+
+TEST_F(CornellRefinement, AdaptiveErrorNeverIncreasesOverThreePasses) {
+  std::vector<double> errors;
+  for (int passes : {0, 1, 2}) {
+    MeshOptions mesh;
+    mesh.target_patches = 100;
+    FormFactorOptions ff;
+    ff.method = FormFactorMethod::kAnalytic;
+    SolverOptions s;
+    s.tolerance = 1e-7;
+    AdaptiveOptions a;
+    a.passes = passes;
+    a.threshold = 0.3;
+    const AdaptiveResult r = *SolveAdaptive(*scene_, mesh, ff, s, a);
+    errors.push_back(Error(ObjectMeans(*scene_, r.leaf_mesh, r.leaf_radiosity), *reference_));
+    std::printf("adaptive passes %d: %zu patches error %.3e\n", passes, r.leaves.size(),
+                errors.back());
+  }
+  EXPECT_LE(errors[1], errors[0]);
+  EXPECT_LE(errors[2], errors[1]);
+}
+
+}  // namespace
+}  // namespace radflux
