@@ -70,14 +70,28 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, int samples, uint64_t seed,
                             RowAccumulator& row) {
+  return AddAnalyticColumns(context, i, columns, PatchSamplePoints(*context.mesh, i, samples, seed),
+                            seed, row);
+}
+
+uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
+                            std::span<const uint32_t> columns, const std::vector<Vec3>& points,
+                            uint64_t seed, RowAccumulator& row) {
   const PatchMesh& mesh = *context.mesh;
-  const std::vector<Vec3> points = PatchSamplePoints(mesh, i, samples, seed);
   uint64_t rays = 0;
   for (uint32_t j : columns) {
     if (!PatchesCanExchange(mesh, i, j)) continue;
     row.Add(j, AnalyticPairFormFactor(context, i, points, j, seed, rays));
   }
   return rays;
+}
+
+std::vector<uint32_t> EmitterPatches(const RowContext& context) {
+  std::vector<uint32_t> emitters;
+  for (uint32_t j = 0; j < context.emitter.size(); ++j) {
+    if (context.emitter[j]) emitters.push_back(j);
+  }
+  return emitters;
 }
 
 }  // namespace radflux

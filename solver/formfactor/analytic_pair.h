@@ -24,10 +24,17 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays);
 
+// The patches flagged as emitters in `context`, ascending.
+std::vector<uint32_t> EmitterPatches(const RowContext& context);
+
 // Adds the analytic F_ij of row i for every j in `columns` that can exchange light with
 // i, from s = `samples` points on i; returns the shadow rays cast.
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, int samples, uint64_t seed,
                             RowAccumulator& row);
+// The same from given points on i (e.g. s copies of the centroid: s shadow rays from it).
+uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
+                            std::span<const uint32_t> columns, const std::vector<Vec3>& points,
+                            uint64_t seed, RowAccumulator& row);
 
 }  // namespace radflux

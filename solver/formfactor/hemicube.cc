@@ -2,8 +2,16 @@
 // The top face has r x r cells, each side r x r/2; one ray through each cell centre
 // adds the cell's delta form factor to the patch it hits. Delta form factors are the
 // exact point-to-cell form factors, so they sum to 1 and the only error is aliasing.
+// Two things keep aliasing in check: each patch turns its hemicube about the normal by
+// its own seeded angle (so cell rays do not line up with a regular mesh's edges), and,
+// as in monte_carlo, emitter columns are analytic (from the centroid) and cell hits on
+// emitters are dropped (a small bright emitter can fall between cell rays).
+#include <cmath>
+#include <numbers>
 #include <vector>
 
+#include "solver/core/sampling.h"
+#include "solver/formfactor/analytic_pair.h"
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/polygon_form_factor.h"
 
@@ -43,13 +51,18 @@ std::vector<Cell> MakeHemicubeCells(int r) {
 class HemicubeBuilder final : public RowBuilder {
  public:
   HemicubeBuilder(const RowContext& context, const FormFactorOptions& options)
-      : context_(context), cells_(MakeHemicubeCells(options.hemicube_res)) {}
+      : context_(context),
+        cells_(MakeHemicubeCells(options.hemicube_res)),
+        emitters_(EmitterPatches(context)),
+        samples_(options.samples),
+        seed_(options.seed) {}
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
     const PatchMesh& mesh = *context_.mesh;
     const Patch& patch = mesh.patches[i];
-    // Frame with its first axis along the patch's first edge: deterministic per patch.
-    const Vec3 s = Normalize(mesh.Vertex(i, 1) - mesh.Vertex(i, 0));
+    const Vec3 edge = Normalize(mesh.Vertex(i, 1) - mesh.Vertex(i, 0));
+    const double turn = 2 * std::numbers::pi * RandomFloat(0, PatternSeed(seed_, i, kTurnStream));
+    const Vec3 s = edge * std::cos(turn) + Cross(patch.normal, edge) * std::sin(turn);
     const Frame frame{s, Cross(patch.normal, s), patch.normal};
     const Vec3 origin = patch.centroid + patch.normal * context_.ray_epsilon;
     thread_local std::vector<Ray> ray_batch;  // per-thread scratch, reused row to row
@@ -62,15 +75,24 @@ class HemicubeBuilder final : public RowBuilder {
     context_.caster->IntersectBatch(ray_batch, hit_batch);
     for (size_t c = 0; c < cells_.size(); ++c) {
       const uint32_t j = hit_batch[c].patch;
-      if (j == kNoPatch || Dot(ray_batch[c].direction, mesh.patches[j].normal) >= 0) continue;
+      if (j == kNoPatch || context_.emitter[j]) continue;
+      if (Dot(ray_batch[c].direction, mesh.patches[j].normal) >= 0) continue;
       row.Add(j, cells_[c].delta_form_factor);
     }
-    return cells_.size();
+    if (emitters_.empty()) return cells_.size();
+    // A hemicube is a point method: emitter columns from the centroid too (exact point form
+    // factor, s shadow rays to stratified points on the emitter), so rows stay consistent.
+    const std::vector<Vec3> centroid(static_cast<size_t>(samples_), patch.centroid);
+    return cells_.size() + AddAnalyticColumns(context_, i, emitters_, centroid, seed_, row);
   }
 
  private:
+  static constexpr uint64_t kTurnStream = 21;
   const RowContext& context_;
   std::vector<Cell> cells_;
+  std::vector<uint32_t> emitters_;
+  int samples_;
+  uint64_t seed_;
 };
 
 }  // namespace

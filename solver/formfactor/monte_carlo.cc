@@ -31,9 +31,7 @@ class MonteCarloBuilder final : public RowBuilder {
       directions_.push_back(
           MultiJitteredSample(PermuteIndex(r, k, kDirectionPattern), k, kDirectionPattern));
     }
-    for (uint32_t j = 0; j < context.mesh->size(); ++j) {
-      if (context.emitter[j]) emitters_.push_back(j);
-    }
+    emitters_ = EmitterPatches(context);
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {

@@ -194,7 +194,11 @@ TEST(HardSliver, SliversAndTinyPatchesKeepRowSumsAndReciprocity) {
                 worst_tiny, mc_bound_group, mc_bound_tiny);
     // monte_carlo rows mix traced columns with the lamp's analytic column, so they sum to 1
     // only statistically: 4 sigma = 4 sqrt(F (1 - F) / k) <= 2 / sqrt(k).
-    const double row_tolerance = m == FormFactorMethod::kMonteCarlo ? 2 / std::sqrt(o.rays) : 1e-6;
+    // hemicube rows take the lamp's column as the exact point form factor from the centroid,
+    // so they miss 1 by the cells' aliasing of the lamp's outline (r = 256 here).
+    const double row_tolerance = m == FormFactorMethod::kMonteCarlo ? 2 / std::sqrt(o.rays)
+                                 : m == FormFactorMethod::kHemicube ? 1e-3
+                                                                    : 1e-6;
     EXPECT_LT(row_error, row_tolerance) << Name(m);
     if (m == FormFactorMethod::kAnalytic) {
       EXPECT_LT(worst_group, 0.05);
