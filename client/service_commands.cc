@@ -58,7 +58,8 @@ class Client {
     std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
     if (!c.tls_ca.empty()) {
       grpc::SslCredentialsOptions ssl;
-      if (!ReadFile(c.tls_ca, &ssl.pem_root_certs)) std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << "\n";
+      if (!ReadFile(c.tls_ca, &ssl.pem_root_certs))
+        std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << "\n";
       credentials = grpc::SslCredentials(ssl);
     }
     stub_ = v1::Radiosity::NewStub(grpc::CreateChannel(c.server, credentials));
@@ -93,7 +94,8 @@ std::string FindMtl(const std::string& obj_path, const std::string& obj) {
 
 grpc::Status UploadScene(Client& client, const std::string& path, std::string* sha) {
   std::string obj;
-  if (!ReadFile(path, &obj)) return grpc::Status(grpc::StatusCode::NOT_FOUND, "cannot read " + path);
+  if (!ReadFile(path, &obj))
+    return grpc::Status(grpc::StatusCode::NOT_FOUND, "cannot read " + path);
   const std::string mtl = FindMtl(path, obj);
   v1::SceneRef ref;
   auto context = client.Context();
@@ -167,8 +169,10 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
 
 // One line on stderr for a failure; server errors name the server, local ones do not.
 int Fail(const absl::Status& status, const ConnectionFlags& c) {
-  if (status.code() == absl::StatusCode::kUnavailable || status.code() == absl::StatusCode::kUnauthenticated ||
-      status.code() == absl::StatusCode::kNotFound || status.code() == absl::StatusCode::kFailedPrecondition) {
+  if (status.code() == absl::StatusCode::kUnavailable ||
+      status.code() == absl::StatusCode::kUnauthenticated ||
+      status.code() == absl::StatusCode::kNotFound ||
+      status.code() == absl::StatusCode::kFailedPrecondition) {
     return Report(ToGrpcStatus(status), c);
   }
   std::cerr << "radflux: " << status.message() << "\n";
@@ -191,9 +195,9 @@ absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& g
   absl::StatusOr<std::vector<float>> values = SnapshotValues(snapshot);
   if (!values.ok()) return values.status();
   if (snapshot.patch_count() != geometry.mesh.size() || snapshot.bands_size() != kBands) {
-    return absl::DataLossError(absl::StrCat("snapshot of ", snapshot.patch_count(),
-                                            " patches and ", snapshot.bands_size(),
-                                            " bands for a mesh of ", geometry.mesh.size()));
+    return absl::DataLossError(absl::StrCat("snapshot of ", snapshot.patch_count(), " patches and ",
+                                            snapshot.bands_size(), " bands for a mesh of ",
+                                            geometry.mesh.size()));
   }
   std::vector<Rgb> radiosity(geometry.mesh.size());
   for (size_t p = 0; p < radiosity.size(); ++p)
@@ -300,7 +304,8 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
       vertex_count = chunk.header().vertex_count();
       patch_count = chunk.header().patch_count();
     }
-    if (chunk.has_vertices()) xyz.insert(xyz.end(), chunk.vertices().xyz().begin(), chunk.vertices().xyz().end());
+    if (chunk.has_vertices())
+      xyz.insert(xyz.end(), chunk.vertices().xyz().begin(), chunk.vertices().xyz().end());
     if (chunk.has_patches()) {
       const v1::PatchChunk& p = chunk.patches();
       r.vertices.insert(r.vertices.end(), p.vertices().begin(), p.vertices().end());
@@ -314,7 +319,8 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
       r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
     return absl::DataLossError("result stream does not match its header's counts");
   }
-  for (size_t i = 0; i < vertex_count; ++i) r.positions.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  for (size_t i = 0; i < vertex_count; ++i)
+    r.positions.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
   r.radiosity.resize(patch_count);
   for (size_t p = 0; p < patch_count; ++p)
     for (int k = 0; k < kBands; ++k) r.radiosity[p][k] = b[kBands * p + k];
@@ -360,7 +366,8 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args)
     std::ofstream out(args.output.report);
     out << result->report << "\n";
     out.close();
-    if (!out) return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
+    if (!out)
+      return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
   std::cout << result->faces.size() << " patches\n";
   return 0;
@@ -419,9 +426,10 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   watch_cmd->add_option("job", *job_id, "job id")->required();
   watch_cmd->add_option("--snapshots", *snapshots,
                         "write each snapshot as a rendered PNG into DIR (camera flags apply)");
-  watch_cmd->add_option("--snapshot-every", *snapshot_every,
-                        "ask for a snapshot every N solver iterations (default with --snapshots: "
-                        "1; without it they are received and counted only)")
+  watch_cmd
+      ->add_option("--snapshot-every", *snapshot_every,
+                   "ask for a snapshot every N solver iterations (default with --snapshots: "
+                   "1; without it they are received and counted only)")
       ->check(CLI::NonNegativeNumber);
   AddOutputFlags(*watch_cmd, watch_args->output);
   watch_cmd->add_option("--threads", watch_args->threads, "render threads (0 = all cores)");
@@ -438,8 +446,8 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     }
   });
 
-  auto* result = app.add_subcommand(
-      "result", "fetch a finished job's result: the outputs of `radflux solve`");
+  auto* result =
+      app.add_subcommand("result", "fetch a finished job's result: the outputs of `radflux solve`");
   auto result_id = std::make_shared<std::string>();
   auto result_args = std::make_shared<OutputArgs>();
   result->add_option("job", *result_id, "job id")->required();

@@ -4,7 +4,8 @@
 
 namespace radflux {
 
-grpc::Status CheckBearerToken(const grpc::CallbackServerContext& context, const std::string& token) {
+grpc::Status CheckBearerToken(const grpc::CallbackServerContext& context,
+                              const std::string& token) {
   if (token.empty()) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto it = metadata.find("authorization");
@@ -14,7 +15,8 @@ grpc::Status CheckBearerToken(const grpc::CallbackServerContext& context, const 
   }
   const std::string expected = "Bearer " + token;
   const grpc::string_ref& got = it->second;
-  if (got.size() != expected.size() || CRYPTO_memcmp(got.data(), expected.data(), got.size()) != 0) {
+  if (got.size() != expected.size() ||
+      CRYPTO_memcmp(got.data(), expected.data(), got.size()) != 0) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "invalid bearer token");
   }
   return grpc::Status::OK;

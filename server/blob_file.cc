@@ -21,7 +21,8 @@ constexpr size_t kHashHexSize = 64;
 constexpr int kZstdLevel = 3;
 
 absl::Status ErrnoError(std::string_view what, const std::string& path) {
-  return absl::InternalError(absl::StrCat(std::string(what), " ", path, ": ", std::strerror(errno)));
+  return absl::InternalError(
+      absl::StrCat(std::string(what), " ", path, ": ", std::strerror(errno)));
 }
 
 // Writes all of `data` to fd.
@@ -86,7 +87,8 @@ absl::StatusOr<std::string> ReadBlobFile(const std::string& path) {
   const unsigned long long raw_size = std::strtoull(size_text.c_str(), &end, 10);
   if (end == size_text.c_str() || *end != '\0') return corrupt("bad size");
   std::string raw(raw_size, '\0');
-  const size_t got = ZSTD_decompress(raw.data(), raw.size(), file.data() + body, file.size() - body);
+  const size_t got =
+      ZSTD_decompress(raw.data(), raw.size(), file.data() + body, file.size() - body);
   if (ZSTD_isError(got) || got != raw_size) return corrupt("bad compressed data");
   if (Sha256Hex(raw) != hash) return corrupt("checksum mismatch");
   return raw;

@@ -9,14 +9,14 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "solver/core/parallel.h"
-#include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
-#include "solver/scene/validation.h"
 #include "server/job_runner.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
 #include "server/scene_hash.h"
+#include "solver/core/parallel.h"
+#include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+#include "solver/scene/validation.h"
 
 namespace radflux {
 namespace {
@@ -40,8 +40,7 @@ std::string NewJobId() {
 }
 
 bool Terminal(v1::JobState s) {
-  return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED ||
-         s == v1::JOB_STATE_CANCELLED;
+  return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED || s == v1::JOB_STATE_CANCELLED;
 }
 
 uint64_t DefaultMaxMemory() {
@@ -86,7 +85,8 @@ absl::Status JobManager::Start() {
       HubLocked(job.job_id());
     }
   }
-  for (int i = 0; i < std::max(1, options_.jobs); ++i) workers_.emplace_back([this] { WorkerLoop(); });
+  for (int i = 0; i < std::max(1, options_.jobs); ++i)
+    workers_.emplace_back([this] { WorkerLoop(); });
   return absl::OkStatus();
 }
 
@@ -106,8 +106,8 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
                                                   const std::string& obj, const std::string& mtl) {
   const std::string sha = SceneContentHash(obj, mtl);
   if (!header.sha256().empty() && header.sha256() != sha) {
-    return absl::DataLossError(absl::StrCat("upload hashes to ", sha, ", not the declared ",
-                                            header.sha256()));
+    return absl::DataLossError(
+        absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
   }
   const std::string name = header.name().empty() ? "scene.obj" : header.name();
   absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, name);
@@ -137,9 +137,9 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
   if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
   const int64_t max_patches = options_.max_patches;
   const auto too_many = [&](double n) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "job would mesh ", static_cast<int64_t>(n), " patches; this server allows at most ",
-        max_patches, " (--max-patches)"));
+    return absl::ResourceExhaustedError(absl::StrCat("job would mesh ", static_cast<int64_t>(n),
+                                                     " patches; this server allows at most ",
+                                                     max_patches, " (--max-patches)"));
   };
   if (max_patches > 0 && options->mesh.target_patches > max_patches) {
     return too_many(static_cast<double>(options->mesh.target_patches));
@@ -151,9 +151,9 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
   const uint64_t max_memory = options_.max_memory > 0 ? options_.max_memory : DefaultMaxMemory();
   const uint64_t bytes = EstimateJobBytes(*scene, *options);
   if (bytes > max_memory) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "job needs an estimated ", bytes, " bytes; this server allows ", max_memory,
-        " per job (--max-memory)"));
+    return absl::ResourceExhaustedError(absl::StrCat("job needs an estimated ", bytes,
+                                                     " bytes; this server allows ", max_memory,
+                                                     " per job (--max-memory)"));
   }
   return absl::OkStatus();
 }
@@ -270,9 +270,9 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
   absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
   if (!job.ok()) return job.status();
   if (job->state() != v1::JOB_STATE_SUCCEEDED) {
-    return absl::FailedPreconditionError(absl::StrCat(
-        "job ", job_id, " has no result: it is ", v1::JobState_Name(job->state()),
-        job->message().empty() ? "" : " (" + job->message() + ")"));
+    return absl::FailedPreconditionError(
+        absl::StrCat("job ", job_id, " has no result: it is ", v1::JobState_Name(job->state()),
+                     job->message().empty() ? "" : " (" + job->message() + ")"));
   }
   absl::StatusOr<std::string> bytes = store_.GetResult(job_id);
   if (!bytes.ok()) return bytes.status();

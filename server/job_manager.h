@@ -23,15 +23,15 @@
 namespace radflux {
 
 struct ManagerOptions {
-  int jobs = 1;                  // jobs running at once
-  int threads = 0;               // OpenMP threads shared by the running jobs (0 = all cores)
-  int64_t max_patches = 2'000'000;  // larger jobs are refused (RESOURCE_EXHAUSTED)
-  uint64_t max_memory = 0;       // bytes per job by EstimateJobBytes (0 = half the RAM)
+  int jobs = 1;                        // jobs running at once
+  int threads = 0;                     // OpenMP threads shared by the running jobs (0 = all cores)
+  int64_t max_patches = 2'000'000;     // larger jobs are refused (RESOURCE_EXHAUSTED)
+  uint64_t max_memory = 0;             // bytes per job by EstimateJobBytes (0 = half the RAM)
   uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
-  size_t max_queued = 1000;      // queued jobs beyond this are refused
-  double checkpoint_seconds = 1.0;  // at most one solver checkpoint per job per interval
-  int solve_delay_ms = 0;        // testing: sleep after each solver iteration (widens the
-                                 // window in which a test can kill the server mid-solve)
+  size_t max_queued = 1000;            // queued jobs beyond this are refused
+  double checkpoint_seconds = 1.0;     // at most one solver checkpoint per job per interval
+  int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
+                                       // window in which a test can kill the server mid-solve)
 };
 
 class JobManager {
@@ -70,7 +70,7 @@ class JobManager {
   struct Running {
     std::atomic<bool> stop{false};
     std::atomic<bool> cancelled{false};  // stop is for a cancel: the job's files will go
-    bool cancel_requested = false;  // guarded by mu_
+    bool cancel_requested = false;       // guarded by mu_
   };
 
   absl::Status CheckLimits(const v1::SubmitJobRequest& request);

@@ -6,13 +6,13 @@
 #include <optional>
 #include <thread>
 
+#include "server/proto_convert.h"
+#include "server/result_codec.h"
+#include "server/row_block_writer.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "solver/report.h"
 #include "solver/scene/obj_loader.h"
-#include "server/proto_convert.h"
-#include "server/result_codec.h"
-#include "server/row_block_writer.h"
 
 namespace radflux {
 namespace {
@@ -106,8 +106,8 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
 bool ResumableSolver(SolverMethod method) { return method != SolverMethod::kDirect; }
 
 // The checkpoint to resume from, if the job has a usable one for this method.
-std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMethod method,
-                                                 size_t n, const RunContext& c) {
+std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMethod method, size_t n,
+                                                 const RunContext& c) {
   if (!ResumableSolver(method)) return std::nullopt;
   absl::StatusOr<SolverCheckpoint> checkpoint = c.store->GetCheckpoint(job.job_id());
   const size_t unshot = method == SolverMethod::kSouthwell ? n : 0;
@@ -164,7 +164,8 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
       last_checkpoint = Clock::now();
     }
   };
-  absl::StatusOr<SolveResult> solved = Solve(RadiositySystem{&rows, &p.attributes}, so, on_progress);
+  absl::StatusOr<SolveResult> solved =
+      Solve(RadiositySystem{&rows, &p.attributes}, so, on_progress);
   if (!solved.ok()) return solved.status();
   if (solved->cancelled || Stopped(c)) {
     if (!last.radiosity.empty()) (void)c.store->PutCheckpoint(job.job_id(), last);
@@ -200,8 +201,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
     const RunContext& c;
     ~FinishWriter() { writer.Finish(!(c.cancelled && c.cancelled->load())); }
   } finish_writer{writer, c};
-  absl::StatusOr<FormFactorResult> rows =
-      BuildStoredRows(job, p, options->form_factors, c, writer);
+  absl::StatusOr<FormFactorResult> rows = BuildStoredRows(job, p, options->form_factors, c, writer);
   if (!rows.ok()) return rows.status();
 
   c.on_phase(v1::PHASE_SOLVE, n);

@@ -19,12 +19,12 @@ namespace radflux {
 
 struct RunContext {
   JobStore* store = nullptr;
-  JobHub* hub = nullptr;                    // receives progress events and snapshots
-  const std::atomic<bool>* stop = nullptr;  // cancel or shutdown: stop at the next safe point
+  JobHub* hub = nullptr;                         // receives progress events and snapshots
+  const std::atomic<bool>* stop = nullptr;       // cancel or shutdown: stop at the next safe point
   const std::atomic<bool>* cancelled = nullptr;  // set (before stop) when stopping for a cancel
-  int threads = 0;                          // OpenMP threads for this job (0 = all cores)
-  double checkpoint_seconds = 1.0;          // at most one solver checkpoint per this interval
-  int solve_delay_ms = 0;                   // testing: sleep after each solver iteration
+  int threads = 0;                               // OpenMP threads for this job (0 = all cores)
+  double checkpoint_seconds = 1.0;               // at most one solver checkpoint per this interval
+  int solve_delay_ms = 0;                        // testing: sleep after each solver iteration
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };

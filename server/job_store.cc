@@ -43,7 +43,8 @@ class Statement {
   int Step() { return sqlite3_step(stmt_); }
   std::string Column(int i) {
     const void* data = sqlite3_column_blob(stmt_, i);
-    return std::string(static_cast<const char*>(data), static_cast<size_t>(sqlite3_column_bytes(stmt_, i)));
+    return std::string(static_cast<const char*>(data),
+                       static_cast<size_t>(sqlite3_column_bytes(stmt_, i)));
   }
 
  private:
@@ -52,7 +53,8 @@ class Statement {
 };
 
 absl::Status SqlError(sqlite3* db, std::string_view what) {
-  return absl::InternalError(absl::StrCat("job store: ", std::string(what), ": ", sqlite3_errmsg(db)));
+  return absl::InternalError(
+      absl::StrCat("job store: ", std::string(what), ": ", sqlite3_errmsg(db)));
 }
 
 std::string RowBlockName(uint32_t index) { return absl::StrCat("rows_", index, ".rfb"); }
@@ -102,8 +104,9 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
   if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
   if (absl::Status s = WriteBlobFile(base + ".mtl.rfb", scene.mtl); !s.ok()) return s;
   std::lock_guard lock(mu_);
-  Statement st(db_, "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
-                    "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
+  Statement st(db_,
+               "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
+               "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
   st.Bind(1, sha256);
   st.Bind(2, scene.name);
   if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "put scene");
@@ -117,7 +120,8 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
     Statement st(db_, "SELECT name FROM scenes WHERE sha256 = ?");
     st.Bind(1, sha256);
     if (!st.ok() || st.Step() != SQLITE_ROW) {
-      return absl::NotFoundError(absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
+      return absl::NotFoundError(
+          absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
     }
     scene.name = st.Column(0);
   }
@@ -142,10 +146,14 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job) {
       return existing;
     }
   }
-  Statement st(db_, "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
-                    "VALUES(?, ?, ?, ?, ?)");
+  Statement st(db_,
+               "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
+               "VALUES(?, ?, ?, ?, ?)");
   st.Bind(1, job.job_id());
-  if (job.request_id().empty()) st.BindNull(2); else st.Bind(2, job.request_id());
+  if (job.request_id().empty())
+    st.BindNull(2);
+  else
+    st.Bind(2, job.request_id());
   st.Bind(3, job.scene_sha256());
   st.BindInt(4, job.state());
   st.BindBlob(5, job.SerializeAsString());
@@ -208,17 +216,17 @@ absl::StatusOr<std::vector<v1::Job>> JobStore::ListJobs(const JobFilter& filter)
     where.push_back("scene_sha256 = ?");
     args.push_back(filter.scene_sha256);
   }
-  const std::string sql = absl::StrCat(
-      "SELECT job FROM jobs", where.empty() ? "" : " WHERE ", absl::StrJoin(where, " AND "),
-      " ORDER BY seq DESC LIMIT ", filter.limit, " OFFSET ", filter.offset);
+  const std::string sql = absl::StrCat("SELECT job FROM jobs", where.empty() ? "" : " WHERE ",
+                                       absl::StrJoin(where, " AND "), " ORDER BY seq DESC LIMIT ",
+                                       filter.limit, " OFFSET ", filter.offset);
   return QueryJobs(sql, args);
 }
 
 absl::StatusOr<std::vector<v1::Job>> JobStore::UnfinishedJobs() {
-  return QueryJobs(absl::StrCat("SELECT job FROM jobs WHERE state IN (",
-                                static_cast<int>(v1::JOB_STATE_QUEUED), ",",
-                                static_cast<int>(v1::JOB_STATE_RUNNING), ") ORDER BY seq ASC"),
-                   {});
+  return QueryJobs(
+      absl::StrCat("SELECT job FROM jobs WHERE state IN (", static_cast<int>(v1::JOB_STATE_QUEUED),
+                   ",", static_cast<int>(v1::JOB_STATE_RUNNING), ") ORDER BY seq ASC"),
+      {});
 }
 
 absl::Status JobStore::PutRowBlock(const std::string& job_id, uint32_t index,
@@ -235,8 +243,7 @@ absl::StatusOr<StoredRowBlock> JobStore::GetRowBlock(const std::string& job_id, 
 }
 
 absl::Status JobStore::PutCheckpoint(const std::string& job_id, const SolverCheckpoint& c) {
-  return WriteBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string(),
-                       EncodeCheckpoint(c));
+  return WriteBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string(), EncodeCheckpoint(c));
 }
 
 absl::StatusOr<SolverCheckpoint> JobStore::GetCheckpoint(const std::string& job_id) {

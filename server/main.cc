@@ -59,7 +59,8 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const Flags& flags) {
 }
 
 int Serve(const Flags& flags) {
-  absl::StatusOr<std::unique_ptr<radflux::JobStore>> store = radflux::JobStore::Open(flags.data_dir);
+  absl::StatusOr<std::unique_ptr<radflux::JobStore>> store =
+      radflux::JobStore::Open(flags.data_dir);
   if (!store.ok()) {
     spdlog::error("{}", std::string(store.status().message()));
     return 1;
@@ -128,10 +129,12 @@ int main(int argc, char** argv) {
 
   CLI::App app{"radfluxd: the radflux radiosity solver service"};
   Flags flags;
-  app.add_option("--listen", flags.listen, "HOST:PORT to serve on (port 0 = any free port)")->required();
+  app.add_option("--listen", flags.listen, "HOST:PORT to serve on (port 0 = any free port)")
+      ->required();
   app.add_option("--data-dir", flags.data_dir, "directory of the job store")->required();
   app.add_option("--jobs", flags.manager.jobs, "jobs running at once")->check(CLI::Range(1, 256));
-  app.add_option("--threads", flags.manager.threads, "OpenMP threads shared by running jobs (0 = all cores)")
+  app.add_option("--threads", flags.manager.threads,
+                 "OpenMP threads shared by running jobs (0 = all cores)")
       ->check(CLI::Range(0, 4096));
   app.add_option("--token", flags.token, "require this bearer token on every call");
   auto* cert = app.add_option("--tls-cert", flags.tls_cert, "PEM server certificate (enables TLS)");
@@ -143,8 +146,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-memory", flags.manager.max_memory,
                  "refuse jobs whose estimated memory exceeds BYTES (default: half the RAM)");
   app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
-  app.add_option("--checkpoint-seconds", flags.manager.checkpoint_seconds,
-                 "at most one solver checkpoint per job per this many seconds (0 = every iteration)")
+  app.add_option(
+         "--checkpoint-seconds", flags.manager.checkpoint_seconds,
+         "at most one solver checkpoint per job per this many seconds (0 = every iteration)")
       ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")

@@ -27,7 +27,8 @@ absl::StatusOr<JobOptions> FromProto(const v1::SolveOptions& p) {
   if (p.has_block_size()) o.form_factors.block_size = p.block_size();
   if (p.has_solver()) {
     std::optional<SolverMethod> solver = ParseSolver(p.solver());
-    if (!solver) return absl::InvalidArgumentError(absl::StrCat("unknown solver '", p.solver(), "'"));
+    if (!solver)
+      return absl::InvalidArgumentError(absl::StrCat("unknown solver '", p.solver(), "'"));
     o.solver.method = *solver;
   }
   if (p.has_tolerance()) o.solver.tolerance = p.tolerance();
@@ -66,7 +67,8 @@ uint16_t FloatToHalf(float value) {
   const uint32_t f = std::bit_cast<uint32_t>(value);
   const uint32_t sign = (f >> 16) & 0x8000u;
   const uint32_t abs = f & 0x7fffffffu;
-  if (abs >= 0x7f800000u) return static_cast<uint16_t>(sign | 0x7c00u | (abs > 0x7f800000u ? 0x200u : 0u));
+  if (abs >= 0x7f800000u)
+    return static_cast<uint16_t>(sign | 0x7c00u | (abs > 0x7f800000u ? 0x200u : 0u));
   if (abs >= 0x477ff000u) return static_cast<uint16_t>(sign | 0x7c00u);  // rounds past 65504
   if (abs < 0x38800000u) {  // subnormal half (or zero): value * 2^24 rounded to nearest even
     const float scaled = std::bit_cast<float>(abs) * 16777216.0f;

@@ -31,7 +31,9 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
     if (!ok) return Complete();
     if (first_) {
       first_ = false;
-      if (!chunk_.has_header()) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "the first chunk of an upload must carry its header");
+      if (!chunk_.has_header())
+        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
+                    "the first chunk of an upload must carry its header");
       header_ = chunk_.header();
       expected_ = header_.obj_size() + header_.mtl_size();
       if (expected_ > manager_.options().max_upload) {
@@ -42,8 +44,8 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
       data_.reserve(expected_);
     }
     if (data_.size() + chunk_.data().size() > expected_) {
-      return Fail(grpc::StatusCode::DATA_LOSS,
-                  absl::StrCat("upload is longer than the ", expected_, " bytes its header declares"));
+      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload is longer than the ", expected_,
+                                                            " bytes its header declares"));
     }
     data_ += chunk_.data();
     StartRead(&chunk_);
@@ -52,7 +54,9 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   void OnDone() override { delete this; }
 
  private:
-  void Fail(grpc::StatusCode code, const std::string& message) { Finish(grpc::Status(code, message)); }
+  void Fail(grpc::StatusCode code, const std::string& message) {
+    Finish(grpc::Status(code, message));
+  }
 
   void Complete() {
     if (first_) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "empty upload");
@@ -89,7 +93,10 @@ class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
       absl::StatusOr<std::vector<T>> chunks = produce();
       {
         std::lock_guard lock(mu_);
-        if (chunks.ok()) chunks_ = *std::move(chunks); else status_ = ToGrpcStatus(chunks.status());
+        if (chunks.ok())
+          chunks_ = *std::move(chunks);
+        else
+          status_ = ToGrpcStatus(chunks.status());
       }
       Next();
     });
@@ -151,15 +158,17 @@ absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
 // INVALID_ARGUMENT for a snapshot cadence < 0 or bands that are not distinct values 0..2.
 grpc::Status CheckWatchRequest(const v1::WatchJobRequest& request) {
   if (request.snapshot_every() < 0) {
-    return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                        absl::StrCat("snapshot_every must be >= 0, not ", request.snapshot_every()));
+    return grpc::Status(
+        grpc::StatusCode::INVALID_ARGUMENT,
+        absl::StrCat("snapshot_every must be >= 0, not ", request.snapshot_every()));
   }
   bool seen[3] = {false, false, false};
   for (int band : request.bands()) {
     if (band < 0 || band > 2 || seen[band]) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           absl::StrCat("bands must be distinct values of 0 (red), 1 (green), "
-                                       "2 (blue); got ", band));
+                                       "2 (blue); got ",
+                                       band));
     }
     seen[band] = true;
   }

@@ -6,8 +6,8 @@
 namespace radflux {
 namespace {
 
-constexpr uint32_t kRowBlockTag = 0x52424c31;    // "RBL1"
-constexpr uint32_t kCheckpointTag = 0x43504b31;  // "CPK1": iteration, B
+constexpr uint32_t kRowBlockTag = 0x52424c31;     // "RBL1"
+constexpr uint32_t kCheckpointTag = 0x43504b31;   // "CPK1": iteration, B
 constexpr uint32_t kCheckpointTag2 = 0x43504b32;  // "CPK2": iteration, B, method, unshot
 
 // Appends trivially copyable values (the platforms radflux runs on are little-endian).
@@ -76,8 +76,8 @@ absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
   uint32_t tag = 0;
   const bool ok = r.Get(tag) && tag == kRowBlockTag && r.Get(s.block.first_row) &&
                   r.GetVector(s.block.row_begin) && r.GetVector(s.block.col) &&
-                  r.GetVector(s.block.value) && r.Get(s.stats.rays) &&
-                  r.Get(s.stats.dropped_sum) && r.Get(s.stats.max_row_dropped) && r.AtEnd();
+                  r.GetVector(s.block.value) && r.Get(s.stats.rays) && r.Get(s.stats.dropped_sum) &&
+                  r.Get(s.stats.max_row_dropped) && r.AtEnd();
   if (!ok || s.block.row_begin.empty() || s.block.col.size() != s.block.value.size() ||
       s.block.row_begin.back() != s.block.col.size()) {
     return absl::DataLossError("not a row block");

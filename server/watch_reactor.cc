@@ -30,7 +30,8 @@ bool WatchReactor::NextMessage() {
   message_.set_state(v1::JOB_STATE_RUNNING);
   message_.set_phase(v1::PHASE_SOLVE);
   const std::vector<int> bands(request_.bands().begin(), request_.bands().end());
-  *message_.mutable_snapshot() = *hub_->EncodedSnapshot(snapshot, bands, request_.snapshot_format());
+  *message_.mutable_snapshot() =
+      *hub_->EncodedSnapshot(snapshot, bands, request_.snapshot_format());
   return true;
 }
 

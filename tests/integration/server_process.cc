@@ -12,7 +12,8 @@ namespace radflux::testing {
 ServerProcess::ServerProcess(const std::string& data_dir, const std::vector<std::string>& extra) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe");
-  std::vector<std::string> args = {RADFLUXD_PATH, "--listen", "127.0.0.1:0", "--data-dir", data_dir};
+  std::vector<std::string> args = {RADFLUXD_PATH, "--listen", "127.0.0.1:0", "--data-dir",
+                                   data_dir};
   args.insert(args.end(), extra.begin(), extra.end());
   pid_ = fork();
   if (pid_ == 0) {
@@ -33,7 +34,8 @@ ServerProcess::ServerProcess(const std::string& data_dir, const std::vector<std:
     std::string text(line);
     if (text.rfind(marker, 0) == 0) {
       address_ = text.substr(marker.size());
-      while (!address_.empty() && (address_.back() == '\n' || address_.back() == '\r')) address_.pop_back();
+      while (!address_.empty() && (address_.back() == '\n' || address_.back() == '\r'))
+        address_.pop_back();
       break;
     }
   }

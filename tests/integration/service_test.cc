@@ -5,15 +5,15 @@
 #include <unistd.h>
 
 #include <array>
-#include <condition_variable>
-#include <mutex>
-#include <thread>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
-#include <nlohmann/json.hpp>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "server/proto_convert.h"
@@ -133,7 +133,8 @@ class ServiceTest : public ::testing::Test {
         radiosity->insert(radiosity->end(), chunk.patches().radiosity().begin(),
                           chunk.patches().radiosity().end());
       }
-      if (report && chunk.part_case() == v1::ResultChunk::kReportJson) *report = chunk.report_json();
+      if (report && chunk.part_case() == v1::ResultChunk::kReportJson)
+        *report = chunk.report_json();
     }
     return reader->Finish();
   }
@@ -241,7 +242,8 @@ TEST_F(ServiceTest, CancelMidRowsEndsCancelledAndCleansFiles) {
   std::vector<double> served;
   EXPECT_EQ(Result(job.job_id(), &served).error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   size_t files = 0;
-  for ([[maybe_unused]] const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id())) ++files;
+  for ([[maybe_unused]] const auto& f : fs::directory_iterator(data_dir_ + "/jobs/" + job.job_id()))
+    ++files;
   EXPECT_EQ(files, 0u) << "a cancelled job's row blocks and checkpoint are removed";
 }
 
@@ -407,7 +409,8 @@ TEST_F(ServiceTest, CorruptOversizeAndAbsurdInputGetTheirStatusAndTheServerKeeps
   grpc::Status s = Upload(corrupt, kMtl, &ref, SceneContentHash(kObj, kMtl));
   EXPECT_EQ(s.error_code(), grpc::StatusCode::DATA_LOSS);
   EXPECT_NE(s.error_message().find("hashes to " + SceneContentHash(corrupt, kMtl)),
-            std::string::npos) << s.error_message();
+            std::string::npos)
+      << s.error_message();
 
   // Beyond --max-upload (4096 bytes): refused on the header, before the data.
   const std::string big = kObj + "#" + std::string(4000, 'x') + "\n";
@@ -433,11 +436,17 @@ TEST_F(ServiceTest, CorruptOversizeAndAbsurdInputGetTheirStatusAndTheServerKeeps
       {[](v1::SolveOptions& o) { o.set_tolerance(-1); }, "--tolerance"},
       {[](v1::SolveOptions& o) { o.set_max_iterations(-1); }, "--max-iterations"},
       {[](v1::SolveOptions& o) { o.set_target_patches(-5); }, "--patches"},
-      {[](v1::SolveOptions& o) { o.set_max_edge(INFINITY); o.clear_target_patches(); },
+      {[](v1::SolveOptions& o) {
+         o.set_max_edge(INFINITY);
+         o.clear_target_patches();
+       },
        "--max-edge"},
       {[](v1::SolveOptions& o) { o.set_cutoff(2); }, "--cutoff"},
       {[](v1::SolveOptions& o) { o.set_block_size(-1); }, "block size"},
-      {[](v1::SolveOptions& o) { o.set_form_factor_method("hemicube"); o.set_hemicube_res(3); },
+      {[](v1::SolveOptions& o) {
+         o.set_form_factor_method("hemicube");
+         o.set_hemicube_res(3);
+       },
        "--hemicube-res"},
   };
   v1::Job job;
@@ -521,8 +530,8 @@ TEST_F(ServiceTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
     // Its own connection, so a watcher that does not read fills only its own windows.
     grpc::ChannelArguments args;
     args.SetInt("radflux.test.watcher", w);
-    auto stub = v1::Radiosity::NewStub(grpc::CreateCustomChannel(
-        server_->address(), grpc::InsecureChannelCredentials(), args));
+    auto stub = v1::Radiosity::NewStub(
+        grpc::CreateCustomChannel(server_->address(), grpc::InsecureChannelCredentials(), args));
     v1::WatchJobRequest request;
     request.set_job_id(jobs[static_cast<size_t>(w % 10)]);
     request.set_snapshot_every(1);
@@ -617,7 +626,8 @@ TEST_F(ServiceTest, TlsServerCertificate) {
   const std::string cert = data_dir_ + "/cert.pem", key = data_dir_ + "/key.pem";
   const std::string command =
       "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
-      "-addext subjectAltName=DNS:localhost -keyout " + key + " -out " + cert + " 2>/dev/null";
+      "-addext subjectAltName=DNS:localhost -keyout " +
+      key + " -out " + cert + " 2>/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0);
   StartServer({"--tls-cert", cert, "--tls-key", key});
   grpc::SslCredentialsOptions ssl;
