@@ -247,6 +247,15 @@ std::shared_ptr<JobHub> JobManager::HubLocked(const std::string& job_id) {
   return hub;
 }
 
+void JobManager::RetireHubLocked(const std::string& job_id) {
+  constexpr size_t kFinishedHubsKept = 64;
+  finished_hubs_.push_back(job_id);
+  while (finished_hubs_.size() > kFinishedHubsKept) {
+    hubs_.erase(finished_hubs_.front());
+    finished_hubs_.pop_front();
+  }
+}
+
 absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_id) {
   {
     std::lock_guard lock(mu_);
@@ -262,7 +271,10 @@ absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_i
   event.set_phase(job->phase());
   event.set_message(job->message());
   hub->Publish(event);
-  if (Terminal(job->state())) hub->Close();
+  if (Terminal(job->state())) {
+    hub->Close();
+    RetireHubLocked(job_id);
+  }
   return hub;
 }
 
@@ -301,7 +313,11 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   event.set_phase(phase);
   event.set_message(message);
   hub->Publish(event);
-  if (Terminal(state)) hub->Close();
+  if (Terminal(state)) {
+    hub->Close();
+    std::lock_guard lock(mu_);
+    RetireHubLocked(job.job_id());
+  }
   spdlog::info("job {}: {} -> {} {}{}{}", job.job_id(), v1::JobState_Name(from),
                v1::JobState_Name(state), v1::Phase_Name(phase), message.empty() ? "" : ": ",
                message);

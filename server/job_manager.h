@@ -79,6 +79,10 @@ class JobManager {
   // Stores the job's new state/phase, publishes it and logs one line.
   void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message);
   std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
+  // Notes that a job's hub is closed; only the newest kFinishedHubsKept closed hubs stay in
+  // memory (with their last snapshot), older ones are dropped (watchers holding one keep it;
+  // a later Hub() rebuilds a one-event history from the store).
+  void RetireHubLocked(const std::string& job_id);
 
   JobStore& store_;
   const ManagerOptions options_;
@@ -87,6 +91,7 @@ class JobManager {
   std::deque<std::string> queue_;
   std::map<std::string, std::shared_ptr<Running>> running_;
   std::map<std::string, std::shared_ptr<JobHub>> hubs_;
+  std::deque<std::string> finished_hubs_;  // closed hubs in hubs_, oldest first
   bool stopping_ = false;
   std::vector<std::thread> workers_;
 };

@@ -596,6 +596,36 @@ TEST_F(ServiceTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
   std::cerr << "server RSS before " << rss_before << " KiB, after " << rss_after << " KiB\n";
 }
 
+// The server keeps the event hubs (with their last snapshot) of only the 64 newest finished
+// jobs in memory. A job finished 70 jobs ago is still watchable: its history is rebuilt from
+// the store and ends with its terminal state.
+TEST_F(ServiceTest, OldFinishedJobsLeaveMemoryButStayWatchable) {
+  StartServer({"--jobs", "2"});
+  v1::SceneRef ref;
+  const std::string obj =
+      "usemtl lamp\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
+      "usemtl wall\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 5 8 7 6\n";
+  const std::string mtl = "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl wall\nKd 0.8 0.8 0.8\n";
+  ASSERT_TRUE(Upload(obj, mtl, &ref).ok());
+  std::vector<std::string> jobs;
+  for (int i = 0; i < 70; ++i) {
+    v1::Job job;
+    ASSERT_TRUE(Submit(SmallOptions(4, "cg"), &job, ref.sha256()).ok());
+    jobs.push_back(job.job_id());
+  }
+  for (const std::string& id : jobs) {
+    const std::vector<v1::JobEvent> events = Watch(id);
+    ASSERT_FALSE(events.empty());
+    ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << id;
+  }
+  const std::vector<v1::JobEvent> first = Watch(jobs.front());
+  ASSERT_EQ(first.size(), 1u) << "a pruned hub is rebuilt from the store as one event";
+  EXPECT_EQ(first.back().state(), v1::JOB_STATE_SUCCEEDED);
+  const std::vector<v1::JobEvent> last = Watch(jobs.back());
+  EXPECT_GT(last.size(), 1u) << "the newest finished jobs keep their whole history";
+  EXPECT_EQ(last.back().state(), v1::JOB_STATE_SUCCEEDED);
+}
+
 TEST_F(ServiceTest, MemoryLimitRefusesBeforeAnyWork) {
   StartServer({"--max-memory", "1000"});
   const std::string sha = UploadCornell();
