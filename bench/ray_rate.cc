@@ -43,12 +43,12 @@ class RecordingCaster final : public RayCaster {
     for (const Ray& r : rays) Record(r, false);
     inner_.IntersectBatch(rays, hits);
   }
-  std::vector<std::pair<Ray, bool>> rays;  // (ray, occlusion query)
+  std::vector<std::pair<Ray, bool>> recorded;  // (ray, occlusion query)
 
  private:
   void Record(const Ray& ray, bool occluded) const {
 #pragma omp critical(record_ray)
-    const_cast<RecordingCaster*>(this)->rays.push_back({ray, occluded});
+    const_cast<RecordingCaster*>(this)->recorded.push_back({ray, occluded});
   }
   const RayCaster& inner_;
 };
@@ -122,7 +122,7 @@ int Run(int patches, const char* only, int knob) {
     RowContext recording = context;
     recording.caster = &recorder;
     (void)BuildFormFactors(recording, f);
-    const BareLoop bare((*job)->caster->scene(), recorder.rays);
+    const BareLoop bare((*job)->caster->scene(), recorder.recorded);
     std::vector<double> ratios, rates, bare_rates;
     uint64_t rays = 0;
     for (int rep = 0; rep < 7; ++rep) {
