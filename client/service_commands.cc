@@ -398,6 +398,11 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   AddConnectionFlags(*submit, *c);
   submit->callback([=, &exit_code] {
     absl::StatusOr<JobOptions> options = ToJobOptions(*job_flags);
+    if (options.ok() && (options->hierarchical.enabled || options->adaptive.passes > 0)) {
+      options = absl::InvalidArgumentError(
+          "--solver hierarchical and --adaptive-passes run in `radflux solve` only; the "
+          "service (radflux.v1.SolveOptions) does not carry them yet");
+    }
     if (!options.ok()) {
       std::cerr << "radflux: " << options.status().message() << "\n";
       exit_code = 1;

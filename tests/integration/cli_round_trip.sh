@@ -20,6 +20,11 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 [ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
 grep -q '"iterations"' "$DIR/report.json"
 "$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"
+# Options the service cannot carry are refused, not silently dropped.
+if "$CLI" submit "$SCENE" --solver hierarchical --server "$ADDR" 2>"$DIR/err"; then
+  echo "submit --solver hierarchical succeeded"; exit 1
+fi
+grep -q "run in \`radflux solve\` only" "$DIR/err"
 
 kill -TERM $PID
 wait $PID
