@@ -9,6 +9,6 @@ namespace radflux {
 
 // OK when `token` is empty (auth off) or the call carries "authorization: Bearer <token>";
 // UNAUTHENTICATED with a message saying which is wrong otherwise. Constant-time compare.
-grpc::Status CheckBearerToken(const grpc::CallbackServerContext& context, const std::string& token);
+grpc::Status CheckBearerToken(const grpc::ServerContextBase& context, const std::string& token);
 
 }  // namespace radflux

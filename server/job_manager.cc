@@ -361,6 +361,8 @@ void JobManager::RunOne(const std::string& job_id) {
   context.cancelled = &running->cancelled;
   context.checkpoint_seconds = options_.checkpoint_seconds;
   context.solve_delay_ms = options_.solve_delay_ms;
+  context.farm = options_.farm;
+  context.block_delay_ms = options_.block_delay_ms;
   const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
   context.threads = std::max(1, threads / std::max(1, options_.jobs));
   context.on_phase = [&](v1::Phase phase, int64_t patches) {

@@ -22,6 +22,8 @@
 
 namespace radflux {
 
+class RowFarm;
+
 struct ManagerOptions {
   int jobs = 1;                        // jobs running at once
   int threads = 0;                     // OpenMP threads shared by the running jobs (0 = all cores)
@@ -32,6 +34,8 @@ struct ManagerOptions {
   double checkpoint_seconds = 1.0;     // at most one solver checkpoint per job per interval
   int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
                                        // window in which a test can kill the server mid-solve)
+  RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
+  int block_delay_ms = 0;              // testing: sleep after each row block built on the server
 };
 
 class JobManager {

@@ -8,6 +8,7 @@
 
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
+#include "server/row_farm.h"
 #include "server/row_block_writer.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
@@ -65,28 +66,46 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
   std::mutex mu;  // guards done, rays and event publishing order
   uint64_t rays = 0;
-  ParallelFor(static_cast<int64_t>(missing.size()), 1, threads, [&](int64_t begin, int64_t end) {
+  // Every block built (here or by a worker) goes to the store and the progress events.
+  const auto store_block = [&](uint32_t b, StoredRowBlock s) {
+    blocks[b] = std::move(s);
+    writer.Put(b, blocks[b]);
+    std::lock_guard lock(mu);
+    done += blocks[b].block.RowCount();
+    rays += blocks[b].stats.rays;
+    v1::Progress progress;
+    progress.set_rows_done(done);
+    progress.set_rows_total(n);
+    const double seconds = SecondsSince(start);
+    if (seconds > 0) progress.set_rays_per_second(static_cast<double>(rays) / seconds);
+    progress.set_eta_seconds(seconds / static_cast<double>(done) * static_cast<double>(n - done));
+    PublishProgress(c, v1::PHASE_ROWS, progress);
+  };
+  // The missing blocks are shared with the worker nodes (if any) through the row farm;
+  // the server's own threads take blocks from it too, so a job finishes without workers.
+  RowFarm own_farm;
+  RowFarm& farm = c.farm ? *c.farm : own_farm;
+  farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size}, missing,
+            store_block);
+  ParallelFor(threads, 1, threads, [&](int64_t, int64_t) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];
     if (!row) row = std::make_unique<RowAccumulator>(n);
-    for (int64_t k = begin; k < end && !Stopped(c); ++k) {
-      const uint32_t b = missing[static_cast<size_t>(k)];
-      const uint32_t first = b * block_size;
+    while (const std::optional<uint32_t> b = farm.NextLocal(job.job_id(), c.stop)) {
+      const uint32_t first = *b * block_size;
       const uint32_t count = std::min(block_size, n - first);
-      StoredRowBlock& s = blocks[b];
+      StoredRowBlock s;
       s.block = BuildRowBlock(*builder, prepared.rows, options.cutoff, first, count, *row, s.stats);
-      writer.Put(b, s);
-      std::lock_guard lock(mu);
-      done += count;
-      rays += s.stats.rays;
-      v1::Progress progress;
-      progress.set_rows_done(done);
-      progress.set_rows_total(n);
-      const double seconds = SecondsSince(start);
-      if (seconds > 0) progress.set_rays_per_second(static_cast<double>(rays) / seconds);
-      progress.set_eta_seconds(seconds / static_cast<double>(done) * static_cast<double>(n - done));
-      PublishProgress(c, v1::PHASE_ROWS, progress);
+      if (c.block_delay_ms > 0) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(c.block_delay_ms));
+      }
+      if (!farm.ClaimLocal(job.job_id(), *b)) continue;  // a worker delivered it first
+      store_block(*b, std::move(s));
+      farm.FinishBlock(job.job_id(), *b);
     }
   });
+  const bool all_done = farm.AllDone(job.job_id());
+  farm.Close(job.job_id());
+  if (!all_done && !Stopped(c)) return absl::InternalError("row phase ended with blocks missing");
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   FormFactorResult result;
   result.matrix.cols = n;

@@ -17,6 +17,8 @@
 
 namespace radflux {
 
+class RowFarm;
+
 struct RunContext {
   JobStore* store = nullptr;
   JobHub* hub = nullptr;                         // receives progress events and snapshots
@@ -25,6 +27,8 @@ struct RunContext {
   int threads = 0;                               // OpenMP threads for this job (0 = all cores)
   double checkpoint_seconds = 1.0;               // at most one solver checkpoint per this interval
   int solve_delay_ms = 0;                        // testing: sleep after each solver iteration
+  RowFarm* farm = nullptr;    // shares the row blocks with worker nodes (null: this job's own)
+  int block_delay_ms = 0;     // testing: sleep after each row block built here
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };

@@ -1,6 +1,9 @@
 // radfluxd: the radflux gRPC server.
 //   radfluxd --listen HOST:PORT --data-dir DIR [--jobs N] [--threads N] [--token T]
 //            [--tls-cert F --tls-key F] [--max-patches N] [--max-memory BYTES]
+//            [--worker-token T] [--lease-seconds S]
+//   radfluxd --worker --server HOST:PORT [--threads N] [--worker-token T] [--tls-ca F]
+//   (a worker node: builds row blocks for the server, see server/worker_node.h)
 // Prints "radfluxd listening on HOST:PORT" (the port actually bound, so :0 works) once
 // serving. SIGTERM/SIGINT: running jobs checkpoint, then the server exits 0.
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
@@ -11,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -20,7 +24,10 @@
 #include "server/job_manager.h"
 #include "server/job_store.h"
 #include "server/radiosity_service.h"
+#include "server/row_farm.h"
 #include "server/work_queue.h"
+#include "server/worker_node.h"
+#include "server/worker_service.h"
 
 namespace {
 
@@ -44,6 +51,11 @@ struct Flags {
   std::string token;
   std::string tls_cert, tls_key;
   radflux::ManagerOptions manager;
+  // Worker nodes: the server's side, and the worker role.
+  std::string worker_token;
+  double lease_seconds = 300;
+  bool worker = false;
+  radflux::WorkerNodeOptions node;
 };
 
 // Server credentials: TLS with the given certificate and key, or insecure.
@@ -65,9 +77,13 @@ int Serve(const Flags& flags) {
     spdlog::error("{}", std::string(store.status().message()));
     return 1;
   }
-  radflux::JobManager manager(**store, flags.manager);
+  radflux::RowFarm farm(flags.lease_seconds);
+  radflux::ManagerOptions manager_options = flags.manager;
+  manager_options.farm = &farm;
+  radflux::JobManager manager(**store, manager_options);
   radflux::WorkQueue work(kWorkThreads);
   radflux::RadiosityService service(manager, work, flags.token);
+  radflux::WorkerService worker_service(farm, manager, flags.worker_token, !flags.token.empty());
   const std::shared_ptr<grpc::ServerCredentials> credentials = Credentials(flags);
   if (!credentials) {
     spdlog::error("cannot read --tls-cert {} / --tls-key {}", flags.tls_cert, flags.tls_key);
@@ -81,6 +97,7 @@ int Serve(const Flags& flags) {
   builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
   builder.SetMaxSendMessageSize(kMaxMessageBytes);
   builder.RegisterService(&service);
+  builder.RegisterService(&worker_service);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
     spdlog::error("cannot listen on {}", flags.listen);
@@ -106,12 +123,34 @@ int Serve(const Flags& flags) {
     spdlog::info("signal {}: checkpointing running jobs and shutting down", signal);
     server->GetHealthCheckService()->SetServingStatus(false);
     manager.Shutdown();
+    farm.Shutdown();
     server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
   });
   server->Wait();
   signals.join();
   spdlog::info("radfluxd stopped");
   return 0;
+}
+
+// The worker role: runs until SIGTERM/SIGINT (0) or the server refuses it (2).
+int Work(const Flags& flags) {
+  std::atomic<bool> stop{false};
+  std::thread signals([&] {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGINT);
+    int signal = 0;
+    sigwait(&set, &signal);
+    spdlog::info("signal {}: worker stopping", signal);
+    stop = true;
+  });
+  signals.detach();  // exits with the process
+  spdlog::info("worker for {} ({} thread(s), tls {}, token {})", flags.node.server,
+               flags.node.threads > 0 ? std::to_string(flags.node.threads) : "all",
+               flags.node.tls_ca.empty() ? "off" : "on",
+               flags.node.worker_token.empty() ? "off" : "on");
+  return radflux::RunWorkerNode(flags.node, stop);
 }
 
 }  // namespace
@@ -129,9 +168,10 @@ int main(int argc, char** argv) {
 
   CLI::App app{"radfluxd: the radflux radiosity solver service"};
   Flags flags;
-  app.add_option("--listen", flags.listen, "HOST:PORT to serve on (port 0 = any free port)")
-      ->required();
-  app.add_option("--data-dir", flags.data_dir, "directory of the job store")->required();
+  app.add_option("--listen", flags.listen,
+                 "HOST:PORT to serve on (port 0 = any free port); required unless --worker");
+  app.add_option("--data-dir", flags.data_dir,
+                 "directory of the job store; required unless --worker");
   app.add_option("--jobs", flags.manager.jobs, "jobs running at once")->check(CLI::Range(1, 256));
   app.add_option("--threads", flags.manager.threads,
                  "OpenMP threads shared by running jobs (0 = all cores)")
@@ -153,6 +193,34 @@ int main(int argc, char** argv) {
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")
       ->check(CLI::Range(0, 60000));
+  app.add_option("--worker-token", flags.worker_token,
+                 "server: require this bearer token of workers (without it, workers are refused "
+                 "when --token is set); worker: send it");
+  app.add_option("--lease-seconds", flags.lease_seconds,
+                 "a row block leased to a worker is leased again after this many seconds")
+      ->check(CLI::Range(0.1, 86400.0));
+  app.add_flag("--worker", flags.worker, "run as a worker node of --server");
+  app.add_option("--server", flags.node.server, "worker: HOST:PORT of the radfluxd to work for");
+  app.add_option("--tls-ca", flags.node.tls_ca, "worker: PEM CA certificate: connect with TLS");
+  app.add_option("--tls-server-name", flags.node.tls_server_name,
+                 "worker: the name to check in the server's certificate (default: from --server)");
+  app.add_option("--testing-block-delay-ms", flags.node.block_delay_ms,
+                 "testing: sleep this long after building each row block (server and worker)")
+      ->check(CLI::Range(0, 600000));
   CLI11_PARSE(app, argc, argv);
+  if (flags.worker) {
+    if (flags.node.server.empty()) {
+      std::cerr << "radfluxd: --worker needs --server HOST:PORT\n";
+      return 2;
+    }
+    flags.node.threads = flags.manager.threads;
+    flags.node.worker_token = flags.worker_token;
+    return Work(flags);
+  }
+  if (flags.listen.empty() || flags.data_dir.empty()) {
+    std::cerr << "radfluxd: --listen and --data-dir are required (or --worker --server)\n";
+    return 2;
+  }
+  flags.manager.block_delay_ms = flags.node.block_delay_ms;
   return Serve(flags);
 }
