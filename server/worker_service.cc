@@ -56,8 +56,7 @@ grpc::Status WorkerService::Connect(
       if (!message.has_result()) continue;
       const absl::Status accepted = farm_.Accept(id, message.result());
       if (!accepted.ok()) {
-        drop = ToGrpcStatus(accepted);
-        context->TryCancel();
+        drop = ToGrpcStatus(accepted);  // the writer returns it once it sees `done`
         break;
       }
     }
@@ -71,7 +70,7 @@ grpc::Status WorkerService::Connect(
     *message.mutable_lease() = *std::move(lease);
     if (!stream->Write(message)) break;
   }
-  context->TryCancel();  // ends the reader's Read if the writer stopped first
+  if (!done) context->TryCancel();  // ends the reader's Read if the writer stopped first
   reader.join();
   if (!drop.ok()) {
     spdlog::error("worker {} ({}) dropped: {}", id, name, drop.error_message());
