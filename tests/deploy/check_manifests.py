@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Checks deploy/: every YAML manifest parses, references only the image the Dockerfile
+builds and the port radfluxd serves on, uses only flags radfluxd has, and only Secret keys
+the Secret defines. Usage: check_manifests.py REPO_ROOT RADFLUXD"""
+import glob
+import os
+import re
+import subprocess
+import sys
+
+import yaml
+
+root, radfluxd = sys.argv[1], sys.argv[2]
+deploy = os.path.join(root, "deploy")
+errors = []
+
+
+def fail(msg):
+    errors.append(msg)
+
+
+def walk(node, key=None):
+    """Yields (key, value) for every scalar in a parsed YAML tree."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from walk(v, k)
+    elif isinstance(node, list):
+        for v in node:
+            yield from walk(v, key)
+    else:
+        yield key, node
+
+
+dockerfile = open(os.path.join(deploy, "Dockerfile")).read()
+froms = re.findall(r"^FROM\s+(\S+)", dockerfile, re.M)
+if not froms or any(not f.startswith("debian:12") for f in froms):
+    fail(f"Dockerfile stages must be Debian 12: {froms}")
+if "scripts/setup.sh" not in dockerfile:
+    fail("Dockerfile must install the packages of scripts/setup.sh")
+if not re.search(r"--target radflux radfluxd", dockerfile):
+    fail("Dockerfile must build radflux and radfluxd")
+exposed = {int(p) for p in re.findall(r"^EXPOSE\s+(\d+)", dockerfile, re.M)}
+if len(exposed) != 1:
+    fail(f"Dockerfile must EXPOSE exactly one port: {exposed}")
+port = next(iter(exposed), 7070)
+
+help_text = subprocess.run([radfluxd, "--help"], capture_output=True, text=True).stdout
+known_flags = set(re.findall(r"(--[a-z][a-z0-9-]*)", help_text))
+
+files = sorted(glob.glob(os.path.join(deploy, "**", "*.yaml"), recursive=True))
+if not files:
+    fail("no YAML manifests in deploy/")
+docs = {}
+for path in files:
+    try:
+        docs[path] = [d for d in yaml.safe_load_all(open(path)) if d is not None]
+    except yaml.YAMLError as e:
+        fail(f"{path}: does not parse: {e}")
+
+compose = docs.get(os.path.join(deploy, "compose.yaml"), [{}])[0]
+built = [s.get("image") for s in compose.get("services", {}).values() if "build" in s]
+if len(built) != 1:
+    fail(f"compose.yaml must build exactly one image: {built}")
+image = built[0] if built else "radflux:0.1"
+services = compose.get("services", {})
+if sum(1 for s in services if s != "radfluxd") < 1 or \
+        services.get("worker", {}).get("deploy", {}).get("replicas") != 3:
+    fail("compose.yaml must run one radfluxd and three workers")
+if "radflux-data" not in compose.get("volumes", {}):
+    fail("compose.yaml needs a volume for the data directory")
+
+kinds, secret_keys, secret_refs, service_names = set(), set(), set(), set()
+for path, documents in docs.items():
+    for doc in documents:
+        kinds.add(doc.get("kind"))
+        if doc.get("kind") == "Secret":
+            secret_keys |= set(doc.get("stringData", {})) | set(doc.get("data", {}))
+        if doc.get("kind") == "Service":
+            service_names.add(doc["metadata"]["name"])
+        if doc.get("kind") == "StatefulSet" and not doc["spec"].get("volumeClaimTemplates"):
+            fail(f"{path}: the server StatefulSet needs a volumeClaimTemplate")
+        for key, value in walk(doc):
+            text = str(value)
+            if key == "image" and value != image:
+                fail(f"{path}: image {value} is not the one deploy/Dockerfile builds ({image})")
+            if key in ("containerPort", "port", "targetPort") and value != port:
+                fail(f"{path}: port {value} is not radfluxd's {port}")
+            if key == "ports":
+                published = [int(p) for p in re.findall(r"\d+", text)]
+                if any(p != port for p in published):
+                    fail(f"{path}: published ports {text} are not {port}")
+            if key == "secretKeyRef" or (isinstance(doc, dict) and key == "key" and
+                                         "secretKeyRef" in yaml.safe_dump(doc)):
+                secret_refs.add(value)
+            for flag in re.findall(r"(?<![\w-])(--[a-z][a-z0-9-]*)", text):
+                if "radfluxd" in text or key in ("args",):
+                    if flag not in known_flags:
+                        fail(f"{path}: radfluxd has no flag {flag}")
+            for addr_port in re.findall(r"(?:--listen|--server)[ =](\S+):(\d+)", text):
+                if int(addr_port[1]) != port:
+                    fail(f"{path}: {addr_port[0]}:{addr_port[1]} is not port {port}")
+
+for needed in ("Service", "StatefulSet", "Deployment", "Secret"):
+    if needed not in kinds:
+        fail(f"deploy/k8s has no {needed}")
+for path, documents in docs.items():
+    for doc in documents:
+        for key, value in walk(doc):
+            if key == "key" and value not in secret_keys and doc.get("kind") != "Secret":
+                fail(f"{path}: secret key {value} is not in the Secret ({sorted(secret_keys)})")
+            if key == "args" and "--server" in str(value):
+                host = re.search(r"--server[ =]([^:]+):", str(value))
+                if host and host.group(1) not in service_names:
+                    fail(f"{path}: --server {host.group(1)} is not a Service")
+
+if errors:
+    print("\n".join(errors))
+    sys.exit(1)
+print(f"deploy: {len(files)} manifests parse; image {image}, port {port}, "
+      f"{len(secret_keys)} secret keys, flags checked against radfluxd --help")
