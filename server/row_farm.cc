@@ -33,6 +33,16 @@ void RowFarm::Close(const std::string& job_id) {
   cv_.wait(lock, [&] { return job->sinking == 0; });  // a sink may still use the runner's state
   jobs_.erase(job_id);
   cv_.notify_all();
+  const Stats& t = stats_;  // since the server started
+  spdlog::info(
+      "row farm: {} blocks built here, {} by workers ({} rows, {} wire bytes, {:.1f} bytes/row, "
+      "{:.4f} s worker build per block, {:.6f} s server check per block), {} duplicates, "
+      "{} leased again",
+      t.local_blocks, t.remote_blocks, t.remote_rows, t.wire_bytes,
+      t.remote_rows ? static_cast<double>(t.wire_bytes) / static_cast<double>(t.remote_rows) : 0.0,
+      t.remote_blocks ? t.remote_build_seconds / static_cast<double>(t.remote_blocks) : 0.0,
+      t.remote_blocks ? t.accept_seconds / static_cast<double>(t.remote_blocks) : 0.0,
+      t.duplicates, t.released);
 }
 
 std::optional<uint32_t> RowFarm::NextLocal(const std::string& job_id,
@@ -192,7 +202,9 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
     return absl::OkStatus();
   }
   StoredRowBlock rows;
+  const auto check_start = Clock::now();
   if (absl::Status s = CheckResult(issued, patch_count, r, &rows); !s.ok()) return s;
+  const double check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
   BlockSink sink;
   {
     std::lock_guard lock(mu_);
@@ -207,6 +219,8 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
     ++stats_.remote_blocks;
     stats_.remote_rows += issued.row_count;
     stats_.wire_bytes += r.ByteSizeLong();
+    stats_.remote_build_seconds += r.build_seconds();
+    stats_.accept_seconds += check_seconds;
     ++job->second->sinking;
     sink = job->second->sink;
   }

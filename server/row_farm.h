@@ -74,6 +74,8 @@ class RowFarm {
   struct Stats {
     uint64_t remote_blocks = 0, local_blocks = 0, duplicates = 0, released = 0;
     uint64_t wire_bytes = 0, remote_rows = 0;
+    double remote_build_seconds = 0;  // as the workers reported them
+    double accept_seconds = 0;        // server time checking and decoding remote blocks
   };
   Stats stats();
 
