@@ -18,6 +18,22 @@ std::vector<Vec3> PatchPolygon(const PatchMesh& mesh, uint32_t p) {
   return polygon;
 }
 
+// cos(theta_x) cos(theta_y) / r^2 of the pair (x, y): the form-factor kernel up to pi,
+// 0 when either point is behind the other's plane.
+double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+  const Vec3 d = y - x;
+  const double cx = Dot(nx, d), cy = -Dot(ny, d), r2 = Dot(d, d);
+  return cx > 0 && cy > 0 ? cx * cy / (r2 * r2) : 0;
+}
+
+// A shadow ray between two surface points, each lifted off its surface by the epsilon.
+bool Blocked(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
+             const Vec3& ny) {
+  const Vec3 origin = x + nx * context.ray_epsilon;
+  const Vec3 target = y + ny * context.ray_epsilon;
+  return context.caster->Occluded({origin, target - origin, 0, 1 - 1e-6});
+}
+
 bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
   const double scale = std::sqrt(plane.area);
   for (int k = 0; k < mesh.patches[of].VertexCount(); ++k) {
@@ -53,18 +69,29 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
   if (polygon.size() < 3) return 0;
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const int s = static_cast<int>(points.size());
-  const double eps = context.ray_epsilon;
-  double sum = 0;
+  const PatchPointSampler sample_target(mesh, j);
+  double unoccluded = 0, weight = 0, visible_weight = 0;
   for (int m = 0; m < s; ++m) {
-    const double f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
-    if (f <= 0) continue;
-    const Vec3 target = SamplePatchPoint(mesh, j, MultiJitteredSample(m, s, pattern)) +
-                        pj.normal * eps;
-    const Vec3 origin = points[m] + pi.normal * eps;
+    // A point behind j's plane sees only j's back: no exchange from there (this matters
+    // where i runs under a solid, e.g. floor patches partly beneath a block).
+    if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
+    unoccluded += UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
+    const Vec3 target = sample_target(MultiJitteredSample(m, s, pattern));
+    const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
+    if (kernel <= 0) continue;
+    weight += kernel;
     ++rays;
-    if (!context.caster->Occluded({origin, target - origin, 0, 1 - 1e-6})) sum += f;
+    if (!Blocked(context, points[m], pi.normal, target, pj.normal)) visible_weight += kernel;
   }
-  return sum / s;
+  if (unoccluded <= 0) return 0;
+  if (weight <= 0) {
+    // Every sampled target lay behind i's plane: one ray to the visible part's centre.
+    Vec3 centre;
+    for (const Vec3& p : polygon) centre += p / static_cast<double>(polygon.size());
+    ++rays;
+    return Blocked(context, points[0], pi.normal, centre, pj.normal) ? 0 : unoccluded / s;
+  }
+  return unoccluded / s * (visible_weight / weight);
 }
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,

@@ -18,8 +18,11 @@ bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j);
 // s stratified points on patch i, seeded from (seed, i).
 std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed);
 
-// F_ij averaged over `points` on i, each point's value times the visibility of a
-// stratified point on j; adds the shadow rays cast to `rays`.
+// F_ij from `points` on i: the mean exact unoccluded point-to-polygon form factor, times
+// the visible fraction of the pairs (x_m, y_m) (y_m stratified on j) weighted by the
+// form-factor kernel cos cos / r^2. Weighting by the kernel makes the estimate
+// consistent when visibility varies across j (an unweighted 0/1 average is biased where
+// the near part of j is hidden and the far part is not). Adds the shadow rays to `rays`.
 double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays);
