@@ -1,6 +1,11 @@
 // Southwell progressive refinement (Cohen et al. 1988). B and the unshot radiosity dB
-// keep the invariant B = E + rho G (B - dB), G_ji = A_i F_ij / A_j (reciprocity), so
-// shooting patch i needs only row i. Each iteration shoots a batch: the patches with
+// keep the invariant B = E + rho F (B - dB): shooting patch i adds rho_j F_ji dB_i to
+// every j, read from column i of F (the receivers' own rows, kept as F^T). Cohen et al.
+// use row i through reciprocity (F_ji = A_i F_ij / A_j) instead; with sampled rows that
+// are not exactly reciprocal that solves a different system, and it spreads a light's
+// direct illumination by the light's own few rays rather than by each receiver's
+// accurate emitter column, so radflux shoots through columns and converges to the same
+// B as the gathering methods. Each iteration shoots a batch: the patches with
 // the most unshot power A_i |dB_i| (summed over lanes, each relative to its emitted
 // power), shot together and scattered in parallel over fixed blocks of receivers, each
 // receiver summing its shooters in batch order (same result on any thread count).
@@ -23,28 +28,8 @@ struct ShootState {
   std::vector<double> power;  // selection key per patch
   Rgb emitted{};              // sum_i A_i E_i per lane
   double max_rho = 0;
+  CsrMatrix columns;          // F^T: row i lists (j, F_ji), what shooting i needs
 };
-
-// Shoots every patch whose row is empty through column i of F (B_j += rho_j F_ji dB_i):
-// emitters that reflect nothing need no row.
-void ShootRowless(const BandSystem& bands, ShootState& st, std::vector<Rgb>& b) {
-  std::vector<Rgb> z(bands.n, Rgb{}), y;
-  bool any = false;
-  for (uint32_t i = 0; i < bands.n; ++i) {
-    if (bands.f->row_begin[i] != bands.f->row_begin[i + 1]) continue;
-    z[i] = st.db[i];
-    st.db[i] = Rgb{};
-    for (int k = 0; k < bands.lanes; ++k) any = any || z[i][k] != 0;
-  }
-  if (!any) return;
-  MultiplyF(bands, z, y);
-  for (uint32_t j = 0; j < bands.n; ++j)
-    for (int k = 0; k < bands.lanes; ++k) {
-      const double delta = bands.rho[j][k] * y[j][k];
-      b[j][k] += delta;
-      st.db[j][k] += delta;
-    }
-}
 
 // Recomputes the selection keys; returns the unshot fraction (max over lanes) and the
 // residual bound max(rho) ||dB||_A / ||E||_A (a bound on ||rho F dB||_A for reciprocal rows).
@@ -96,7 +81,6 @@ std::vector<uint32_t> SelectBatch(const std::vector<double>& power, size_t m) {
 // Shoots `batch` (their dB taken before any of them receives).
 void ShootBatch(const BandSystem& bands, const std::vector<uint32_t>& batch, ShootState& st,
                 std::vector<Rgb>& b) {
-  const std::vector<double>& area = *bands.area;
   std::vector<Rgb> shot(batch.size());
   for (size_t s = 0; s < batch.size(); ++s) {
     shot[s] = st.db[batch[s]];
@@ -105,15 +89,14 @@ void ShootBatch(const BandSystem& bands, const std::vector<uint32_t>& batch, Sho
   ParallelFor(bands.n, kVectorBlock, bands.threads, [&](int64_t begin, int64_t end) {
     for (size_t s = 0; s < batch.size(); ++s) {
       const uint32_t i = batch[s];
-      const auto cols = bands.f->RowCols(i);
-      const auto values = bands.f->RowValues(i);
+      const auto cols = st.columns.RowCols(i);
+      const auto values = st.columns.RowValues(i);
       size_t e = static_cast<size_t>(
           std::lower_bound(cols.begin(), cols.end(), static_cast<uint32_t>(begin)) - cols.begin());
       for (; e < cols.size() && cols[e] < end; ++e) {
         const uint32_t j = cols[e];
-        const double gji = area[i] * values[e] / area[j];
         for (int k = 0; k < bands.lanes; ++k) {
-          const double delta = bands.rho[j][k] * gji * shot[s][k];
+          const double delta = bands.rho[j][k] * values[e] * shot[s][k];
           b[j][k] += delta;
           st.db[j][k] += delta;
         }
@@ -159,7 +142,7 @@ ShootState StartShooting(const BandSystem& bands, const std::vector<Rgb>* unshot
       st.max_rho = std::max(st.max_rho, bands.rho[i][k]);
     }
   st.power.assign(bands.n, 0);
-  if (unshot == nullptr) ShootRowless(bands, st, b);
+  st.columns = bands.f->Transposed();
   return st;
 }
 

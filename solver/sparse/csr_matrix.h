@@ -43,6 +43,8 @@ struct CsrMatrix {
   double RowSum(uint32_t i) const;
   // F_ij, or 0 when absent (binary search in row i).
   float At(uint32_t i, uint32_t j) const;
+  // F^T: row j of the result holds column j of this matrix (cols x rows), columns ascending.
+  CsrMatrix Transposed() const;
   // Makes room for `rows` rows with `nnz` entries in all, so appending does not reallocate.
   void Reserve(uint32_t rows, size_t nnz);
   // Appends a block; its first_row must equal `rows` (blocks arrive in order).
