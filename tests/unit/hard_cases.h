@@ -78,19 +78,6 @@ inline DoubleRows BuildDoubleRows(const RowContext& context, const FormFactorOpt
   return rows;
 }
 
-// The same rows stored as CsrMatrix does (float values).
-inline CsrMatrix ToFloatCsr(const DoubleRows& rows) {
-  CsrMatrix f;
-  f.cols = static_cast<uint32_t>(rows.size());
-  RowBlock block;
-  for (const auto& row : rows) {
-    for (const auto& [j, v] : row) block.Add(j, static_cast<float>(v));
-    block.EndRow();
-  }
-  f.Append(block);
-  return f;
-}
-
 // B = E + rho F B for band 0 by dense LU (partial pivoting) in double, with F's values
 // rounded to float first when `as_float`: the difference isolates the storage precision.
 inline std::vector<double> DenseSolve(const DoubleRows& rows, const PatchAttributes& p,
@@ -137,3 +124,14 @@ inline double WorstRowSumError(const CsrMatrix& f) {
 }
 
 }  // namespace radflux::testing
+
+namespace radflux {
+
+// The hard-case tests (tests/unit/hard_*_test.cc) name these unqualified.
+using testing::HardOptions;
+using testing::LoadHardScene;
+using testing::Name;
+using testing::RowFixture;
+using testing::SolveOrDie;
+
+}  // namespace radflux

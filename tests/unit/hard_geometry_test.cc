@@ -14,12 +14,6 @@
 namespace radflux {
 namespace {
 
-using testing::HardOptions;
-using testing::LoadHardScene;
-using testing::Name;
-using testing::RowFixture;
-using testing::SolveOrDie;
-
 constexpr double kW = 1, kH = 0.7, kL = 1.3;  // the wedge plates: a is kW x kL, b is kH x kL
 
 double Radians(double degrees) { return degrees * std::numbers::pi / 180; }

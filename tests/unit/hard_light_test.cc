@@ -13,12 +13,6 @@
 namespace radflux {
 namespace {
 
-using testing::HardOptions;
-using testing::LoadHardScene;
-using testing::Name;
-using testing::RowFixture;
-using testing::SolveOrDie;
-
 // F from the 0.01 x 0.01 emitter (height 0.5, facing down) to the 1 x 1 receiver below:
 // B-3 (differential area to a parallel rectangle, normal through a corner) summed over the
 // four quadrants around each point, integrated over the emitter by 4 x 4 Gauss-Legendre.

@@ -11,10 +11,6 @@
 namespace radflux {
 namespace {
 
-using testing::HardOptions;
-using testing::LoadHardScene;
-using testing::RowFixture;
-
 // Bound: rounding F_ij to float changes it by at most 2^-24 F_ij, so the gathered term
 // rho_i sum_j F_ij B_j by at most rho 2^-24 s max(B) (s: largest row sum), and B by at most
 // that amplified by ||(I - rho F)^-1||_inf <= 1 / (1 - rho s):

@@ -11,12 +11,6 @@
 namespace radflux {
 namespace {
 
-using testing::HardOptions;
-using testing::LoadHardScene;
-using testing::Name;
-using testing::RowFixture;
-using testing::SolveOrDie;
-
 // Furnace: a closed room with rho and E = pi on every patch has B = pi / (1 - rho). Rows
 // that sum to s_i in [1 - d, 1 + d] (d = worst row-sum error, here the analytic rows'
 // ~1e-8 plus float storage) bound B between pi / (1 - rho (1 -+ d)), so the stated
