@@ -43,6 +43,23 @@ bool ReadFile(const std::string& path, std::string* out) {
   return true;
 }
 
+// The signals that stop radfluxd: blocked in every thread, waited for by one.
+sigset_t ShutdownSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  return set;
+}
+
+// Blocks until SIGTERM or SIGINT arrives; returns which.
+int WaitForShutdownSignal() {
+  const sigset_t set = ShutdownSignals();
+  int signal = 0;
+  sigwait(&set, &signal);
+  return signal;
+}
+
 struct Flags {
   std::string listen;
   std::string data_dir;
@@ -114,12 +131,7 @@ int Serve(const Flags& flags) {
                flags.token.empty() ? "off" : "on");
 
   std::thread signals([&] {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGTERM);
-    sigaddset(&set, SIGINT);
-    int signal = 0;
-    sigwait(&set, &signal);
+    const int signal = WaitForShutdownSignal();
     spdlog::info("signal {}: checkpointing running jobs and shutting down", signal);
     server->GetHealthCheckService()->SetServingStatus(false);
     manager.Shutdown();
@@ -136,12 +148,7 @@ int Serve(const Flags& flags) {
 int Work(const Flags& flags) {
   std::atomic<bool> stop{false};
   std::thread signals([&] {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGTERM);
-    sigaddset(&set, SIGINT);
-    int signal = 0;
-    sigwait(&set, &signal);
+    const int signal = WaitForShutdownSignal();
     spdlog::info("signal {}: worker stopping", signal);
     stop = true;
   });
@@ -157,10 +164,7 @@ int Work(const Flags& flags) {
 
 int main(int argc, char** argv) {
   // Block the shutdown signals in every thread; one thread waits for them with sigwait.
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
+  const sigset_t set = ShutdownSignals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
   signal(SIGPIPE, SIG_IGN);
   // Logs go to stderr; stdout carries only the "listening on" line scripts read.
