@@ -3,13 +3,8 @@
 # submit --watch, result, list, --server after and before the verb, server-down message.
 set -euo pipefail
 RADFLUXD=$1 CLI=$2 SCENE=$3
-DIR=$(mktemp -d /tmp/radflux_cli_XXXXXX)
-trap 'kill $PID 2>/dev/null || true; wait $PID 2>/dev/null || true; rm -rf "$DIR"' EXIT
-mkfifo "$DIR/out"
-"$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data" --threads 2 >"$DIR/out" 2>"$DIR/server.log" &
-PID=$!
-read -r LINE <"$DIR/out"
-ADDR=${LINE#radfluxd listening on }
+source "$(dirname "$0")/radfluxd_fixture.sh"
+start_radfluxd "$RADFLUXD" /tmp/radflux_cli_XXXXXX
 echo "server at $ADDR"
 
 "$CLI" submit "$SCENE" --patches 200 --rays 64 --watch --server "$ADDR" >"$DIR/submit.out"

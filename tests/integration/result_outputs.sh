@@ -10,13 +10,8 @@
 #    CRCs, zlib stream, size of the raw scanlines = height * (1 + 3 * width)).
 set -euo pipefail
 RADFLUXD=$1 SOLVE_CLI=$2 SERVICE_CLI=$3 SCENE=$4
-DIR=$(mktemp -d /tmp/radflux_result_XXXXXX)
-trap 'kill $PID 2>/dev/null || true; wait $PID 2>/dev/null || true; rm -rf "$DIR"' EXIT
-mkfifo "$DIR/out"
-"$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data" --threads 2 >"$DIR/out" 2>"$DIR/server.log" &
-PID=$!
-read -r LINE <"$DIR/out"
-ADDR=${LINE#radfluxd listening on }
+source "$(dirname "$0")/radfluxd_fixture.sh"
+start_radfluxd "$RADFLUXD" /tmp/radflux_result_XXXXXX
 
 OPTS=(--patches 500 --rays 96 --seed 3 --solver southwell --tolerance 1e-5)
 CAMERA=(--size 96x72 --camera-pos 278,273,-800 --camera-look-at 278,273,0 --fov-deg 40)
