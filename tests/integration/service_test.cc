@@ -21,22 +21,18 @@
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/integration/server_process.h"
+#include "tests/integration/test_helpers.h"
 
 namespace radflux {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ExpectBitIdentical;
+using testing::InProcess;
+using testing::kMtl;
+using testing::kObj;
+using testing::ReadText;
 using testing::ServerProcess;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
-const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
 
 class ServiceTest : public ::testing::Test {
  public:
@@ -153,26 +149,6 @@ v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver) {
   options.set_block_size(16);
   options.set_solver(solver);
   return options;
-}
-
-// B per patch per band of the same job computed in-process by RunJob.
-std::vector<double> InProcess(const v1::SolveOptions& proto) {
-  absl::StatusOr<JobOptions> options = FromProto(proto);
-  EXPECT_TRUE(options.ok());
-  options->form_factors.threads = 2;
-  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
-  EXPECT_TRUE(scene.ok());
-  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options);
-  EXPECT_TRUE(result.ok()) << result.status();
-  std::vector<double> values;
-  for (const Rgb& b : result->solve.radiosity) values.insert(values.end(), b.begin(), b.end());
-  return values;
-}
-
-void ExpectBitIdentical(const std::vector<double>& a, const std::vector<double>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_FALSE(a.empty());
-  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)));
 }
 
 TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
@@ -459,29 +435,27 @@ TEST_F(ServiceTest, CorruptOversizeAndAbsurdInputGetTheirStatusAndTheServerKeeps
   }
 
   // Absurd watch requests: negative cadence, out-of-range or repeated bands.
-  for (const std::vector<int>& bands : {std::vector<int>{7}, std::vector<int>{-1}, {0, 0}}) {
-    v1::WatchJobRequest request;
-    request.set_job_id("job-unknown");
-    for (int b : bands) request.add_bands(b);
+  const auto expect_watch_refused = [&](const v1::WatchJobRequest& request,
+                                        const std::string& named) {
     auto context = Context();
     auto reader = stub_->WatchJob(context.get(), request);
     v1::JobEvent event;
     EXPECT_FALSE(reader->Read(&event));
     s = reader->Finish();
     EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-    EXPECT_NE(s.error_message().find("bands must be"), std::string::npos) << s.error_message();
+    EXPECT_NE(s.error_message().find(named), std::string::npos) << s.error_message();
+  };
+  for (const std::vector<int>& bands : {std::vector<int>{7}, std::vector<int>{-1}, {0, 0}}) {
+    v1::WatchJobRequest request;
+    request.set_job_id("job-unknown");
+    for (int b : bands) request.add_bands(b);
+    expect_watch_refused(request, "bands must be");
   }
   {
     v1::WatchJobRequest request;
     request.set_job_id("job-unknown");
     request.set_snapshot_every(-3);
-    auto context = Context();
-    auto reader = stub_->WatchJob(context.get(), request);
-    v1::JobEvent event;
-    EXPECT_FALSE(reader->Read(&event));
-    s = reader->Finish();
-    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-    EXPECT_NE(s.error_message().find("snapshot_every"), std::string::npos) << s.error_message();
+    expect_watch_refused(request, "snapshot_every");
   }
 
   // The server keeps serving: a valid job runs to SUCCEEDED and is the only job listed.

@@ -24,6 +24,7 @@
 #include "server/scene_hash.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/integration/test_helpers.h"
 
 namespace radflux {
 namespace {
@@ -32,15 +33,11 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr auto kPatience = std::chrono::seconds(60);  // a guard against hangs, not a timing assert
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
-const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
+using testing::ExpectBitIdentical;
+using testing::InProcess;
+using testing::kMtl;
+using testing::kObj;
+using testing::ReadText;
 
 // A child process with stdout and stderr in a log file.
 class Child {
@@ -121,20 +118,6 @@ v1::SolveOptions Options() {
   options.set_block_size(16);
   options.set_solver("jacobi");
   return options;
-}
-
-// B per patch per band of the same job computed in-process by RunJob.
-std::vector<double> InProcess(const v1::SolveOptions& proto) {
-  absl::StatusOr<JobOptions> options = FromProto(proto);
-  EXPECT_TRUE(options.ok());
-  options->form_factors.threads = 2;
-  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
-  EXPECT_TRUE(scene.ok());
-  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options);
-  EXPECT_TRUE(result.ok()) << result.status();
-  std::vector<double> values;
-  for (const Rgb& b : result->solve.radiosity) values.insert(values.end(), b.begin(), b.end());
-  return values;
 }
 
 class WorkerTest : public ::testing::Test {
@@ -240,11 +223,7 @@ class WorkerTest : public ::testing::Test {
     const v1::JobEvent last = Watch(job_id);
     ASSERT_EQ(last.state(), v1::JOB_STATE_SUCCEEDED) << last.message();
     const std::vector<double> served = Result(job_id);
-    const std::vector<double> expected = InProcess(options);
-    ASSERT_EQ(served.size(), expected.size());
-    ASSERT_FALSE(served.empty());
-    EXPECT_EQ(0, std::memcmp(served.data(), expected.data(), served.size() * sizeof(double)))
-        << "the result differs from RunJob";
+    ExpectBitIdentical(served, InProcess(options), "the result differs from RunJob");
   }
 
   std::string dir_;
