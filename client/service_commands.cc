@@ -13,6 +13,7 @@
 #include "client/job_flags.h"
 #include "client/output_flags.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/grpc_credentials.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
 #include "solver/mesh/subdivide.h"
@@ -43,24 +44,13 @@ int Report(const grpc::Status& status, const ConnectionFlags& c) {
   return 1;
 }
 
-bool ReadFile(const std::string& path, std::string* out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  *out = buffer.str();
-  return true;
-}
-
 class Client {
  public:
   explicit Client(const ConnectionFlags& c) : flags_(c) {
-    std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
-    if (!c.tls_ca.empty()) {
-      grpc::SslCredentialsOptions ssl;
-      if (!ReadFile(c.tls_ca, &ssl.pem_root_certs))
-        std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << "\n";
-      credentials = grpc::SslCredentials(ssl);
+    std::shared_ptr<grpc::ChannelCredentials> credentials = ChannelCredentialsFromFile(c.tls_ca);
+    if (!credentials) {  // warn, and go on with TLS trusting the default roots
+      std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << "\n";
+      credentials = grpc::SslCredentials(grpc::SslCredentialsOptions());
     }
     stub_ = v1::Radiosity::NewStub(grpc::CreateChannel(c.server, credentials));
   }

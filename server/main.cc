@@ -16,11 +16,10 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <thread>
 
+#include "server/grpc_credentials.h"
 #include "server/job_manager.h"
 #include "server/job_store.h"
 #include "server/radiosity_service.h"
@@ -33,15 +32,6 @@ namespace {
 
 constexpr int kMaxMessageBytes = 8 << 20;
 constexpr int kWorkThreads = 4;
-
-bool ReadFile(const std::string& path, std::string* out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  *out = buffer.str();
-  return true;
-}
 
 // The signals that stop radfluxd: blocked in every thread, waited for by one.
 sigset_t ShutdownSignals() {
@@ -75,18 +65,6 @@ struct Flags {
   radflux::WorkerNodeOptions node;
 };
 
-// Server credentials: TLS with the given certificate and key, or insecure.
-std::shared_ptr<grpc::ServerCredentials> Credentials(const Flags& flags) {
-  if (flags.tls_cert.empty()) return grpc::InsecureServerCredentials();
-  grpc::SslServerCredentialsOptions::PemKeyCertPair pair;
-  if (!ReadFile(flags.tls_key, &pair.private_key) || !ReadFile(flags.tls_cert, &pair.cert_chain)) {
-    return nullptr;
-  }
-  grpc::SslServerCredentialsOptions options;
-  options.pem_key_cert_pairs.push_back(pair);
-  return grpc::SslServerCredentials(options);
-}
-
 int Serve(const Flags& flags) {
   absl::StatusOr<std::unique_ptr<radflux::JobStore>> store =
       radflux::JobStore::Open(flags.data_dir);
@@ -101,7 +79,8 @@ int Serve(const Flags& flags) {
   radflux::WorkQueue work(kWorkThreads);
   radflux::RadiosityService service(manager, work, flags.token);
   radflux::WorkerService worker_service(farm, manager, flags.worker_token, !flags.token.empty());
-  const std::shared_ptr<grpc::ServerCredentials> credentials = Credentials(flags);
+  const std::shared_ptr<grpc::ServerCredentials> credentials =
+      radflux::ServerCredentialsFromFiles(flags.tls_cert, flags.tls_key);
   if (!credentials) {
     spdlog::error("cannot read --tls-cert {} / --tls-key {}", flags.tls_cert, flags.tls_key);
     return 1;

@@ -7,16 +7,15 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
-#include <fstream>
 #include <future>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "radflux/v1/worker.grpc.pb.h"
 #include "server/block_wire.h"
+#include "server/grpc_credentials.h"
 #include "server/job_store.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
@@ -265,21 +264,11 @@ grpc::Status Session(v1::Worker::Stub& stub, const WorkerNodeOptions& options, J
   return stream->Finish();
 }
 
-std::shared_ptr<grpc::ChannelCredentials> Credentials(const WorkerNodeOptions& options) {
-  if (options.tls_ca.empty()) return grpc::InsecureChannelCredentials();
-  std::ifstream in(options.tls_ca, std::ios::binary);
-  if (!in) return nullptr;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  grpc::SslCredentialsOptions ssl;
-  ssl.pem_root_certs = buffer.str();
-  return grpc::SslCredentials(ssl);
-}
-
 }  // namespace
 
 int RunWorkerNode(const WorkerNodeOptions& options, const std::atomic<bool>& stop) {
-  const std::shared_ptr<grpc::ChannelCredentials> credentials = Credentials(options);
+  const std::shared_ptr<grpc::ChannelCredentials> credentials =
+      ChannelCredentialsFromFile(options.tls_ca);
   if (!credentials) {
     spdlog::error("cannot read --tls-ca {}", options.tls_ca);
     return 1;
