@@ -16,6 +16,7 @@
 #include "server/grpc_credentials.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
+#include "server/scene_stream.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/obj_loader.h"
 #include "solver/scene/validation.h"
@@ -127,27 +128,12 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   request.set_sha256(job.scene_sha256());
   auto context = client.Context();
   auto reader = client.stub().GetScene(context.get(), request);
-  v1::SceneChunk chunk;
-  v1::SceneHeader header;
-  std::string data;
-  while (reader->Read(&chunk)) {
-    if (chunk.has_header()) header = chunk.header();
-    data += chunk.data();
-  }
-  if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
-  if (data.size() != header.obj_size() + header.mtl_size()) {
-    return absl::DataLossError(absl::StrCat("scene ", job.scene_sha256(), ": got ", data.size(),
-                                            " bytes, expected ",
-                                            header.obj_size() + header.mtl_size()));
-  }
-  const std::string obj = data.substr(0, header.obj_size()), mtl = data.substr(header.obj_size());
-  if (SceneContentHash(obj, mtl) != job.scene_sha256()) {
-    return absl::DataLossError("scene " + job.scene_sha256() + " does not hash to its address");
-  }
+  absl::StatusOr<StoredScene> stored = ReadSceneChunks(*reader, job.scene_sha256());
+  if (!stored.ok()) return stored.status();
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   JobGeometry geometry;
-  absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, header.name());
+  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
   if (!scene.ok()) return scene.status();
   geometry.scene = *std::move(scene);
   if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;

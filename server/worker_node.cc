@@ -18,7 +18,7 @@
 #include "server/grpc_credentials.h"
 #include "server/job_store.h"
 #include "server/proto_convert.h"
-#include "server/scene_hash.h"
+#include "server/scene_stream.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
@@ -52,23 +52,7 @@ absl::StatusOr<StoredScene> FetchScene(v1::Worker::Stub& stub, const std::string
   v1::FetchSceneRequest request;
   request.set_sha256(sha256);
   auto reader = stub.FetchScene(&context, request);
-  v1::SceneChunk chunk;
-  v1::SceneHeader header;
-  std::string data;
-  while (reader->Read(&chunk)) {
-    if (chunk.has_header()) header = chunk.header();
-    data += chunk.data();
-  }
-  if (grpc::Status s = reader->Finish(); !s.ok()) return FromGrpcStatus(s);
-  if (data.size() != header.obj_size() + header.mtl_size()) {
-    return absl::DataLossError("scene download is incomplete");
-  }
-  StoredScene scene{header.name(), data.substr(0, header.obj_size()),
-                    data.substr(header.obj_size())};
-  if (SceneContentHash(scene.obj, scene.mtl) != sha256) {
-    return absl::DataLossError("scene download does not match its address");
-  }
-  return scene;
+  return ReadSceneChunks(*reader, sha256);
 }
 
 // Prepared jobs by job id; each is fetched and prepared once (threads asking meanwhile
