@@ -17,7 +17,7 @@ struct JobFlags {
   std::string form_factors = "monte_carlo";
   int rays = 0, hemicube_res = 0, samples = 0;  // 0: the method's default
   double cutoff = -1;                           // < 0: default
-  std::string solver = "cg";
+  std::string solver = "auto";  // gauss_seidel, or cg when some rho > 0.9
   double tolerance = 1e-4;
   int max_iterations = 1000;
   int threads = 0;

@@ -15,7 +15,7 @@ std::optional<FormFactorMethod> ParseMethod(std::string_view name);
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::kMonteCarlo;
-  int rays = 256;          // k: monte_carlo rays per patch
+  int rays = 64;           // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
   int hemicube_res = 32;   // r: hemicube top-face resolution (r x r), even
   int samples = 4;         // s: analytic points per patch (also monte_carlo's emitter columns)
   double cutoff = 1e-6;    // entries F_ij below this are dropped (their sum is reported)

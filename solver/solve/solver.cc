@@ -14,7 +14,7 @@ namespace {
 
 constexpr SolverMethod kAllMethods[] = {SolverMethod::kJacobi, SolverMethod::kGaussSeidel,
                                         SolverMethod::kSouthwell, SolverMethod::kConjugateGradient,
-                                        SolverMethod::kDirect};
+                                        SolverMethod::kDirect, SolverMethod::kAuto};
 
 absl::Status CheckMatrix(const CsrMatrix& f, size_t n) {
   if (f.rows != n || f.row_begin.size() != n + 1 || f.col.size() != f.value.size() ||
@@ -84,6 +84,8 @@ absl::Status Dispatch(const BandSystem& bands, const SolverOptions& options,
       return SolveConjugateGradient(bands, options, callback, b, result);
     case SolverMethod::kDirect:
       return SolveDirect(bands, options, callback, b, result);
+    case SolverMethod::kAuto:
+      break;  // resolved before dispatch
   }
   return absl::InvalidArgumentError("unknown solver method");
 }
@@ -102,6 +104,8 @@ std::string_view SolverName(SolverMethod method) {
       return "cg";
     case SolverMethod::kDirect:
       return "direct";
+    case SolverMethod::kAuto:
+      return "auto";
   }
   return "unknown";
 }
@@ -118,18 +122,29 @@ absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOpt
                                   const SolveCallback& callback) {
   if (absl::Status s = CheckInputs(system, options); !s.ok()) return s;
   const BandSystem bands = MakeBandSystem(system, options.threads);
+  SolverOptions resolved = options;
+  resolved.method = ResolveSolver(system, options.method);
   SolveResult result;
+  result.method = resolved.method;
   result.bands_solved = bands.lanes;
   std::vector<Rgb> b = options.initial != nullptr ? PackLanes(bands, *options.initial)
                                                   : std::vector<Rgb>(bands.n, Rgb{});
   if (bands.lanes == 0) {  // nothing emits: B = 0 everywhere, no sweep needed
     result.converged = true;
   } else {
-    if (absl::Status s = Dispatch(bands, options, callback, b, result); !s.ok()) return s;
+    if (absl::Status s = Dispatch(bands, resolved, callback, b, result); !s.ok()) return s;
     result.residual = MaxOverLanes(bands, LaneResiduals(bands, b, nullptr));
   }
   UnpackLanes(bands, b, result.radiosity);
   return result;
+}
+
+SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested) {
+  if (requested != SolverMethod::kAuto) return requested;
+  double max_rho = 0;
+  for (const Rgb& rho : system.patches->reflectance) max_rho = std::max(max_rho, MaxComponent(rho));
+  return max_rho > kAutoCgReflectance ? SolverMethod::kConjugateGradient
+                                      : SolverMethod::kGaussSeidel;
 }
 
 double RelativeResidual(const RadiositySystem& system, const std::vector<Rgb>& radiosity) {

@@ -19,7 +19,10 @@
 
 namespace radflux {
 
-enum class SolverMethod { kJacobi, kGaussSeidel, kSouthwell, kConjugateGradient, kDirect };
+// kAuto picks per scene: gauss_seidel while max rho <= kAutoCgReflectance (it converges in
+// a handful of cheap sweeps), conjugate_gradient above (where gathering crawls).
+enum class SolverMethod { kJacobi, kGaussSeidel, kSouthwell, kConjugateGradient, kDirect, kAuto };
+inline constexpr double kAutoCgReflectance = 0.9;
 
 // Largest system the direct method accepts (larger: RESOURCE_EXHAUSTED). Dense LU holds
 // n^2 doubles (128 MB at 4000) and costs n^3/3 flops per distinct reflectance band
@@ -74,12 +77,16 @@ struct SolveResult {
                                          // of B at the sweep's start; southwell: unshot fraction)
   bool converged = false;
   bool cancelled = false;
+  SolverMethod method = SolverMethod::kConjugateGradient;  // the method that ran (never kAuto)
   int bands_solved = 3;          // 1 when the scene is grey
   double reciprocity_error = 0;  // cg: max |A_i F_ij - A_j F_ji| / max(A_i F_ij, A_j F_ji)
                                  // over pairs where both entries are stored
   int64_t one_sided_pairs = 0;   // cg: pairs stored one way only (both rows non-empty)
   double unshot_fraction = 0;    // southwell: final unshot power / emitted power
 };
+
+// The method `requested` stands for on this system (itself unless it is kAuto).
+SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested);
 
 absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOptions& options,
                                   const SolveCallback& callback = {});
