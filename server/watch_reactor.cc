@@ -15,11 +15,26 @@ WatchReactor::WatchReactor(std::shared_ptr<JobHub> hub, const v1::WatchJobReques
   Pump();
 }
 
+namespace {
+bool IsTerminal(v1::JobState state) {
+  return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
+         state == v1::JOB_STATE_CANCELLED;
+}
+}  // namespace
+
 bool WatchReactor::NextMessage() {
   if (hub_->NextEvent(sent_sequence_, &message_)) {
+    // The newest unsent snapshot goes out just before the job's final event, never after
+    // it: the final event stays the last thing a watcher sees.
+    if (IsTerminal(message_.state()) && NextSnapshot()) return true;
     sent_sequence_ = message_.sequence();
+    terminal_sent_ = terminal_sent_ || IsTerminal(message_.state());
     return true;
   }
+  return !terminal_sent_ && NextSnapshot();
+}
+
+bool WatchReactor::NextSnapshot() {
   const int every = request_.snapshot_every();
   SnapshotData snapshot;
   if (every <= 0 || !hub_->NewestSnapshot(next_snapshot_iteration_, &snapshot)) return false;

@@ -31,7 +31,8 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::JobEvent> {
 
   // Starts the next write or the Finish, if one is due and none is in flight.
   void Pump();
-  bool NextMessage();  // fills message_; called with mu_ held
+  bool NextMessage();   // fills message_; called with mu_ held
+  bool NextSnapshot();  // fills message_ with the newest due snapshot, if any
 
   const std::shared_ptr<JobHub> hub_;
   const v1::WatchJobRequest request_;
@@ -40,6 +41,7 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::JobEvent> {
   std::mutex mu_;
   uint64_t sent_sequence_ = 0;
   int next_snapshot_iteration_ = 0;
+  bool terminal_sent_ = false;  // the job's final event went out: no snapshot after it
   bool in_flight_ = false;
   bool finished_ = false;
   bool cancelled_ = false;
