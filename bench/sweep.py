@@ -55,8 +55,8 @@ def row(label, method, knob, solver, wall, report, errors):
 def plot(csv_path, png_path, column, ylabel):
     lines = []
     for m in SWEEPS:
-        lines.append(f"'< grep -E \",{m},[^,]*,cg,\" {csv_path}' using 5:{column} with linespoints title '{m}'")
-    script = f"""set terminal pngcairo size 900,600
+        lines.append(f"'< grep -E \"^{m} [0-9]+,\" {csv_path}' using 5:{column} with linespoints title '{m}'")
+    script = f"""set terminal pngcairo size 900,600 noenhanced
 set output '{png_path}'
 set datafile separator ','
 set logscale xy
@@ -78,10 +78,13 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--reference-samples", type=int, default=32)
     p.add_argument("--methods", default="monte_carlo,hemicube,analytic")
+    p.add_argument("--plot-only", action="store_true", help="redraw the plots from the CSV")
     p.add_argument("--bin", default=BIN, help="radflux binary (copy it when rebuilding meanwhile)")
     p.add_argument("--compare", default=COMPARE, help="compare_patch_values binary")
     a = p.parse_args()
     BIN, COMPARE = a.bin, a.compare
+    if a.plot_only:
+        return plots(a.out)
     SCENE = a.scene
     base = ["--patches", str(a.patches), a.scene]
     REFERENCE = a.out + "_reference.csv"
@@ -107,8 +110,12 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    plot(a.out + ".csv", a.out + "_patch_error.png", 12, "area-weighted relative RMS of B (non-emitters)")
-    plot(a.out + ".csv", a.out + "_surface_error.png", 14, "RMS relative error of surface means")
+    plots(a.out)
+
+
+def plots(out):
+    plot(out + ".csv", out + "_patch_error.png", 13, "area-weighted relative RMS of B (non-emitters)")
+    plot(out + ".csv", out + "_surface_error.png", 15, "RMS relative error of surface means")
 
 
 if __name__ == "__main__":

@@ -70,12 +70,16 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const int s = static_cast<int>(points.size());
   const PatchPointSampler sample_target(mesh, j);
-  double unoccluded = 0, weight = 0, visible_weight = 0;
+  double unoccluded = 0, weight = 0, visible_weight = 0, f = 0;
   for (int m = 0; m < s; ++m) {
     // A point behind j's plane sees only j's back: no exchange from there (this matters
     // where i runs under a solid, e.g. floor patches partly beneath a block).
     if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
-    unoccluded += UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
+    // Repeated points (hemicube: s copies of the centroid) share one contour integral.
+    if (m == 0 || !(points[m] == points[m - 1])) {
+      f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
+    }
+    unoccluded += f;
     const Vec3 target = sample_target(MultiJitteredSample(m, s, pattern));
     const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
     if (kernel <= 0) continue;
