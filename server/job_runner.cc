@@ -109,6 +109,9 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   FormFactorResult result;
   result.matrix.cols = n;
+  size_t nnz = 0;
+  for (const StoredRowBlock& s : blocks) nnz += s.block.col.size();
+  result.matrix.Reserve(n, nnz);
   for (StoredRowBlock& s : blocks) {
     result.matrix.Append(s.block);
     result.stats.Merge(s.stats);
