@@ -18,7 +18,8 @@ bool ProgressDisplay::Due(bool force) {
 }
 
 void ProgressDisplay::Phase(std::string_view phase, int64_t done, int64_t total) {
-  if (quiet_ || !Due(done == total)) return;
+  if (quiet_ || done == last_done_ || !Due(done == total)) return;
+  last_done_ = done;
   const double fraction = total > 0 ? double(done) / total : 1.0;
   if (terminal_) {
     const int width = 30, filled = static_cast<int>(fraction * width);

@@ -24,6 +24,7 @@ class ProgressDisplay {
  private:
   bool Due(bool force);
   bool quiet_, terminal_, bar_open_ = false;
+  int64_t last_done_ = -1;  // the last phase count shown, so a repeat is not shown twice
   std::chrono::steady_clock::time_point last_;
 };
 
