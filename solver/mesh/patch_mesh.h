@@ -46,10 +46,6 @@ class PatchPointSampler {
   double first_;  // area fraction of triangle (a, b, c); 1 for a triangle patch
 };
 
-// Point on patch p for sample u in [0,1)^2; uniform by area, stratification kept.
-inline Vec3 SamplePatchPoint(const PatchMesh& mesh, uint32_t p, Point2 u) {
-  return PatchPointSampler(mesh, p)(u);
-}
 
 // Fills area, centroid and normal of `patch` from its vertices and face normal.
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch);

@@ -117,17 +117,6 @@ void EmbreeRayCaster::IntersectBatch(std::span<const Ray> rays, std::span<Hit> h
   }
 }
 
-void EmbreeRayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
-  thread_local std::vector<RTCRay> stream;
-  stream.resize(rays.size());
-  for (size_t k = 0; k < rays.size(); ++k) stream[k] = ToRTCRay(rays[k]);
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  rtcOccluded1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
-                sizeof(RTCRay));
-  for (size_t k = 0; k < rays.size(); ++k) occluded[k] = stream[k].tfar < 0;
-}
-
 bool EmbreeRayCaster::Occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
