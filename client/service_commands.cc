@@ -17,8 +17,8 @@
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
 #include "server/scene_stream.h"
+#include "server/stored_scene.h"
 #include "solver/mesh/subdivide.h"
-#include "solver/scene/obj_loader.h"
 #include "solver/scene/validation.h"
 
 namespace radflux::cli {
@@ -133,7 +133,7 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   JobGeometry geometry;
-  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
   if (!scene.ok()) return scene.status();
   geometry.scene = *std::move(scene);
   if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;

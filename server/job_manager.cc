@@ -12,10 +12,9 @@
 #include "server/job_runner.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
-#include "server/scene_hash.h"
+#include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
@@ -25,6 +24,10 @@ int64_t NowMs() {
   return std::chrono::duration_cast<std::chrono::milliseconds>(
              std::chrono::system_clock::now().time_since_epoch())
       .count();
+}
+
+double MsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
 std::string NewJobId() {
@@ -103,26 +106,26 @@ void JobManager::Shutdown() {
 }
 
 absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
-                                                  const std::string& obj, const std::string& mtl) {
-  const std::string sha = SceneContentHash(obj, mtl);
+                                                  StoredScene scene) {
+  const std::string sha = StoredSceneHash(scene);
   if (!header.sha256().empty() && header.sha256() != sha) {
     return absl::DataLossError(
         absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
   }
-  const std::string name = header.name().empty() ? "scene.obj" : header.name();
-  absl::StatusOr<Scene> scene = LoadObjText(obj, mtl, name);
-  if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
-  if (absl::Status s = ValidateScene(*scene); !s.ok()) {
+  if (scene.name.empty()) scene.name = scene.mesh.empty() ? "scene.obj" : "mesh";
+  absl::StatusOr<Scene> loaded = LoadStoredScene(scene);
+  if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
+  if (absl::Status s = ValidateScene(*loaded); !s.ok()) {
     return absl::InvalidArgumentError(s.message());
   }
   v1::SceneRef ref;
   ref.set_sha256(sha);
-  ref.set_faces(scene->faces.size());
-  ref.set_materials(scene->materials.size());
+  ref.set_faces(loaded->faces.size());
+  ref.set_materials(loaded->materials.size());
   ref.set_already_stored(store_.HasScene(sha));
   if (!ref.already_stored()) {
-    if (absl::Status s = store_.PutScene(sha, {name, obj, mtl}); !s.ok()) return s;
-    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), name, ref.faces());
+    if (absl::Status s = store_.PutScene(sha, scene); !s.ok()) return s;
+    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), scene.name, ref.faces());
   }
   return ref;
 }
@@ -133,7 +136,7 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
   absl::StatusOr<JobOptions> options = FromProto(request.options());
   if (!options.ok()) return options.status();
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
-  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
   if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
   const int64_t max_patches = options_.max_patches;
   const auto too_many = [&](double n) {
@@ -163,7 +166,9 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
     if (earlier.ok()) return earlier;
   }
+  const auto check_start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckLimits(request); !s.ok()) return s;
+  const auto create_start = std::chrono::steady_clock::now();
   {
     std::lock_guard lock(mu_);
     if (stopping_) return absl::UnavailableError("server is shutting down");
@@ -189,6 +194,9 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     HubLocked(job.job_id())->Publish(event);
   }
   cv_.notify_one();
+  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}", job.job_id(),
+                MsBetween(check_start, create_start),
+                MsBetween(create_start, std::chrono::steady_clock::now()));
   spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
   return job;
 }
@@ -286,9 +294,12 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
         absl::StrCat("job ", job_id, " has no result: it is ", v1::JobState_Name(job->state()),
                      job->message().empty() ? "" : " (" + job->message() + ")"));
   }
+  const auto read_start = std::chrono::steady_clock::now();
   absl::StatusOr<std::string> bytes = store_.GetResult(job_id);
   if (!bytes.ok()) return bytes.status();
   absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes);
+  spdlog::debug("job {}: ms result read and decoded {:.1f}", job_id,
+                MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
   return chunks;
 }
@@ -300,9 +311,12 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   job.set_phase(phase);
   job.set_message(message);
   if (Terminal(state)) job.set_finished_unix_ms(NowMs());
+  const auto update_start = std::chrono::steady_clock::now();
   if (absl::Status s = store_.UpdateJob(job); !s.ok()) {
     spdlog::error("job {}: cannot store state: {}", job.job_id(), std::string(s.message()));
   }
+  spdlog::debug("job {}: ms state stored {:.1f}", job.job_id(),
+                MsBetween(update_start, std::chrono::steady_clock::now()));
   std::shared_ptr<JobHub> hub;
   {
     std::lock_guard lock(mu_);
@@ -377,8 +391,13 @@ void JobManager::RunOne(const std::string& job_id) {
   }
   // Work files go before the terminal transition: whoever sees the end sees them gone.
   if (result.ok()) {
+    const auto put_start = std::chrono::steady_clock::now();
     absl::Status put = store_.PutResult(job_id, *result);
+    const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
+    spdlog::debug("job {}: ms result stored {:.1f}, work files removed {:.1f}", job_id,
+                  MsBetween(put_start, remove_start),
+                  MsBetween(remove_start, std::chrono::steady_clock::now()));
     if (put.ok()) {
       Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "");
     } else {

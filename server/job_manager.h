@@ -53,9 +53,9 @@ class JobManager {
 
   const ManagerOptions& options() const { return options_; }
 
-  // Parses and stores an uploaded scene (INVALID_ARGUMENT with the loader's message).
-  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, const std::string& obj,
-                                        const std::string& mtl);
+  // Parses and stores an uploaded scene, OBJ + MTL or Mesh (INVALID_ARGUMENT with the
+  // loader's message; DATA_LOSS when it does not hash to header.sha256()).
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene);
   // Validates and queues a job (or returns the job of an earlier submit with the same
   // request id). Everything that can be refused is refused here, before any work.
   absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request);

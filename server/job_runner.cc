@@ -10,10 +10,10 @@
 #include "server/result_codec.h"
 #include "server/row_farm.h"
 #include "server/row_block_writer.h"
+#include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "solver/report.h"
-#include "solver/scene/obj_loader.h"
 
 namespace radflux {
 namespace {
@@ -205,7 +205,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   options->form_factors.threads = c.threads;
-  absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
   if (!scene.ok()) return scene.status();
   c.on_phase(v1::PHASE_PREPARE, 0);
   absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);

@@ -101,8 +101,12 @@ bool JobStore::HasScene(const std::string& sha256) {
 
 absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
-  if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
-  if (absl::Status s = WriteBlobFile(base + ".mtl.rfb", scene.mtl); !s.ok()) return s;
+  if (!scene.mesh.empty()) {
+    if (absl::Status s = WriteBlobFile(base + ".mesh.rfb", scene.mesh); !s.ok()) return s;
+  } else {
+    if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
+    if (absl::Status s = WriteBlobFile(base + ".mtl.rfb", scene.mtl); !s.ok()) return s;
+  }
   std::lock_guard lock(mu_);
   Statement st(db_,
                "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
@@ -126,6 +130,12 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
     scene.name = st.Column(0);
   }
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  if (std::error_code ec; fs::exists(base + ".mesh.rfb", ec)) {
+    absl::StatusOr<std::string> mesh = ReadBlobFile(base + ".mesh.rfb");
+    if (!mesh.ok()) return mesh.status();
+    scene.mesh = *std::move(mesh);
+    return scene;
+  }
   absl::StatusOr<std::string> obj = ReadBlobFile(base + ".obj.rfb");
   if (!obj.ok()) return obj.status();
   absl::StatusOr<std::string> mtl = ReadBlobFile(base + ".mtl.rfb");

@@ -17,11 +17,13 @@ struct sqlite3;
 
 namespace radflux {
 
-// The texts of an uploaded scene.
+// An uploaded scene as it was uploaded: OBJ and MTL texts, or a serialized v1::Mesh (then
+// obj and mtl are empty).
 struct StoredScene {
   std::string name;
   std::string obj;
   std::string mtl;
+  std::string mesh;
 };
 
 // Which jobs ListJobs returns: newest first, `offset` jobs skipped, at most `limit`.

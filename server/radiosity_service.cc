@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "server/auth.h"
 #include "server/proto_convert.h"
+#include "server/stored_scene.h"
 #include "server/watch_reactor.h"
 
 namespace radflux {
@@ -35,7 +36,12 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
         return Fail(grpc::StatusCode::INVALID_ARGUMENT,
                     "the first chunk of an upload must carry its header");
       header_ = chunk_.header();
-      expected_ = header_.obj_size() + header_.mtl_size();
+      if (header_.mesh_size() > 0 && header_.obj_size() + header_.mtl_size() > 0) {
+        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
+                    "a scene header declares obj_size/mtl_size (OBJ + MTL text) or mesh_size "
+                    "(a serialized Mesh), not both");
+      }
+      expected_ = header_.obj_size() + header_.mtl_size() + header_.mesh_size();
       if (expected_ > manager_.options().max_upload) {
         return Fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
                     absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
@@ -65,9 +71,8 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
                                                             " of ", expected_, " bytes"));
     }
     work_.Post([this] {
-      const size_t obj_size = header_.obj_size();
       absl::StatusOr<v1::SceneRef> ref =
-          manager_.AddScene(header_, data_.substr(0, obj_size), data_.substr(obj_size));
+          manager_.AddScene(header_, SplitScenePayload(header_, data_));
       if (ref.ok()) *response_ = *ref;
       Finish(ToGrpcStatus(ref.status()));
     });
@@ -136,23 +141,12 @@ class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
   bool cancelled_ = false;
 };
 
-// A stored scene as the chunks GetScene streams: the header, then data of at most 1 MiB.
+// A stored scene as the chunks GetScene streams (see ToSceneChunks).
 absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
                                                         const std::string& sha256) {
   absl::StatusOr<StoredScene> scene = manager.GetScene(sha256);
   if (!scene.ok()) return scene.status();
-  constexpr size_t kChunkBytes = 1 << 20;
-  std::vector<v1::SceneChunk> chunks(1);
-  v1::SceneHeader* header = chunks[0].mutable_header();
-  header->set_name(scene->name);
-  header->set_obj_size(scene->obj.size());
-  header->set_mtl_size(scene->mtl.size());
-  header->set_sha256(sha256);
-  const std::string data = scene->obj + scene->mtl;
-  for (size_t at = 0; at < data.size(); at += kChunkBytes) {
-    chunks.emplace_back().set_data(data.substr(at, kChunkBytes));
-  }
-  return chunks;
+  return ToSceneChunks(*scene, sha256);
 }
 
 // INVALID_ARGUMENT for a snapshot cadence < 0 or bands that are not distinct values 0..2.

@@ -33,6 +33,10 @@ std::string SceneContentHash(std::string_view obj, std::string_view mtl) {
   return HashParts({prefix, obj, mtl});
 }
 
+std::string MeshContentHash(std::string_view mesh) {
+  return HashParts({"radflux-mesh-v1\n", mesh});
+}
+
 std::string Sha256Hex(std::string_view data) { return HashParts({data}); }
 
 }  // namespace radflux

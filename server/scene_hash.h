@@ -1,5 +1,5 @@
-// The content address of an uploaded scene: shared by the server and the client so both
-// compute the same name for the same OBJ + MTL.
+// The content address of an uploaded scene (OBJ + MTL or Mesh): shared by the server and the client
+// so both compute the same name for the same content.
 #pragma once
 
 #include <string>
@@ -10,6 +10,9 @@ namespace radflux {
 // Lowercase hex SHA-256 of "radflux-scene-v1\n" + decimal(obj.size()) + "\n" + obj + mtl
 // (the length prefix keeps the OBJ/MTL split part of the address).
 std::string SceneContentHash(std::string_view obj, std::string_view mtl);
+
+// Lowercase hex SHA-256 of "radflux-mesh-v1\n" + `mesh` (a serialized v1::Mesh as uploaded).
+std::string MeshContentHash(std::string_view mesh);
 
 // Lowercase hex SHA-256 of `data`.
 std::string Sha256Hex(std::string_view data);

@@ -2,7 +2,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "server/proto_convert.h"
-#include "server/scene_hash.h"
+#include "server/stored_scene.h"
 
 namespace radflux {
 
@@ -16,14 +16,13 @@ absl::StatusOr<StoredScene> ReadSceneChunks(grpc::ClientReaderInterface<v1::Scen
     data += chunk.data();
   }
   if (absl::Status s = FromGrpcStatus(reader.Finish()); !s.ok()) return s;
-  if (data.size() != header.obj_size() + header.mtl_size()) {
-    return absl::DataLossError(absl::StrCat("scene ", sha256, ": got ", data.size(),
-                                            " bytes, expected ",
-                                            header.obj_size() + header.mtl_size()));
+  const uint64_t expected = header.obj_size() + header.mtl_size() + header.mesh_size();
+  if (data.size() != expected) {
+    return absl::DataLossError(
+        absl::StrCat("scene ", sha256, ": got ", data.size(), " bytes, expected ", expected));
   }
-  StoredScene scene{header.name(), data.substr(0, header.obj_size()),
-                    data.substr(header.obj_size())};
-  if (SceneContentHash(scene.obj, scene.mtl) != sha256) {
+  StoredScene scene = SplitScenePayload(header, data);
+  if (StoredSceneHash(scene) != sha256) {
     return absl::DataLossError("scene " + sha256 + " does not hash to its address");
   }
   return scene;

@@ -12,7 +12,7 @@
 
 namespace radflux {
 
-// Reads `reader` to its end: the header's name, then OBJ and MTL split at its obj_size.
+// Reads `reader` to its end: the header's name, then OBJ, MTL or Mesh by its sizes.
 // The call's own error when it failed; DATA_LOSS when the bytes are not as many as the
 // header declares or do not hash (SceneContentHash) to `sha256`.
 absl::StatusOr<StoredScene> ReadSceneChunks(grpc::ClientReaderInterface<v1::SceneChunk>& reader,

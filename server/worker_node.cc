@@ -19,9 +19,9 @@
 #include "server/job_store.h"
 #include "server/proto_convert.h"
 #include "server/scene_stream.h"
+#include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
 
 namespace radflux {
 namespace {
@@ -98,23 +98,21 @@ class JobCache {
     if (!stored.ok()) return stored.status();
     absl::StatusOr<JobOptions> options = FromProto(lease.options());
     if (!options.ok()) return options.status();
-    absl::StatusOr<Scene> scene = LoadObjText(stored->obj, stored->mtl, stored->name);
+    absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
     if (!scene.ok()) return scene.status();
-    absl::StatusOr<std::unique_ptr<PreparedJob>> prepared =
-        PrepareJob(*std::move(scene), *options);
+    absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
     if (!prepared.ok()) return prepared.status();
     auto work = std::make_shared<PreparedWork>();
     work->job = *std::move(prepared);
     if (work->job->mesh.size() != lease.patch_count()) {
-      return absl::FailedPreconditionError(absl::StrCat(
-          "job ", lease.job_id(), ": meshed ", work->job->mesh.size(), " patches, the server has ",
-          lease.patch_count()));
+      return absl::FailedPreconditionError(
+          absl::StrCat("job ", lease.job_id(), ": meshed ", work->job->mesh.size(),
+                       " patches, the server has ", lease.patch_count()));
     }
     work->builder = MakeRowBuilder(work->job->rows, options->form_factors);
     work->cutoff = options->form_factors.cutoff;
-    spdlog::info("job {}: scene {} prepared, {} patches ({:.2f} s)", lease.job_id(),
-                 stored->name, lease.patch_count(),
-                 std::chrono::duration<double>(Clock::now() - start).count());
+    spdlog::info("job {}: scene {} prepared, {} patches ({:.2f} s)", lease.job_id(), stored->name,
+                 lease.patch_count(), std::chrono::duration<double>(Clock::now() - start).count());
     return work;
   }
 
@@ -162,8 +160,8 @@ struct Scratch {
 };
 
 // Builds the block of `lease` into a result message.
-v1::BlockResult BuildBlock(const v1::BlockLease& lease, const PreparedWork& work,
-                           Scratch& scratch, int delay_ms) {
+v1::BlockResult BuildBlock(const v1::BlockLease& lease, const PreparedWork& work, Scratch& scratch,
+                           int delay_ms) {
   const auto start = Clock::now();
   const size_t n = work.job->mesh.size();
   if (!scratch.row || scratch.n != n) {
@@ -233,9 +231,9 @@ grpc::Status Session(v1::Worker::Stub& stub, const WorkerNodeOptions& options, J
         context.TryCancel();  // the server leases the block to someone else
         return;
       }
-      spdlog::info("building row block {} of job {} (rows {}..{}, lease {})",
-                   lease->block_index(), lease->job_id(), lease->first_row(),
-                   lease->first_row() + lease->row_count() - 1, lease->lease_id());
+      spdlog::info("building row block {} of job {} (rows {}..{}, lease {})", lease->block_index(),
+                   lease->job_id(), lease->first_row(), lease->first_row() + lease->row_count() - 1,
+                   lease->lease_id());
       v1::WorkerMessage out;
       *out.mutable_result() = BuildBlock(*lease, **work, scratch, options.block_delay_ms);
       std::lock_guard lock(write_mu);

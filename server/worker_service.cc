@@ -7,6 +7,7 @@
 
 #include "server/auth.h"
 #include "server/proto_convert.h"
+#include "server/stored_scene.h"
 
 namespace radflux {
 namespace {
@@ -88,19 +89,8 @@ grpc::Status WorkerService::FetchScene(grpc::ServerContext* context,
   if (grpc::Status auth = Authenticate(*context); !auth.ok()) return auth;
   absl::StatusOr<StoredScene> scene = manager_.GetScene(request->sha256());
   if (!scene.ok()) return ToGrpcStatus(scene.status());
-  constexpr size_t kChunkBytes = 1 << 20;
-  v1::SceneChunk chunk;
-  v1::SceneHeader* header = chunk.mutable_header();
-  header->set_name(scene->name);
-  header->set_obj_size(scene->obj.size());
-  header->set_mtl_size(scene->mtl.size());
-  header->set_sha256(request->sha256());
-  if (!writer->Write(chunk)) return grpc::Status::CANCELLED;
-  const std::string data = scene->obj + scene->mtl;
-  for (size_t at = 0; at < data.size(); at += kChunkBytes) {
-    v1::SceneChunk part;
-    part.set_data(data.substr(at, kChunkBytes));
-    if (!writer->Write(part)) return grpc::Status::CANCELLED;
+  for (const v1::SceneChunk& chunk : ToSceneChunks(*scene, request->sha256())) {
+    if (!writer->Write(chunk)) return grpc::Status::CANCELLED;
   }
   return grpc::Status::OK;
 }

@@ -67,13 +67,6 @@ SourceScan ScanSource(const std::string& text) {
   return scan;
 }
 
-uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
-                    const std::string& name) {
-  auto [it, inserted] = index.try_emplace(name, static_cast<uint32_t>(names.size()));
-  if (inserted) names.push_back(name);
-  return it->second;
-}
-
 // tinyobjloader's warnings (e.g. a missing .mtl file) on one line, as " (a; b)".
 std::string LoaderNotes(const std::string& warnings) {
   std::string notes;
@@ -109,8 +102,8 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
 
   const SourceScan scan = ScanSource(obj_text);
   if (scan.bad_vertex_line > 0) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        name, ":", scan.bad_vertex_line, ": vertex has a NaN or infinite coordinate"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, ":", scan.bad_vertex_line, ": vertex has a NaN or infinite coordinate"));
   }
   const std::vector<FaceOrigin>& origins = scan.faces;
   std::map<std::string, uint32_t> object_index, group_index;

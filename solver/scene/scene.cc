@@ -10,8 +10,15 @@ std::string Scene::DescribeFace(size_t f) const {
   const Face& face = faces[f];
   const bool named = face.object < objects.size() && !objects[face.object].empty();
   return absl::StrCat(source, face.source_line > 0 ? absl::StrCat(":", face.source_line) : "",
-                      " (face ", f, named ? absl::StrCat(" of object '", objects[face.object], "'") : "",
-                      ")");
+                      " (face ", f,
+                      named ? absl::StrCat(" of object '", objects[face.object], "'") : "", ")");
+}
+
+uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
+                    const std::string& name) {
+  auto [it, inserted] = index.try_emplace(name, static_cast<uint32_t>(names.size()));
+  if (inserted) names.push_back(name);
+  return it->second;
 }
 
 Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon) {

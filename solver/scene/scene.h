@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct Scene {
   // "file:line (object 'o', face k)" for messages about face f.
   std::string DescribeFace(size_t f) const;
 };
+
+// The index of `name` in `names`, appending it when new (`index` maps names to indices):
+// how loaders number the objects and groups of a scene in the order they first appear.
+uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
+                    const std::string& name);
 
 // Newell normal of a polygon (unnormalised; length = 2 * area for a planar polygon).
 Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon);

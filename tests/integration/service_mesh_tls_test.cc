@@ -1,0 +1,228 @@
+// Integration tests of radfluxd for structured Mesh uploads, client certificates (mutual
+// TLS) and watch sequence numbers across a kill -9 restart. Each test starts its own server
+// on a loopback port it picks, with a fresh data directory.
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/scene_hash.h"
+#include "server/scene_stream.h"
+#include "solver/scene/obj_loader.h"
+#include "tests/integration/service_fixture.h"
+#include "tests/integration/test_helpers.h"
+
+namespace radflux {
+namespace {
+
+using testing::ExpectBitIdentical;
+using testing::kMtl;
+using testing::kObj;
+using testing::ReadText;
+using testing::SmallOptions;
+
+class MeshUploadTest : public testing::ServiceFixture {
+ public:
+  // Uploads `bytes` as a serialized Mesh in chunks of 1000 bytes.
+  grpc::Status UploadMesh(const std::string& bytes, v1::SceneRef* ref) {
+    auto context = Context();
+    auto writer = stub_->UploadScene(context.get(), ref);
+    v1::SceneChunk chunk;
+    chunk.mutable_header()->set_name("mesh");
+    chunk.mutable_header()->set_mesh_size(bytes.size());
+    for (size_t at = 0; at == 0 || at < bytes.size(); at += 1000) {
+      chunk.set_data(bytes.substr(at, 1000));
+      if (!writer->Write(chunk)) break;
+      chunk.clear_header();
+    }
+    writer->WritesDone();
+    return writer->Finish();
+  }
+
+  // Submits `sha` with `options`, watches it to its end and returns its B.
+  std::vector<double> Solve(const std::string& sha, const v1::SolveOptions& options) {
+    v1::Job job;
+    EXPECT_TRUE(Submit(options, &job, sha).ok());
+    const std::vector<v1::JobEvent> events = Watch(job.job_id());
+    EXPECT_FALSE(events.empty());
+    if (!events.empty()) {
+      EXPECT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+    }
+    std::vector<double> radiosity;
+    EXPECT_TRUE(Result(job.job_id(), &radiosity).ok());
+    return radiosity;
+  }
+};
+
+void SetRgb(const Rgb& rgb, v1::Rgb* out) {
+  out->set_red(rgb[0]);
+  out->set_green(rgb[1]);
+  out->set_blue(rgb[2]);
+}
+
+// `scene` as a Mesh: the same positions, faces, names and materials, with the emitted
+// radiance L_e = E / pi (checked to give back E exactly: E = pi * L_e on the server).
+v1::Mesh MeshOf(const Scene& scene) {
+  v1::Mesh mesh;
+  for (const Vec3& p : scene.positions) {
+    mesh.add_positions(p.x);
+    mesh.add_positions(p.y);
+    mesh.add_positions(p.z);
+  }
+  for (const Face& f : scene.faces) {
+    v1::MeshFace* face = mesh.add_faces();
+    face->mutable_vertices()->Add(f.vertices.begin(), f.vertices.end());
+    face->set_material(f.material);
+    face->set_object(scene.objects[f.object]);
+    face->set_group(scene.groups[f.group]);
+  }
+  for (const Material& m : scene.materials) {
+    v1::MeshMaterial* material = mesh.add_materials();
+    material->set_name(m.name);
+    SetRgb(m.reflectance, material->mutable_reflectance());
+    Rgb radiance{};
+    for (int b = 0; b < kBands; ++b) {
+      radiance[b] = m.emission[b] / std::numbers::pi;
+      EXPECT_EQ(std::numbers::pi * radiance[b], m.emission[b]) << m.name << " band " << b;
+    }
+    SetRgb(radiance, material->mutable_emitted_radiance());
+  }
+  return mesh;
+}
+
+TEST_F(MeshUploadTest, CornellBoxAsMeshSolvesBitIdenticalToItsObjUpload) {
+  StartServer();
+  const std::string obj_sha = UploadCornell();
+  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const std::string bytes = MeshOf(*scene).SerializeAsString();
+
+  v1::SceneRef ref;
+  grpc::Status status = UploadMesh(bytes, &ref);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(ref.sha256(), MeshContentHash(bytes));
+  EXPECT_NE(ref.sha256(), obj_sha);
+  EXPECT_EQ(ref.faces(), scene->faces.size());
+  EXPECT_EQ(ref.materials(), scene->materials.size());
+  EXPECT_FALSE(ref.already_stored());
+  v1::SceneRef again;
+  ASSERT_TRUE(UploadMesh(bytes, &again).ok());
+  EXPECT_EQ(again.sha256(), ref.sha256());
+  EXPECT_TRUE(again.already_stored()) << "the same mesh is stored once";
+
+  // GetScene gives the mesh back as uploaded (what `radflux result` re-meshes from).
+  v1::GetSceneRequest get;
+  get.set_sha256(ref.sha256());
+  auto context = Context();
+  auto reader = stub_->GetScene(context.get(), get);
+  absl::StatusOr<StoredScene> stored = ReadSceneChunks(*reader, ref.sha256());
+  ASSERT_TRUE(stored.ok()) << stored.status();
+  EXPECT_EQ(stored->mesh, bytes);
+  EXPECT_TRUE(stored->obj.empty() && stored->mtl.empty());
+
+  const v1::SolveOptions options = SmallOptions(300, "cg");
+  ExpectBitIdentical(Solve(ref.sha256(), options), Solve(obj_sha, options),
+                     "the Mesh upload solves to the OBJ upload's B");
+}
+
+// Two unit squares facing each other, a lamp (face 0) and a wall (face 1).
+v1::Mesh TwoSquares() {
+  v1::Mesh mesh;
+  for (double v : {0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.,
+                   0., 0., 1., 1., 0., 1., 1., 1., 1., 0., 1., 1.}) {
+    mesh.add_positions(v);
+  }
+  for (std::vector<uint32_t> vertices : {std::vector<uint32_t>{0, 1, 2, 3}, {4, 7, 6, 5}}) {
+    v1::MeshFace* face = mesh.add_faces();
+    face->mutable_vertices()->Add(vertices.begin(), vertices.end());
+    face->set_material(mesh.faces_size() - 1);
+    face->set_object(mesh.faces_size() == 1 ? "lamp" : "wall");
+  }
+  v1::MeshMaterial* lamp = mesh.add_materials();
+  lamp->set_name("lamp");
+  SetRgb({0.5, 0.5, 0.5}, lamp->mutable_reflectance());
+  SetRgb({1, 1, 1}, lamp->mutable_emitted_radiance());
+  v1::MeshMaterial* wall = mesh.add_materials();
+  wall->set_name("wall");
+  SetRgb({0.8, 0.8, 0.8}, wall->mutable_reflectance());
+  return mesh;
+}
+
+TEST_F(MeshUploadTest, MalformedMeshesGetInvalidArgumentNamingTheFaceAndTheServerKeepsServing) {
+  StartServer();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case {
+    std::string what;
+    std::function<void(v1::Mesh&)> spoil;
+    std::string message;  // a part of the expected message
+  };
+  const std::vector<Case> cases = {
+      {"two vertices", [](v1::Mesh& m) { m.mutable_faces(1)->mutable_vertices()->Truncate(2); },
+       "mesh: face 1: has 2 vertices; a face needs at least 3"},
+      {"vertex index", [](v1::Mesh& m) { m.mutable_faces(0)->set_vertices(2, 99); },
+       "mesh: face 0: vertex index 99 is out of range (the mesh has 8 vertices)"},
+      {"material index", [](v1::Mesh& m) { m.mutable_faces(1)->set_material(5); },
+       "mesh: face 1: unknown material index 5 (the mesh has 2 materials)"},
+      {"NaN coordinate", [nan](v1::Mesh& m) { m.set_positions(3 * 6 + 1, nan); },
+       "mesh: face 1: vertex 6 has a NaN or infinite coordinate"},
+      {"infinite reflectance",
+       [](v1::Mesh& m) {
+         m.mutable_materials(1)->mutable_reflectance()->set_green(
+             std::numeric_limits<double>::infinity());
+       },
+       "mesh: material 1 'wall': reflectance is NaN or infinite"},
+      {"NaN radiance",
+       [nan](v1::Mesh& m) { m.mutable_materials(0)->mutable_emitted_radiance()->set_blue(nan); },
+       "mesh: material 0 'lamp': emitted radiance is NaN or infinite"},
+      {"positions", [](v1::Mesh& m) { m.add_positions(1); },
+       "mesh: 25 position values are not x y z triples"},
+      // Then ValidateScene, as for OBJ uploads, naming the face index.
+      {"non-planar", [](v1::Mesh& m) { m.set_positions(3 * 6 + 2, 0); },
+       "mesh (face 1 of object 'wall'): non-planar face"},
+      {"reflectance range",
+       [](v1::Mesh& m) { m.mutable_materials(1)->mutable_reflectance()->set_red(1.5); },
+       "material 'wall': reflectance Kd 1.5 is outside [0,1)"},
+  };
+  for (const Case& c : cases) {
+    v1::Mesh mesh = TwoSquares();
+    c.spoil(mesh);
+    v1::SceneRef ref;
+    const grpc::Status s = UploadMesh(mesh.SerializeAsString(), &ref);
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << c.what;
+    EXPECT_NE(s.error_message().find(c.message), std::string::npos)
+        << c.what << ": " << s.error_message();
+  }
+  v1::SceneRef ref;
+  grpc::Status s = UploadMesh("\xff\xff\xff", &ref);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(s.error_message().find("not a serialized radflux.v1.Mesh"), std::string::npos)
+      << s.error_message();
+  {  // A header declaring both forms.
+    auto context = Context();
+    auto writer = stub_->UploadScene(context.get(), &ref);
+    v1::SceneChunk chunk;
+    chunk.mutable_header()->set_obj_size(10);
+    chunk.mutable_header()->set_mesh_size(10);
+    writer->Write(chunk);
+    writer->WritesDone();
+    s = writer->Finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("not both"), std::string::npos) << s.error_message();
+  }
+  // The server keeps serving: the good mesh uploads and solves.
+  const std::string good = TwoSquares().SerializeAsString();
+  s = UploadMesh(good, &ref);
+  ASSERT_TRUE(s.ok()) << s.error_message();
+  EXPECT_EQ(ref.faces(), 2u);
+  const std::vector<double> b = Solve(ref.sha256(), SmallOptions(8, "cg"));
+  EXPECT_FALSE(b.empty());
+}
+
+}  // namespace
+}  // namespace radflux
