@@ -30,6 +30,7 @@ struct ConnectionFlags {
   std::string server = "localhost:50051";
   std::string token;
   std::string tls_ca;
+  std::string tls_cert, tls_key;  // client certificate, for a server with --tls-client-ca
 };
 
 // A failed call as one line; UNAVAILABLE means nobody answered.
@@ -48,9 +49,11 @@ int Report(const grpc::Status& status, const ConnectionFlags& c) {
 class Client {
  public:
   explicit Client(const ConnectionFlags& c) : flags_(c) {
-    std::shared_ptr<grpc::ChannelCredentials> credentials = ChannelCredentialsFromFile(c.tls_ca);
+    std::shared_ptr<grpc::ChannelCredentials> credentials =
+        ChannelCredentialsFromFile(c.tls_ca, c.tls_cert, c.tls_key);
     if (!credentials) {  // warn, and go on with TLS trusting the default roots
-      std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << "\n";
+      std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << " / --tls-cert " << c.tls_cert
+                << " / --tls-key " << c.tls_key << "\n";
       credentials = grpc::SslCredentials(grpc::SslCredentialsOptions());
     }
     stub_ = v1::Radiosity::NewStub(grpc::CreateChannel(c.server, credentials));
@@ -354,6 +357,11 @@ void AddConnectionFlags(CLI::App& command, ConnectionFlags& c) {
   command.add_option("--server", c.server, "radfluxd address HOST:PORT");
   command.add_option("--token", c.token, "bearer token");
   command.add_option("--tls-ca", c.tls_ca, "PEM CA certificate: connect with TLS");
+  auto* cert = command.add_option("--tls-cert", c.tls_cert,
+                                  "PEM client certificate (for a radfluxd with --tls-client-ca)");
+  auto* key = command.add_option("--tls-key", c.tls_key, "PEM private key of --tls-cert");
+  cert->needs(key);
+  key->needs(cert);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@ packages=(
   libtinyobjloader-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
-  libsqlite3-dev libzstd-dev libssl-dev python3-yaml
+  libsqlite3-dev libzstd-dev libssl-dev openssl python3-yaml
   clang libclang-rt-14-dev gnuplot-nox
 )
 

@@ -14,8 +14,8 @@ bool ReadFile(const std::string& path, std::string* out) {
   return true;
 }
 
-std::shared_ptr<grpc::ServerCredentials> ServerCredentialsFromFiles(const std::string& cert_file,
-                                                                    const std::string& key_file) {
+std::shared_ptr<grpc::ServerCredentials> ServerCredentialsFromFiles(
+    const std::string& cert_file, const std::string& key_file, const std::string& client_ca_file) {
   if (cert_file.empty()) return grpc::InsecureServerCredentials();
   grpc::SslServerCredentialsOptions::PemKeyCertPair pair;
   if (!ReadFile(key_file, &pair.private_key) || !ReadFile(cert_file, &pair.cert_chain)) {
@@ -23,13 +23,23 @@ std::shared_ptr<grpc::ServerCredentials> ServerCredentialsFromFiles(const std::s
   }
   grpc::SslServerCredentialsOptions options;
   options.pem_key_cert_pairs.push_back(pair);
+  if (!client_ca_file.empty()) {
+    if (!ReadFile(client_ca_file, &options.pem_root_certs)) return nullptr;
+    options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
+  }
   return grpc::SslServerCredentials(options);
 }
 
-std::shared_ptr<grpc::ChannelCredentials> ChannelCredentialsFromFile(const std::string& ca_file) {
-  if (ca_file.empty()) return grpc::InsecureChannelCredentials();
+std::shared_ptr<grpc::ChannelCredentials> ChannelCredentialsFromFile(const std::string& ca_file,
+                                                                     const std::string& cert_file,
+                                                                     const std::string& key_file) {
+  if (ca_file.empty() && cert_file.empty()) return grpc::InsecureChannelCredentials();
   grpc::SslCredentialsOptions ssl;
-  if (!ReadFile(ca_file, &ssl.pem_root_certs)) return nullptr;
+  if (!ca_file.empty() && !ReadFile(ca_file, &ssl.pem_root_certs)) return nullptr;
+  if (!cert_file.empty() &&
+      (!ReadFile(cert_file, &ssl.pem_cert_chain) || !ReadFile(key_file, &ssl.pem_private_key))) {
+    return nullptr;
+  }
   return grpc::SslCredentials(ssl);
 }
 

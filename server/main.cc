@@ -1,8 +1,9 @@
 // radfluxd: the radflux gRPC server.
 //   radfluxd --listen HOST:PORT --data-dir DIR [--jobs N] [--threads N] [--token T]
-//            [--tls-cert F --tls-key F] [--max-patches N] [--max-memory BYTES]
-//            [--worker-token T] [--lease-seconds S]
+//            [--tls-cert F --tls-key F [--tls-client-ca F]] [--max-patches N]
+//            [--max-memory BYTES] [--worker-token T] [--lease-seconds S]
 //   radfluxd --worker --server HOST:PORT [--threads N] [--worker-token T] [--tls-ca F]
+//            [--tls-cert F --tls-key F]
 //   (a worker node: builds row blocks for the server, see server/worker_node.h)
 // Prints "radfluxd listening on HOST:PORT" (the port actually bound, so :0 works) once
 // serving. SIGTERM/SIGINT: running jobs checkpoint, then the server exits 0.
@@ -57,6 +58,7 @@ struct Flags {
   int threads = 0;
   std::string token;
   std::string tls_cert, tls_key;
+  std::string tls_client_ca;  // mutual TLS: clients must present a certificate of this CA
   radflux::ManagerOptions manager;
   // Worker nodes: the server's side, and the worker role.
   std::string worker_token;
@@ -80,9 +82,10 @@ int Serve(const Flags& flags) {
   radflux::RadiosityService service(manager, work, flags.token);
   radflux::WorkerService worker_service(farm, manager, flags.worker_token, !flags.token.empty());
   const std::shared_ptr<grpc::ServerCredentials> credentials =
-      radflux::ServerCredentialsFromFiles(flags.tls_cert, flags.tls_key);
+      radflux::ServerCredentialsFromFiles(flags.tls_cert, flags.tls_key, flags.tls_client_ca);
   if (!credentials) {
-    spdlog::error("cannot read --tls-cert {} / --tls-key {}", flags.tls_cert, flags.tls_key);
+    spdlog::error("cannot read --tls-cert {} / --tls-key {} / --tls-client-ca {}", flags.tls_cert,
+                  flags.tls_key, flags.tls_client_ca);
     return 1;
   }
   grpc::EnableDefaultHealthCheckService(true);
@@ -105,9 +108,11 @@ int Serve(const Flags& flags) {
   }
   const std::string host = flags.listen.substr(0, flags.listen.rfind(':'));
   std::cout << "radfluxd listening on " << host << ":" << port << std::endl;
+  const char* tls = flags.tls_cert.empty()        ? "off"
+                    : flags.tls_client_ca.empty() ? "on"
+                                                  : "on, client certificates required";
   spdlog::info("serving on {}:{} (data {}, {} job(s) at once, tls {}, token {})", host, port,
-               flags.data_dir, flags.manager.jobs, flags.tls_cert.empty() ? "off" : "on",
-               flags.token.empty() ? "off" : "on");
+               flags.data_dir, flags.manager.jobs, tls, flags.token.empty() ? "off" : "on");
 
   std::thread signals([&] {
     const int signal = WaitForShutdownSignal();
@@ -160,10 +165,16 @@ int main(int argc, char** argv) {
                  "OpenMP threads shared by running jobs (0 = all cores)")
       ->check(CLI::Range(0, 4096));
   app.add_option("--token", flags.token, "require this bearer token on every call");
-  auto* cert = app.add_option("--tls-cert", flags.tls_cert, "PEM server certificate (enables TLS)");
+  auto* cert = app.add_option("--tls-cert", flags.tls_cert,
+                              "PEM server certificate (enables TLS); worker: the client "
+                              "certificate it presents to a server with --tls-client-ca");
   auto* key = app.add_option("--tls-key", flags.tls_key, "PEM private key of --tls-cert");
   cert->needs(key);
   key->needs(cert);
+  app.add_option("--tls-client-ca", flags.tls_client_ca,
+                 "PEM CA certificate: require every client to present a certificate it signed "
+                 "(mutual TLS; clients without one get UNAVAILABLE)")
+      ->needs(cert);
   app.add_option("--max-patches", flags.manager.max_patches, "refuse jobs with more patches")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-memory", flags.manager.max_memory,
@@ -198,6 +209,8 @@ int main(int argc, char** argv) {
     }
     flags.node.threads = flags.manager.threads;
     flags.node.worker_token = flags.worker_token;
+    flags.node.tls_cert = flags.tls_cert;
+    flags.node.tls_key = flags.tls_key;
     return Work(flags);
   }
   if (flags.listen.empty() || flags.data_dir.empty()) {

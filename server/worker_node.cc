@@ -250,9 +250,10 @@ grpc::Status Session(v1::Worker::Stub& stub, const WorkerNodeOptions& options, J
 
 int RunWorkerNode(const WorkerNodeOptions& options, const std::atomic<bool>& stop) {
   const std::shared_ptr<grpc::ChannelCredentials> credentials =
-      ChannelCredentialsFromFile(options.tls_ca);
+      ChannelCredentialsFromFile(options.tls_ca, options.tls_cert, options.tls_key);
   if (!credentials) {
-    spdlog::error("cannot read --tls-ca {}", options.tls_ca);
+    spdlog::error("cannot read --tls-ca {} / --tls-cert {} / --tls-key {}", options.tls_ca,
+                  options.tls_cert, options.tls_key);
     return 1;
   }
   grpc::ChannelArguments args;

@@ -12,12 +12,14 @@
 namespace radflux {
 
 struct WorkerNodeOptions {
-  std::string server;        // HOST:PORT of radfluxd
-  int threads = 0;           // 0 = all cores
-  std::string worker_token;  // sent as "authorization: Bearer <token>"
-  std::string tls_ca;        // PEM CA file: connect with TLS (empty = plaintext)
-  std::string tls_server_name;  // overrides the name checked in the server certificate
-  int block_delay_ms = 0;    // testing: sleep this long after building each block
+  std::string server;             // HOST:PORT of radfluxd
+  int threads = 0;                // 0 = all cores
+  std::string worker_token;       // sent as "authorization: Bearer <token>"
+  std::string tls_ca;             // PEM CA file: connect with TLS (empty = plaintext)
+  std::string tls_cert, tls_key;  // PEM client certificate and key, for a server that asks
+                                  // for one (--tls-client-ca); empty = none
+  std::string tls_server_name;    // overrides the name checked in the server certificate
+  int block_delay_ms = 0;         // testing: sleep this long after building each block
 };
 
 // Runs until *stop is set (returns 0) or the server refuses the worker (returns 2).

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -222,6 +224,107 @@ TEST_F(MeshUploadTest, MalformedMeshesGetInvalidArgumentNamingTheFaceAndTheServe
   EXPECT_EQ(ref.faces(), 2u);
   const std::vector<double> b = Solve(ref.sha256(), SmallOptions(8, "cg"));
   EXPECT_FALSE(b.empty());
+}
+
+// Certificates made with the openssl tool in `dir` at test time (EC P-256, valid one day).
+class Certificates {
+ public:
+  explicit Certificates(std::string dir) : dir_(std::move(dir)) {}
+  // A self-signed CA `name`: files name.pem, name.key.
+  bool MakeCa(const std::string& name) {
+    return Run(
+        "openssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes "
+        "-days 1 -subj /CN=" +
+        name + " -keyout " + Key(name) + " -out " + Pem(name));
+  }
+  // A certificate `name` for `subject_alt_name` (e.g. "DNS:localhost"), signed by CA `ca`.
+  bool MakeSigned(const std::string& name, const std::string& ca,
+                  const std::string& subject_alt_name) {
+    const std::string ext = dir_ + "/" + name + ".ext";
+    std::ofstream(ext) << "subjectAltName=" << subject_alt_name << "\n";
+    return Run("openssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -subj /CN=" +
+               name + " -keyout " + Key(name) + " -out " + dir_ + "/" + name + ".csr") &&
+           Run("openssl x509 -req -days 1 -in " + dir_ + "/" + name + ".csr -CA " + Pem(ca) +
+               " -CAkey " + Key(ca) + " -CAcreateserial -extfile " + ext + " -out " + Pem(name));
+  }
+  std::string Pem(const std::string& name) const { return dir_ + "/" + name + ".pem"; }
+  std::string Key(const std::string& name) const { return dir_ + "/" + name + ".key"; }
+
+ private:
+  static bool Run(const std::string& command) {
+    return std::system((command + " 2>/dev/null").c_str()) == 0;
+  }
+  std::string dir_;
+};
+
+class MutualTlsTest : public testing::ServiceFixture {
+ public:
+  // A stub over TLS trusting `server_ca`, presenting client certificate `client` (none when
+  // empty).
+  std::unique_ptr<v1::Radiosity::Stub> TlsStub(const Certificates& certs,
+                                               const std::string& server_ca,
+                                               const std::string& client) {
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = ReadText(certs.Pem(server_ca));
+    if (!client.empty()) {
+      ssl.pem_cert_chain = ReadText(certs.Pem(client));
+      ssl.pem_private_key = ReadText(certs.Key(client));
+    }
+    grpc::ChannelArguments args;
+    args.SetSslTargetNameOverride("localhost");
+    return v1::Radiosity::NewStub(
+        grpc::CreateCustomChannel(server_->address(), grpc::SslCredentials(ssl), args));
+  }
+  grpc::Status List(v1::Radiosity::Stub& stub) {
+    v1::ListJobsResponse list;
+    grpc::ClientContext context;
+    return stub.ListJobs(&context, {}, &list);
+  }
+};
+
+TEST_F(MutualTlsTest, ClientCertificateOfTheClientCaIsRequired) {
+  Certificates certs(data_dir_);
+  ASSERT_TRUE(certs.MakeCa("server_ca"));
+  ASSERT_TRUE(certs.MakeSigned("server", "server_ca", "DNS:localhost,IP:127.0.0.1"));
+  ASSERT_TRUE(certs.MakeCa("client_ca"));
+  ASSERT_TRUE(certs.MakeSigned("client", "client_ca", "DNS:client"));
+  ASSERT_TRUE(certs.MakeCa("other_ca"));
+  ASSERT_TRUE(certs.MakeSigned("stranger", "other_ca", "DNS:client"));
+  StartServer({"--tls-cert", certs.Pem("server"), "--tls-key", certs.Key("server"),
+               "--tls-client-ca", certs.Pem("client_ca")});
+
+  // Without a client certificate, and with one from another CA: the handshake fails.
+  std::unique_ptr<v1::Radiosity::Stub> anonymous = TlsStub(certs, "server_ca", "");
+  EXPECT_EQ(List(*anonymous).error_code(), grpc::StatusCode::UNAVAILABLE);
+  std::unique_ptr<v1::Radiosity::Stub> stranger = TlsStub(certs, "server_ca", "stranger");
+  EXPECT_EQ(List(*stranger).error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_EQ(List(*stub_).error_code(), grpc::StatusCode::UNAVAILABLE) << "plaintext";
+
+  // With a certificate of the client CA: the whole round trip, after the refusals.
+  stub_ = TlsStub(certs, "server_ca", "client");
+  ASSERT_TRUE(List(*stub_).ok());
+  const std::string sha = UploadCornell();
+  ASSERT_FALSE(sha.empty());
+  v1::Job job;
+  ASSERT_TRUE(Submit(SmallOptions(100, "cg"), &job, sha).ok());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  std::vector<double> radiosity;
+  EXPECT_TRUE(Result(job.job_id(), &radiosity).ok());
+  EXPECT_FALSE(radiosity.empty());
+  EXPECT_EQ(List(*TlsStub(certs, "server_ca", "stranger")).error_code(),
+            grpc::StatusCode::UNAVAILABLE);
+
+  // The radflux client's --tls-ca/--tls-cert/--tls-key (exit 0), and without the
+  // certificate (exit 1).
+  const std::string cli = std::string(RADFLUX_SERVICE_CLI_PATH) + " list --server " +
+                          server_->address() + " --tls-ca " + certs.Pem("server_ca");
+  EXPECT_EQ(std::system((cli + " --tls-cert " + certs.Pem("client") + " --tls-key " +
+                         certs.Key("client") + " >/dev/null")
+                            .c_str()),
+            0);
+  EXPECT_NE(std::system((cli + " >/dev/null 2>&1").c_str()), 0);
 }
 
 }  // namespace
