@@ -22,6 +22,8 @@ struct SolveArgs {
   JobFlags job;
   OutputFlags output;
   bool quiet = false;
+  uint64_t memory_limit = 0;  // bytes of rows kept in memory (0 = all)
+  std::string spill_dir;
 };
 
 absl::Status WriteReport(const std::string& path, const nlohmann::json& report) {
@@ -35,6 +37,9 @@ absl::Status WriteReport(const std::string& path, const nlohmann::json& report) 
 absl::Status RunSolve(const SolveArgs& args) {
   absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
   if (!options.ok()) return options.status();
+  options->spill.memory_limit = args.memory_limit;
+  options->spill.directory = args.spill_dir;
+  if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return s;
   const auto start = std::chrono::steady_clock::now();
   absl::StatusOr<Scene> scene = LoadObjFile(args.scene);
@@ -55,16 +60,16 @@ absl::Status RunSolve(const SolveArgs& args) {
   if (!result.ok()) return result.status();
   progress.Finish();
   const PreparedJob& job = *result->job;
-  progress.Line(absl::StrFormat(
-      "%d patches, %d non-zeros (%.1f MB), %d iterations, residual %.2e; "
-      "mesh %.3fs embree %.3fs rows %.3fs solve %.3fs",
-      job.mesh.size(), result->form_factors.nnz(), result->form_factors.Bytes() / 1e6,
-      result->solve.iterations, result->solve.residual, result->timings.mesh,
-      result->timings.embree, result->timings.rows, result->timings.solve));
+  progress.Line(
+      absl::StrFormat("%d patches, %d non-zeros (%.1f MB), %d iterations, residual %.2e; "
+                      "mesh %.3fs embree %.3fs rows %.3fs solve %.3fs",
+                      job.mesh.size(), result->RowNonZeros(), result->RowBytes() / 1e6,
+                      result->solve.iterations, result->solve.residual, result->timings.mesh,
+                      result->timings.embree, result->timings.rows, result->timings.solve));
 
   const auto output_start = std::chrono::steady_clock::now();
-  if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
-                                    args.job.threads);
+  if (absl::Status s =
+          WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity, args.job.threads);
       !s.ok()) {
     return s;
   }
@@ -91,6 +96,15 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   AddJobFlags(*solve, args->job);
   AddOutputFlags(*solve, args->output);
   solve->add_flag("--quiet,-q", args->quiet, "no progress output");
+  solve
+      ->add_option("--memory-limit", args->memory_limit,
+                   "keep at most this many bytes of form-factor rows in memory (e.g. 512M, 2G); "
+                   "the rest spill to disk and stream back each sweep (jacobi, gauss_seidel, "
+                   "auto)")
+      ->transform(CLI::AsSizeValue(false));
+  solve->add_option("--spill-dir", args->spill_dir,
+                    "with --memory-limit: directory for the spill file (default: a fresh "
+                    "directory under $TMPDIR or /tmp, removed at the end)");
   solve->callback([args, &exit_code] { exit_code = ReportStatus("solve", RunSolve(*args)); });
 }
 

@@ -8,6 +8,7 @@
 #include "solver/formfactor/row_context.h"
 #include "solver/hierarchical/hierarchical_job.h"
 #include "solver/scene/validation.h"
+#include "solver/sparse/file_block_spill.h"
 
 namespace radflux {
 namespace {
@@ -20,7 +21,45 @@ absl::Status Require(bool ok, const std::string& what) {
   return ok ? absl::OkStatus() : absl::InvalidArgumentError(what);
 }
 
+// The rows of `result`'s job: into result.form_factors, or into a row store that spills
+// beyond options.spill.memory_limit.
+absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
+                       JobResult& result) {
+  const RowContext& context = result.job->rows;
+  if (options.spill.memory_limit == 0) {
+    absl::StatusOr<FormFactorResult> rows =
+        BuildFormFactors(context, options.form_factors, callbacks.phase);
+    if (!rows.ok()) return rows.status();
+    result.form_factors = std::move(rows->matrix);
+    result.row_stats = rows->stats;
+    result.timings.rows = rows->seconds;
+    return absl::OkStatus();
+  }
+  result.row_store = std::make_unique<RowStore>(
+      static_cast<uint32_t>(result.job->mesh.size()), options.spill.memory_limit,
+      std::make_unique<FileBlockSpill>(options.spill.directory));
+  absl::StatusOr<RowBuildSummary> rows =
+      BuildFormFactorsInto(context, options.form_factors, *result.row_store, callbacks.phase);
+  if (!rows.ok()) return rows.status();
+  result.row_stats = rows->stats;
+  result.timings.rows = rows->seconds;
+  return absl::OkStatus();
+}
+
 }  // namespace
+
+RadiositySystem JobResult::System() const {
+  if (row_store != nullptr) return {nullptr, &job->attributes, row_store.get()};
+  return {&form_factors, &job->attributes, nullptr};
+}
+
+uint64_t JobResult::RowNonZeros() const {
+  return row_store != nullptr ? row_store->nnz() : form_factors.nnz();
+}
+
+uint64_t JobResult::RowBytes() const {
+  return row_store != nullptr ? row_store->Bytes() : form_factors.Bytes();
+}
 
 absl::Status ValidateJobOptions(const JobOptions& o) {
   const FormFactorOptions& f = o.form_factors;
@@ -40,6 +79,14 @@ absl::Status ValidateJobOptions(const JobOptions& o) {
            Require(f.block_size >= 1, "block size must be >= 1"),
            Require(s.tolerance > 0 && s.tolerance < 1, "--tolerance must be in (0, 1)"),
            Require(s.max_iterations >= 1, "--max-iterations must be >= 1"),
+           Require(o.spill.memory_limit == 0 || StreamsRows(s.method),
+                   absl::StrCat("--memory-limit spills rows to disk; solver ",
+                                std::string(SolverName(s.method)),
+                                " needs them all in memory (use jacobi, gauss_seidel or auto)")),
+           Require(o.spill.memory_limit == 0 || (!o.hierarchical.enabled && o.adaptive.passes == 0),
+                   "--memory-limit applies to the plain solve, not hierarchical or adaptive"),
+           Require(o.spill.memory_limit > 0 || o.spill.directory.empty(),
+                   "--spill-dir needs --memory-limit"),
        }) {
     if (!status.ok()) return status;
   }
@@ -79,7 +126,10 @@ uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
   if (f.method == FormFactorMethod::kHemicube) {
     per_row = std::min<uint64_t>(n, 3ull * f.hemicube_res * f.hemicube_res);
   }
-  const uint64_t rows = n * per_row * (sizeof(uint32_t) + sizeof(float)) * 2;  // rows + CG copy
+  uint64_t rows = n * per_row * (sizeof(uint32_t) + sizeof(float)) * 2;  // rows + CG copy
+  if (options.spill.memory_limit > 0) {  // no CG copy; beyond the budget, chunks in flight
+    rows = std::min(rows / 2, options.spill.memory_limit + (kRowReadAhead + 2) * kRowChunkBytes);
+  }
   const uint64_t mesh_bytes = n * (sizeof(Patch) + 4 * sizeof(Vec3) + 2 * sizeof(Rgb) + 64);
   const uint64_t embree = n * 128;
   const uint64_t solver = n * sizeof(Rgb) * 8;
@@ -98,19 +148,12 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   result.timings.mesh = result.job->mesh_seconds;
   result.timings.embree = result.job->embree_seconds;
 
-  absl::StatusOr<FormFactorResult> rows =
-      BuildFormFactors(result.job->rows, options.form_factors, callbacks.phase);
-  if (!rows.ok()) return rows.status();
-  result.form_factors = std::move(rows->matrix);
-  result.row_stats = rows->stats;
-  result.timings.rows = rows->seconds;
+  if (absl::Status s = BuildRows(options, callbacks, result); !s.ok()) return s;
 
   const auto start = std::chrono::steady_clock::now();
   SolverOptions solver_options = options.solver;
   if (solver_options.threads == 0) solver_options.threads = options.form_factors.threads;
-  absl::StatusOr<SolveResult> solved = Solve(
-      RadiositySystem{&result.form_factors, &result.job->attributes}, solver_options,
-      callbacks.solve);
+  absl::StatusOr<SolveResult> solved = Solve(result.System(), solver_options, callbacks.solve);
   if (!solved.ok()) return solved.status();
   result.solve = *std::move(solved);
   result.timings.solve = SecondsSince(start);

@@ -23,12 +23,21 @@
 
 namespace radflux {
 
+// Rows beyond a memory budget go to disk and stream back during the solve (jacobi and
+// gauss_seidel only).
+struct RowSpillOptions {
+  uint64_t memory_limit = 0;  // bytes of rows kept in memory; 0 = no limit, nothing spills
+  std::string directory;      // spill file location; "" = a fresh directory under $TMPDIR
+                              // or /tmp, removed at the end
+};
+
 struct JobOptions {
   MeshOptions mesh;
   FormFactorOptions form_factors;
-  SolverOptions solver;  // its cancel/initial pointers are the caller's to set
+  SolverOptions solver;              // its cancel/initial pointers are the caller's to set
   HierarchicalOptions hierarchical;  // enabled: RunJob solves hierarchically (issue 7)
   AdaptiveOptions adaptive;          // passes > 0: RunJob meshes adaptively (issue 7)
+  RowSpillOptions spill;             // memory_limit > 0: rows live in JobResult::row_store
 };
 
 // Checks option values (ranges, hemicube resolution even, ...); INVALID_ARGUMENT names
@@ -63,10 +72,17 @@ struct JobTimings {
 
 struct JobResult {
   std::unique_ptr<PreparedJob> job;
-  CsrMatrix form_factors;
+  CsrMatrix form_factors;               // the rows, unless they are in row_store
+  std::unique_ptr<RowStore> row_store;  // options.spill.memory_limit > 0: the rows (some
+                                        // may be on disk); form_factors is then empty
   RowBlockStats row_stats;
   SolveResult solve;
   JobTimings timings;
+
+  // The system the rows and patches form, wherever the rows are.
+  RadiositySystem System() const;
+  uint64_t RowNonZeros() const;
+  uint64_t RowBytes() const;
 };
 
 struct JobCallbacks {

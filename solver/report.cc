@@ -22,14 +22,39 @@ nlohmann::json OptionsJson(const JobOptions& o) {
           {"max_iterations", o.solver.max_iterations}};
 }
 
+nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
+  if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
+  return {{"emitted", BandsJson(balance->emitted)},
+          {"absorbed", BandsJson(balance->absorbed)},
+          {"escaped", BandsJson(balance->escaped)},
+          {"unaccounted", BandsJson(balance->unaccounted)},
+          {"relative_imbalance", balance->RelativeImbalance()},
+          {"tolerance", kEnergyBalanceTolerance},
+          {"ok", balance->RelativeImbalance() <= kEnergyBalanceTolerance}};
+}
+
+// Where the rows lived when they spilled (before the report's own pass over them).
+nlohmann::json SpillJson(const RowStore& store, const JobOptions& options) {
+  const RowReadStats& read = store.read_stats();
+  return {{"memory_limit", options.spill.memory_limit},
+          {"memory_bytes", store.MemoryBytes()},
+          {"spilled_bytes", store.SpilledBytes()},
+          {"read_passes", read.passes},
+          {"read_bytes", read.bytes},
+          {"read_seconds", read.read_seconds},
+          {"wait_seconds", read.wait_seconds}};
+}
+
 }  // namespace
 
 nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
                              const std::string& scene_name) {
   const PreparedJob& job = *result.job;
   const JobTimings& t = result.timings;
-  const RadiositySystem system{&result.form_factors, &job.attributes};
-  const EnergyBalance balance = ComputeEnergyBalance(system, result.solve.radiosity);
+  nlohmann::json spill = nullptr;
+  if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
+  const absl::StatusOr<EnergyBalance> balance =
+      StreamEnergyBalance(result.System(), result.solve.radiosity);
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
   return {
@@ -43,12 +68,12 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
         {"max_area", job.mesh_stats.max_area},
         {"max_aspect", job.mesh_stats.max_aspect}}},
       {"matrix",
-       {{"nnz", result.form_factors.nnz()},
-        {"bytes", result.form_factors.Bytes()},
+       {{"nnz", result.RowNonZeros()},
+        {"bytes", result.RowBytes()},
+        {"spill", spill},
         {"dropped_sum", result.row_stats.dropped_sum},
         {"max_row_dropped", result.row_stats.max_row_dropped}}},
-      {"seconds",
-       {{"mesh", t.mesh}, {"embree", t.embree}, {"rows", t.rows}, {"solve", t.solve}}},
+      {"seconds", {{"mesh", t.mesh}, {"embree", t.embree}, {"rows", t.rows}, {"solve", t.solve}}},
       {"rays", result.row_stats.rays},
       {"rays_per_second", t.rows > 0 ? result.row_stats.rays / t.rows : 0.0},
       {"solve",
@@ -60,14 +85,7 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
         {"bands_solved", result.solve.bands_solved},
         {"reciprocity_error", result.solve.reciprocity_error},
         {"residual_history", result.solve.residual_history}}},
-      {"energy_balance",
-       {{"emitted", BandsJson(balance.emitted)},
-        {"absorbed", BandsJson(balance.absorbed)},
-        {"escaped", BandsJson(balance.escaped)},
-        {"unaccounted", BandsJson(balance.unaccounted)},
-        {"relative_imbalance", balance.RelativeImbalance()},
-        {"tolerance", kEnergyBalanceTolerance},
-        {"ok", balance.RelativeImbalance() <= kEnergyBalanceTolerance}}},
+      {"energy_balance", BalanceJson(balance)},
   };
 }
 

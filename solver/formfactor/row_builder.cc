@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
+#include <map>
+#include <mutex>
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/builders.h"
@@ -52,21 +55,26 @@ double RayEpsilonFor(const PatchMesh& mesh) {
   return 1e-5 * Length(hi - lo);
 }
 
-absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
-                                                  const FormFactorOptions& options,
-                                                  const PhaseProgress& progress) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// Builds every block of rows in parallel and hands each to deliver(index, block) as soon as
+// it is done (on any thread, in any order). Stops early and returns the error when deliver
+// fails, CANCELLED when progress returns false.
+absl::StatusOr<RowBlockStats> BuildBlocks(
+    const RowContext& context, const FormFactorOptions& options, const PhaseProgress& progress,
+    const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
   const uint32_t n = static_cast<uint32_t>(context.mesh->size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
 
-  std::vector<RowBlock> blocks(block_count);
   std::vector<RowBlockStats> block_stats(block_count);
   const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
   std::atomic<int64_t> rows_done{0};
   std::atomic<bool> cancelled{false};
+  std::mutex error_mutex;
+  absl::Status error;
 
   ParallelFor(block_count, 1, threads, [&](int64_t begin, int64_t end) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];
@@ -74,29 +82,83 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
     for (int64_t b = begin; b < end && !cancelled.load(std::memory_order_relaxed); ++b) {
       const uint32_t first = static_cast<uint32_t>(b) * block_size;
       const uint32_t count = std::min(block_size, n - first);
-      blocks[b] = BuildRowBlock(*builder, context, options.cutoff, first, count, *row,
-                                block_stats[b]);
+      absl::Status s = deliver(
+          static_cast<uint32_t>(b),
+          BuildRowBlock(*builder, context, options.cutoff, first, count, *row, block_stats[b]));
+      if (!s.ok()) {
+        std::lock_guard lock(error_mutex);
+        if (error.ok()) error = std::move(s);
+        cancelled = true;
+      }
       const int64_t done = rows_done.fetch_add(count) + count;
       // Only thread 0 reports, so the callback never runs concurrently with itself.
       if (progress && ThreadIndex() == 0 && !progress("rows", done, n)) cancelled = true;
     }
   });
+  if (!error.ok()) return error;
   if (cancelled) return absl::CancelledError("form-factor rows cancelled");
+  RowBlockStats stats;
+  for (const RowBlockStats& s : block_stats) stats.Merge(s);
+  if (progress) progress("rows", n, n);
+  return stats;
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
+                                                  const FormFactorOptions& options,
+                                                  const PhaseProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint32_t n = static_cast<uint32_t>(context.mesh->size());
+  const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
+  std::vector<RowBlock> blocks((n + block_size - 1) / block_size);
+  absl::StatusOr<RowBlockStats> stats =
+      BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
+        blocks[b] = std::move(block);
+        return absl::OkStatus();
+      });
+  if (!stats.ok()) return stats.status();
 
   FormFactorResult result;
   result.matrix.cols = n;
   size_t nnz = 0;
   for (const RowBlock& block : blocks) nnz += block.col.size();
   result.matrix.Reserve(n, nnz);
-  for (uint32_t b = 0; b < block_count; ++b) {
-    result.matrix.Append(blocks[b]);
-    result.stats.Merge(block_stats[b]);
-    blocks[b] = RowBlock{};
+  for (RowBlock& block : blocks) {
+    result.matrix.Append(block);
+    block = RowBlock{};
   }
-  if (progress) progress("rows", n, n);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.stats = *stats;
+  result.seconds = SecondsSince(start);
   return result;
+}
+
+absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
+                                                     const FormFactorOptions& options,
+                                                     RowStore& store,
+                                                     const PhaseProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  // Blocks finish in any order; the ones ahead of the next row wait here.
+  std::mutex mutex;
+  std::map<uint32_t, RowBlock> pending;
+  uint32_t next = 0;
+  absl::StatusOr<RowBlockStats> stats =
+      BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
+        std::lock_guard lock(mutex);
+        pending.emplace(b, std::move(block));
+        for (auto it = pending.begin(); it != pending.end() && it->first == next;
+             it = pending.erase(it), ++next) {
+          if (absl::Status s = store.Append(std::move(it->second)); !s.ok()) return s;
+        }
+        return absl::OkStatus();
+      });
+  if (!stats.ok()) return stats.status();
+  if (absl::Status s = store.Finish(); !s.ok()) return s;
+  return RowBuildSummary{*stats, SecondsSince(start)};
 }
 
 }  // namespace radflux

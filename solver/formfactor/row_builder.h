@@ -16,6 +16,7 @@
 #include "solver/mesh/patch_mesh.h"
 #include "solver/raytrace/ray_caster.h"
 #include "solver/sparse/csr_matrix.h"
+#include "solver/sparse/row_store.h"
 
 namespace radflux {
 
@@ -60,6 +61,19 @@ struct FormFactorResult {
 absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
                                                   const FormFactorOptions& options,
                                                   const PhaseProgress& progress = {});
+
+struct RowBuildSummary {
+  RowBlockStats stats;
+  double seconds = 0;
+};
+
+// All rows of the mesh, in parallel over blocks, appended to `store` in row order as they
+// finish (rows that do not fit its budget spill while the build goes on); finishes the
+// store. Returns CANCELLED when progress returns false, or the store's error.
+absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
+                                                     const FormFactorOptions& options,
+                                                     RowStore& store,
+                                                     const PhaseProgress& progress = {});
 
 // Scene-relative ray offset: 1e-5 of the bounding-box diagonal.
 double RayEpsilonFor(const PatchMesh& mesh);

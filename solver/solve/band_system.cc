@@ -1,6 +1,7 @@
 #include "solver/solve/band_system.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace radflux {
@@ -9,6 +10,7 @@ BandSystem MakeBandSystem(const RadiositySystem& system, int threads) {
   const PatchAttributes& p = *system.patches;
   BandSystem bands;
   bands.f = system.form_factors;
+  bands.store = system.row_store;
   bands.n = static_cast<uint32_t>(p.size());
   bands.area = &p.area;
   bands.threads = threads;
@@ -63,10 +65,14 @@ Rgb AreaDot(const BandSystem& bands, const std::vector<Rgb>& x, const std::vecto
   });
 }
 
-Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, uint32_t col_begin,
-              uint32_t col_end) {
-  const auto cols = bands.f->RowCols(i);
-  const auto values = bands.f->RowValues(i);
+absl::Status ForEachRowRange(const BandSystem& bands, const RowsFn& fn) {
+  return ForEachRows(bands.f, bands.store, fn);
+}
+
+Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const std::vector<Rgb>& x,
+              uint32_t col_begin, uint32_t col_end) {
+  const auto cols = rows.RowCols(i);
+  const auto values = rows.RowValues(i);
   size_t e =
       static_cast<size_t>(std::lower_bound(cols.begin(), cols.end(), col_begin) - cols.begin());
   Rgb s{};
@@ -78,34 +84,44 @@ Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, ui
   return s;
 }
 
-void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<Rgb>& y) {
-  y.resize(bands.n);
-  ParallelFor(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i)
-      y[i] = GatherRow(bands, static_cast<uint32_t>(i), x, 0, bands.n);
-  });
-}
-
-Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
-  if (r != nullptr) r->resize(bands.n);
+Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r) {
   const std::vector<double>& area = *bands.area;
   const Rgb norm2 =
       ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
         Rgb s{};
-        for (int64_t i = begin; i < end; ++i) {
-          const Rgb fb = GatherRow(bands, static_cast<uint32_t>(i), b, 0, bands.n);
-          Rgb ri{};
-          for (int k = 0; k < bands.lanes; ++k) {
-            ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
-            s[k] += area[i] * ri[k] * ri[k];
-          }
-          if (r != nullptr) (*r)[i] = ri;
-        }
+        for (int64_t i = begin; i < end; ++i)
+          for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * r[i][k] * r[i][k];
         return s;
       });
   Rgb relative{};
   for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
   return relative;
+}
+
+absl::StatusOr<Rgb> LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b,
+                                  std::vector<Rgb>* r) {
+  std::vector<Rgb> local;
+  std::vector<Rgb>& res = r != nullptr ? *r : local;
+  res.resize(bands.n);
+  const absl::Status read = ForEachRowRange(bands, [&](const RowsView& rows) {
+    ParallelFor(rows.RowCount(), kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
+      for (int64_t l = begin; l < end; ++l) {
+        const uint32_t i = rows.first_row + static_cast<uint32_t>(l);
+        const Rgb fb = GatherRow(bands, rows, i, b, 0, bands.n);
+        Rgb ri{};
+        for (int k = 0; k < bands.lanes; ++k)
+          ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
+        res[i] = ri;
+      }
+    });
+  });
+  if (!read.ok()) return read;
+  return RelativeNorms(bands, res);
+}
+
+Rgb ResidentLaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
+  assert(bands.f != nullptr);
+  return *LaneResiduals(bands, b, r);
 }
 
 double MaxOverLanes(const BandSystem& bands, const Rgb& v) {

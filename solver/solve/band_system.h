@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "solver/core/bands.h"
 #include "solver/core/parallel.h"
 #include "solver/solve/solver.h"
 #include "solver/sparse/csr_matrix.h"
+#include "solver/sparse/row_store.h"
 
 namespace radflux {
 
@@ -24,7 +26,8 @@ inline constexpr int64_t kSolveBlock = 256;
 inline constexpr int64_t kVectorBlock = 8192;
 
 struct BandSystem {
-  const CsrMatrix* f = nullptr;
+  const CsrMatrix* f = nullptr;     // the rows in memory, or null when they stream from
+  const RowStore* store = nullptr;  // a row store (jacobi and gauss_seidel only)
   uint32_t n = 0;
   int lanes = 0;                              // bands actually solved (0: nothing emits)
   bool grey = false;                          // lane 0 stands for all three bands
@@ -63,15 +66,25 @@ Rgb ReduceBlocks(int64_t count, int64_t block, int threads, Partial&& partial) {
 // sum_i A_i x_ik y_ik per lane.
 Rgb AreaDot(const BandSystem& bands, const std::vector<Rgb>& x, const std::vector<Rgb>& y);
 
-// Sum over the entries of row i with column in [col_begin, col_end) of F_ij x_j, per lane.
-Rgb GatherRow(const BandSystem& bands, uint32_t i, const std::vector<Rgb>& x, uint32_t col_begin,
-              uint32_t col_end);
+// Calls fn on consecutive ranges of rows in order: the whole matrix at once, or each chunk
+// of the row store as it streams in. Returns the store's read error.
+absl::Status ForEachRowRange(const BandSystem& bands, const RowsFn& fn);
 
-// y = F x per lane, parallel over rows.
-void MultiplyF(const BandSystem& bands, const std::vector<Rgb>& x, std::vector<Rgb>& y);
+// Sum over the entries of row i (in `rows`) with column in [col_begin, col_end) of
+// F_ij x_j, per lane.
+Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const std::vector<Rgb>& x,
+              uint32_t col_begin, uint32_t col_end);
 
-// r = E + rho F B - B (if `r` is non-null, stored there) and ||r||_A / ||E||_A per lane.
-Rgb LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r);
+// ||r||_A / ||E||_A per lane, summed per fixed block of kSolveBlock rows in block order.
+Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r);
+
+// r = E + rho F B - B (if `r` is non-null, stored there) and ||r||_A / ||E||_A per lane;
+// one pass over the rows (streamed when they are in a store: its read error).
+absl::StatusOr<Rgb> LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b,
+                                  std::vector<Rgb>* r);
+
+// LaneResiduals for methods that need every row in memory (bands.f set): cannot fail.
+Rgb ResidentLaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r);
 
 // The larger of the first `bands.lanes` components.
 double MaxOverLanes(const BandSystem& bands, const Rgb& v);

@@ -133,13 +133,13 @@ absl::Status SolveConjugateGradient(const BandSystem& bands, const SolverOptions
   st.r.assign(bands.n, Rgb{});
   st.p.assign(bands.n, Rgb{});
   st.q.assign(bands.n, Rgb{});
-  LaneResiduals(bands, b, &st.rt);
+  ResidentLaneResiduals(bands, b, &st.rt);
   for (int k = 0; k < bands.lanes; ++k) RestartLane(bands, k, st);
   IterationMonitor monitor(bands, options, callback, result);
   while (!monitor.ShouldStop()) {
     MultiplyM(bands, s, st);
     Step(bands, st, b);
-    const Rgb relative = LaneResiduals(bands, b, &st.rt);
+    const Rgb relative = ResidentLaneResiduals(bands, b, &st.rt);
     const double residual = MaxOverLanes(bands, relative);
     if (monitor.Record(residual, residual, 0, b)) break;
     NextDirections(bands, relative, options.tolerance, st);

@@ -128,7 +128,7 @@ absl::Status SolveDirect(const BandSystem& bands, const SolverOptions& options,
     }
   }
   b = std::move(x);
-  const double residual = MaxOverLanes(bands, LaneResiduals(bands, b, nullptr));
+  const double residual = MaxOverLanes(bands, ResidentLaneResiduals(bands, b, nullptr));
   monitor.Record(residual, residual, 0, b);
   return absl::OkStatus();
 }

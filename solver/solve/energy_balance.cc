@@ -1,6 +1,7 @@
 #include "solver/solve/energy_balance.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace radflux {
@@ -15,35 +16,44 @@ double EnergyBalance::RelativeImbalance() const {
   return worst;
 }
 
-EnergyBalance ComputeEnergyBalance(const RadiositySystem& system,
-                                   const std::vector<Rgb>& radiosity) {
-  const CsrMatrix& f = *system.form_factors;
+absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
+                                                  const std::vector<Rgb>& radiosity) {
   const PatchAttributes& p = *system.patches;
   EnergyBalance out;
   std::vector<Rgb> arriving(p.size(), Rgb{});
-  for (uint32_t i = 0; i < p.size(); ++i) {
-    const auto cols = f.RowCols(i);
-    const auto vals = f.RowValues(i);
-    const bool has_row = MaxComponent(p.reflectance[i]) > 0;
-    for (int b = 0; b < kBands; ++b) {
-      const double outgoing = p.area[i] * radiosity[i][b];
-      out.emitted[b] += p.area[i] * p.emission[i][b];
-      if (!has_row) {
-        out.unaccounted[b] += outgoing;
-        continue;
-      }
-      double row_sum = 0;
-      for (size_t k = 0; k < cols.size(); ++k) {
-        arriving[cols[k]][b] += outgoing * vals[k];
-        row_sum += vals[k];
-      }
-      out.escaped[b] += outgoing * (1 - row_sum);
-    }
-  }
+  const absl::Status read =
+      ForEachRows(system.form_factors, system.row_store, [&](const RowsView& rows) {
+        for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
+          const auto cols = rows.RowCols(i);
+          const auto vals = rows.RowValues(i);
+          const bool has_row = MaxComponent(p.reflectance[i]) > 0;
+          for (int b = 0; b < kBands; ++b) {
+            const double outgoing = p.area[i] * radiosity[i][b];
+            out.emitted[b] += p.area[i] * p.emission[i][b];
+            if (!has_row) {
+              out.unaccounted[b] += outgoing;
+              continue;
+            }
+            double row_sum = 0;
+            for (size_t k = 0; k < cols.size(); ++k) {
+              arriving[cols[k]][b] += outgoing * vals[k];
+              row_sum += vals[k];
+            }
+            out.escaped[b] += outgoing * (1 - row_sum);
+          }
+        }
+      });
+  if (!read.ok()) return read;
   for (uint32_t j = 0; j < p.size(); ++j) {
     for (int b = 0; b < kBands; ++b) out.absorbed[b] += (1 - p.reflectance[j][b]) * arriving[j][b];
   }
   return out;
+}
+
+EnergyBalance ComputeEnergyBalance(const RadiositySystem& system,
+                                   const std::vector<Rgb>& radiosity) {
+  assert(system.form_factors != nullptr);
+  return *StreamEnergyBalance(system, radiosity);
 }
 
 }  // namespace radflux

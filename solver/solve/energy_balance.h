@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "solver/core/bands.h"
 #include "solver/solve/solver.h"
 
@@ -19,6 +20,11 @@ struct EnergyBalance {
   double RelativeImbalance() const;
 };
 
+// The balance of `radiosity`, reading the rows once in order (streamed when the system's
+// rows are in a row store: then its read error).
+absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
+                                                  const std::vector<Rgb>& radiosity);
+// The same for rows in memory (system.form_factors), which cannot fail.
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system,
                                    const std::vector<Rgb>& radiosity);
 

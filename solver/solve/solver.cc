@@ -12,9 +12,9 @@
 namespace radflux {
 namespace {
 
-constexpr SolverMethod kAllMethods[] = {SolverMethod::kJacobi, SolverMethod::kGaussSeidel,
+constexpr SolverMethod kAllMethods[] = {SolverMethod::kJacobi,    SolverMethod::kGaussSeidel,
                                         SolverMethod::kSouthwell, SolverMethod::kConjugateGradient,
-                                        SolverMethod::kDirect, SolverMethod::kAuto};
+                                        SolverMethod::kDirect,    SolverMethod::kAuto};
 
 absl::Status CheckMatrix(const CsrMatrix& f, size_t n) {
   if (f.rows != n || f.row_begin.size() != n + 1 || f.col.size() != f.value.size() ||
@@ -49,9 +49,21 @@ absl::Status CheckPatches(const PatchAttributes& p) {
   return absl::OkStatus();
 }
 
+// A row store is checked as rows are appended; here only its shape.
+absl::Status CheckRowStore(const RowStore& store, size_t n) {
+  if (store.rows() != n || store.cols() != n) {
+    return absl::InvalidArgumentError(absl::StrCat("form-factor row store has ", store.rows(),
+                                                   " x ", store.cols(), " rows for ", n,
+                                                   " patches"));
+  }
+  return absl::OkStatus();
+}
+
 absl::Status CheckInputs(const RadiositySystem& system, const SolverOptions& options) {
-  if (system.form_factors == nullptr || system.patches == nullptr) {
-    return absl::InvalidArgumentError("radiosity system needs form factors and patches");
+  if ((system.form_factors == nullptr) == (system.row_store == nullptr) ||
+      system.patches == nullptr) {
+    return absl::InvalidArgumentError(
+        "radiosity system needs patches and form factors either in memory or in a row store");
   }
   if (!(options.tolerance >= 0) || options.max_iterations < 0 || options.snapshot_every < 0 ||
       options.threads < 0) {
@@ -68,6 +80,7 @@ absl::Status CheckInputs(const RadiositySystem& system, const SolverOptions& opt
     return absl::InvalidArgumentError("initial unshot radiosity needs initial radiosity of size n");
   }
   if (absl::Status s = CheckPatches(*system.patches); !s.ok()) return s;
+  if (system.row_store != nullptr) return CheckRowStore(*system.row_store, n);
   return CheckMatrix(*system.form_factors, n);
 }
 
@@ -124,6 +137,12 @@ absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOpt
   const BandSystem bands = MakeBandSystem(system, options.threads);
   SolverOptions resolved = options;
   resolved.method = ResolveSolver(system, options.method);
+  if (system.row_store != nullptr && !StreamsRows(resolved.method)) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "solver ", std::string(SolverName(resolved.method)),
+        " needs every form-factor row in memory; rows kept in a row store that spills to disk "
+        "(--memory-limit) solve with jacobi, gauss_seidel or auto"));
+  }
   SolveResult result;
   result.method = resolved.method;
   result.bands_solved = bands.lanes;
@@ -133,14 +152,22 @@ absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOpt
     result.converged = true;
   } else {
     if (absl::Status s = Dispatch(bands, resolved, callback, b, result); !s.ok()) return s;
-    result.residual = MaxOverLanes(bands, LaneResiduals(bands, b, nullptr));
+    const absl::StatusOr<Rgb> residual = LaneResiduals(bands, b, nullptr);
+    if (!residual.ok()) return residual.status();
+    result.residual = MaxOverLanes(bands, *residual);
   }
   UnpackLanes(bands, b, result.radiosity);
   return result;
 }
 
+bool StreamsRows(SolverMethod method) {
+  return method == SolverMethod::kJacobi || method == SolverMethod::kGaussSeidel ||
+         method == SolverMethod::kAuto;
+}
+
 SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested) {
   if (requested != SolverMethod::kAuto) return requested;
+  if (system.row_store != nullptr) return SolverMethod::kGaussSeidel;
   double max_rho = 0;
   for (const Rgb& rho : system.patches->reflectance) max_rho = std::max(max_rho, MaxComponent(rho));
   return max_rho > kAutoCgReflectance ? SolverMethod::kConjugateGradient
@@ -150,7 +177,8 @@ SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested
 double RelativeResidual(const RadiositySystem& system, const std::vector<Rgb>& radiosity) {
   const BandSystem bands = MakeBandSystem(system, 0);
   if (bands.lanes == 0) return 0;
-  return MaxOverLanes(bands, LaneResiduals(bands, PackLanes(bands, radiosity), nullptr));
+  const absl::StatusOr<Rgb> residual = LaneResiduals(bands, PackLanes(bands, radiosity), nullptr);
+  return residual.ok() ? MaxOverLanes(bands, *residual) : std::nan("");
 }
 
 }  // namespace radflux

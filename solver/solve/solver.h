@@ -16,6 +16,7 @@
 #include "solver/core/bands.h"
 #include "solver/mesh/patch_attributes.h"
 #include "solver/sparse/csr_matrix.h"
+#include "solver/sparse/row_store.h"
 
 namespace radflux {
 
@@ -33,11 +34,18 @@ std::string_view SolverName(
     SolverMethod method);  // "jacobi", "gauss_seidel", "southwell", "cg", "direct"
 std::optional<SolverMethod> ParseSolver(std::string_view name);
 
-// The linear system of one job: rows F (n x n) and per-patch area, rho and E.
+// The linear system of one job: rows F (n x n) and per-patch area, rho and E. The rows
+// are either in memory (form_factors) or in a row store that may have spilled them to
+// disk (row_store): only jacobi and gauss_seidel stream rows, so with a store kAuto is
+// gauss_seidel and cg, southwell and direct are refused (FAILED_PRECONDITION).
 struct RadiositySystem {
   const CsrMatrix* form_factors = nullptr;
   const PatchAttributes* patches = nullptr;
+  const RowStore* row_store = nullptr;  // instead of form_factors
 };
+
+// Whether `method` can solve from rows streamed out of a RowStore.
+bool StreamsRows(SolverMethod method);
 
 struct SolverOptions {
   SolverMethod method = SolverMethod::kConjugateGradient;
@@ -78,7 +86,7 @@ struct SolveResult {
   bool converged = false;
   bool cancelled = false;
   SolverMethod method = SolverMethod::kConjugateGradient;  // the method that ran (never kAuto)
-  int bands_solved = 3;          // 1 when the scene is grey
+  int bands_solved = 3;                                    // 1 when the scene is grey
   double reciprocity_error = 0;  // cg: max |A_i F_ij - A_j F_ji| / max(A_i F_ij, A_j F_ji)
                                  // over pairs where both entries are stored
   int64_t one_sided_pairs = 0;   // cg: pairs stored one way only (both rows non-empty)
@@ -91,7 +99,8 @@ SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested
 absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOptions& options,
                                   const SolveCallback& callback = {});
 
-// ||E + rho F B - B|| / ||E|| (area-weighted 2-norm), max over bands; the shared stopping measure.
+// ||E + rho F B - B|| / ||E|| (area-weighted 2-norm), max over bands; the shared stopping
+// measure. NaN when rows in a store cannot be read back.
 double RelativeResidual(const RadiositySystem& system, const std::vector<Rgb>& radiosity);
 
 }  // namespace radflux

@@ -28,7 +28,7 @@ struct ShootState {
   std::vector<double> power;  // selection key per patch
   Rgb emitted{};              // sum_i A_i E_i per lane
   double max_rho = 0;
-  CsrMatrix columns;          // F^T: row i lists (j, F_ji), what shooting i needs
+  CsrMatrix columns;  // F^T: row i lists (j, F_ji), what shooting i needs
 };
 
 // Recomputes the selection keys; returns the unshot fraction (max over lanes) and the
@@ -133,7 +133,7 @@ ShootState StartShooting(const BandSystem& bands, const std::vector<Rgb>* unshot
   if (unshot != nullptr) {
     st.db = PackLanes(bands, *unshot);
   } else {
-    LaneResiduals(bands, b, &st.db);  // dB = r(B0); B = B0 + r keeps the invariant
+    ResidentLaneResiduals(bands, b, &st.db);  // dB = r(B0); B = B0 + r keeps the invariant
   }
   for (uint32_t i = 0; i < bands.n; ++i)
     for (int k = 0; k < bands.lanes; ++k) {
