@@ -12,7 +12,7 @@ namespace radflux {
 void JobHub::Publish(v1::JobEvent event) {
   {
     std::lock_guard lock(mu_);
-    event.set_sequence(events_.size() + 1);
+    event.set_sequence(base_ + events_.size() + 1);
     event.set_job_id(job_id_);
     events_.push_back(std::move(event));
   }
@@ -37,8 +37,9 @@ void JobHub::Close() {
 
 bool JobHub::NextEvent(uint64_t after, v1::JobEvent* out) const {
   std::lock_guard lock(mu_);
-  if (after >= events_.size()) return false;
-  *out = events_[after];
+  const uint64_t index = after > base_ ? after - base_ : 0;
+  if (index >= events_.size()) return false;
+  *out = events_[index];
   return true;
 }
 
@@ -71,7 +72,7 @@ bool JobHub::closed() const {
 
 uint64_t JobHub::last_sequence() const {
   std::lock_guard lock(mu_);
-  return events_.size();
+  return base_ + events_.size();
 }
 
 int JobHub::Subscribe(std::function<void()> wake) {

@@ -1,7 +1,9 @@
 // JobHub: the live event history of one job, shared by the job's runner (which
 // publishes) and its watchers (which read at their own pace). Events are kept in order
-// with sequence numbers 1, 2, ...; snapshots are not: only the newest is kept, so a slow
-// watcher skips superseded snapshots and never holds the job back. Thread-safe.
+// with sequence numbers base + 1, base + 2, ... (base 0 for a new job; a history rebuilt
+// after a restart starts above every number an earlier history used); snapshots are not: only the
+// newest is kept, so a slow watcher skips superseded snapshots and never holds the job back.
+// Thread-safe.
 #pragma once
 
 #include <functional>
@@ -24,7 +26,9 @@ struct SnapshotData {
 
 class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
-  explicit JobHub(std::string job_id) : job_id_(std::move(job_id)) {}
+  // `base`: the sequence number before the first event (see JobStore::NextHistoryBase).
+  explicit JobHub(std::string job_id, uint64_t base = 0)
+      : job_id_(std::move(job_id)), base_(base) {}
 
   // Appends `event` with the next sequence number and wakes the watchers.
   void Publish(v1::JobEvent event);
@@ -33,7 +37,8 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
   // Marks the history complete (its last event is terminal) and wakes the watchers.
   void Close();
 
-  // The first event with sequence > after, if there is one yet.
+  // The first event with sequence > after, if there is one yet; for `after` below this
+  // history's base (a number from an earlier history), its first event.
   bool NextEvent(uint64_t after, v1::JobEvent* out) const;
   // The newest snapshot, if its iteration is at least min_iteration.
   bool NewestSnapshot(int min_iteration, SnapshotData* out) const;
@@ -60,8 +65,9 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
   void RunWakes();
 
   const std::string job_id_;
+  const uint64_t base_;
   mutable std::mutex mu_;
-  std::vector<v1::JobEvent> events_;  // events_[k].sequence() == k + 1
+  std::vector<v1::JobEvent> events_;  // events_[k].sequence() == base_ + k + 1
   SnapshotData snapshot_;
   bool closed_ = false;
   bool wake_pending_ = false;

@@ -80,13 +80,13 @@ JobManager::~JobManager() { Shutdown(); }
 absl::Status JobManager::Start() {
   absl::StatusOr<std::vector<v1::Job>> unfinished = store_.UnfinishedJobs();
   if (!unfinished.ok()) return unfinished.status();
-  {
+  for (const v1::Job& job : *unfinished) {
+    absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
+    if (!base.ok()) return base.status();
     std::lock_guard lock(mu_);
-    for (const v1::Job& job : *unfinished) {
-      spdlog::info("job {}: {} at startup, requeued", job.job_id(), v1::JobState_Name(job.state()));
-      queue_.push_back(job.job_id());
-      HubLocked(job.job_id());
-    }
+    spdlog::info("job {}: {} at startup, requeued", job.job_id(), v1::JobState_Name(job.state()));
+    queue_.push_back(job.job_id());
+    RebuildHubLocked(job, *base);
   }
   for (int i = 0; i < std::max(1, options_.jobs); ++i)
     workers_.emplace_back([this] { WorkerLoop(); });
@@ -255,6 +255,21 @@ std::shared_ptr<JobHub> JobManager::HubLocked(const std::string& job_id) {
   return hub;
 }
 
+std::shared_ptr<JobHub> JobManager::RebuildHubLocked(const v1::Job& job, uint64_t base) {
+  auto hub = std::make_shared<JobHub>(job.job_id(), base);
+  hubs_[job.job_id()] = hub;
+  v1::JobEvent event;
+  event.set_state(job.state());
+  event.set_phase(job.phase());
+  event.set_message(job.message());
+  hub->Publish(event);
+  if (Terminal(job.state())) {
+    hub->Close();
+    RetireHubLocked(job.job_id());
+  }
+  return hub;
+}
+
 void JobManager::RetireHubLocked(const std::string& job_id) {
   constexpr size_t kFinishedHubsKept = 64;
   finished_hubs_.push_back(job_id);
@@ -271,19 +286,11 @@ absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_i
   }
   absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
   if (!job.ok()) return job.status();
+  absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job_id);
+  if (!base.ok()) return base.status();
   std::lock_guard lock(mu_);
   if (auto it = hubs_.find(job_id); it != hubs_.end()) return it->second;
-  std::shared_ptr<JobHub> hub = HubLocked(job_id);
-  v1::JobEvent event;
-  event.set_state(job->state());
-  event.set_phase(job->phase());
-  event.set_message(job->message());
-  hub->Publish(event);
-  if (Terminal(job->state())) {
-    hub->Close();
-    RetireHubLocked(job_id);
-  }
-  return hub;
+  return RebuildHubLocked(*job, *base);
 }
 
 absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id) {

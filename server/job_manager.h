@@ -83,6 +83,10 @@ class JobManager {
   // Stores the job's new state/phase, publishes it and logs one line.
   void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message);
   std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
+  // A job's event history rebuilt from the store (after a restart, or when its finished hub
+  // left memory): numbered after `base` (JobStore::NextHistoryBase), its first event the
+  // job's stored state and phase; closed (and retired) when that state is terminal.
+  std::shared_ptr<JobHub> RebuildHubLocked(const v1::Job& job, uint64_t base);
   // Notes that a job's hub is closed; only the newest kFinishedHubsKept closed hubs stay in
   // memory (with their last snapshot), older ones are dropped (watchers holding one keep it;
   // a later Hub() rebuilds a one-event history from the store).

@@ -22,6 +22,8 @@ CREATE TABLE IF NOT EXISTS jobs(
   seq INTEGER PRIMARY KEY AUTOINCREMENT, job_id TEXT UNIQUE NOT NULL,
   request_id TEXT UNIQUE, scene_sha256 TEXT NOT NULL, state INTEGER NOT NULL,
   job BLOB NOT NULL);
+CREATE TABLE IF NOT EXISTS job_histories(
+  job_id TEXT PRIMARY KEY, rebuilds INTEGER NOT NULL);
 )sql";
 
 // A prepared statement that finalizes itself.
@@ -41,6 +43,7 @@ class Statement {
   void BindInt(int i, int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
   void BindNull(int i) { sqlite3_bind_null(stmt_, i); }
   int Step() { return sqlite3_step(stmt_); }
+  int64_t ColumnInt(int i) { return sqlite3_column_int64(stmt_, i); }
   std::string Column(int i) {
     const void* data = sqlite3_column_blob(stmt_, i);
     return std::string(static_cast<const char*>(data),
@@ -230,6 +233,16 @@ absl::StatusOr<std::vector<v1::Job>> JobStore::ListJobs(const JobFilter& filter)
                                        absl::StrJoin(where, " AND "), " ORDER BY seq DESC LIMIT ",
                                        filter.limit, " OFFSET ", filter.offset);
   return QueryJobs(sql, args);
+}
+
+absl::StatusOr<uint64_t> JobStore::NextHistoryBase(const std::string& job_id) {
+  std::lock_guard lock(mu_);
+  Statement st(db_,
+               "INSERT INTO job_histories(job_id, rebuilds) VALUES(?, 1) "
+               "ON CONFLICT(job_id) DO UPDATE SET rebuilds = rebuilds + 1 RETURNING rebuilds");
+  st.Bind(1, job_id);
+  if (!st.ok() || st.Step() != SQLITE_ROW) return SqlError(db_, "next history base");
+  return static_cast<uint64_t>(st.ColumnInt(0)) << kHistorySequenceBits;
 }
 
 absl::StatusOr<std::vector<v1::Job>> JobStore::UnfinishedJobs() {

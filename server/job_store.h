@@ -26,6 +26,9 @@ struct StoredScene {
   std::string mesh;
 };
 
+// Sequence numbers of one event history of a job span fewer than 2^this.
+inline constexpr int kHistorySequenceBits = 32;
+
 // Which jobs ListJobs returns: newest first, `offset` jobs skipped, at most `limit`.
 struct JobFilter {
   std::vector<v1::JobState> states;  // empty = all
@@ -59,6 +62,13 @@ class JobStore {
   absl::StatusOr<std::vector<v1::Job>> ListJobs(const JobFilter& filter);
   // Jobs QUEUED or RUNNING, oldest first: what a restarted server must finish.
   absl::StatusOr<std::vector<v1::Job>> UnfinishedJobs();
+
+  // The sequence number after which a rebuilt event history of the job starts (after a
+  // restart, or when its finished hub left memory): k * 2^kHistorySequenceBits for its k-th
+  // rebuild, recorded before it is returned. The first history of a job starts after 0, so
+  // every history's numbers lie above all numbers of the job's earlier histories (each has
+  // fewer than 2^32 events) and no watcher sees a number twice across a restart.
+  absl::StatusOr<uint64_t> NextHistoryBase(const std::string& job_id);
 
   // Row block `index` of a job; NOT_FOUND when it was not stored yet.
   absl::Status PutRowBlock(const std::string& job_id, uint32_t index, const StoredRowBlock& b);

@@ -7,6 +7,8 @@ namespace radflux {
 WatchReactor::WatchReactor(std::shared_ptr<JobHub> hub, const v1::WatchJobRequest& request)
     : hub_(std::move(hub)), request_(request), link_(std::make_shared<Link>()) {
   sent_sequence_ = request.after_sequence();
+  // Resuming after the job's final event: the watcher has seen it all, snapshots included.
+  terminal_sent_ = hub_->closed() && sent_sequence_ >= hub_->last_sequence();
   link_->reactor = this;
   subscription_ = hub_->Subscribe([link = link_] {
     std::lock_guard lock(link->mu);

@@ -327,5 +327,88 @@ TEST_F(MutualTlsTest, ClientCertificateOfTheClientCaIsRequired) {
   EXPECT_NE(std::system((cli + " >/dev/null 2>&1").c_str()), 0);
 }
 
+class WatchAcrossRestartTest : public testing::ServiceFixture {
+ public:
+  // Watches `job_id` from after `after` with a snapshot every solver iteration, until
+  // `stop(event)` or the stream's end.
+  std::vector<v1::JobEvent> WatchFrom(const std::string& job_id, uint64_t after,
+                                      const std::function<bool(const v1::JobEvent&)>& stop = {}) {
+    v1::WatchJobRequest request;
+    request.set_job_id(job_id);
+    request.set_after_sequence(after);
+    request.set_snapshot_every(1);
+    auto context = Context();
+    auto reader = stub_->WatchJob(context.get(), request);
+    std::vector<v1::JobEvent> events;
+    v1::JobEvent event;
+    while (reader->Read(&event)) {
+      events.push_back(event);
+      if (stop && stop(event)) {
+        context->TryCancel();
+        break;
+      }
+    }
+    reader->Finish();
+    return events;
+  }
+};
+
+// Checks the events a watcher got after `after`: every event is numbered above `after`, the
+// events one by one without a gap or a repeat, each snapshot with the number of the event it
+// follows. Returns the last number.
+uint64_t ExpectResumedAfter(const std::vector<v1::JobEvent>& events, uint64_t after) {
+  uint64_t last = 0;
+  for (const v1::JobEvent& e : events) {
+    EXPECT_GT(e.sequence(), after) << "a number the watcher saw before";
+    if (e.has_snapshot()) {
+      EXPECT_EQ(e.sequence(), last) << "a snapshot carries the number it follows";
+    } else {
+      if (last > 0) {
+        EXPECT_EQ(e.sequence(), last + 1) << "events come one by one";
+      }
+      last = e.sequence();
+    }
+  }
+  return last;
+}
+
+TEST_F(WatchAcrossRestartTest, ReconnectAfterKillNineGetsOnlyNewNumbersAndTheFinalState) {
+  StartServer({"--checkpoint-seconds", "0", "--solve-delay-ms", "20"});
+  const std::string sha = UploadCornell();
+  v1::SolveOptions options = SmallOptions(600, "southwell");
+  options.set_tolerance(1e-5);
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  const std::vector<v1::JobEvent> before = WatchFrom(job.job_id(), 0, [](const v1::JobEvent& e) {
+    return e.phase() == v1::PHASE_SOLVE && e.progress().iteration() >= 3;
+  });
+  ASSERT_FALSE(before.empty());
+  ASSERT_EQ(before.back().state(), v1::JOB_STATE_RUNNING);
+  const uint64_t seen = ExpectResumedAfter(before, 0);
+  ASSERT_GT(seen, 3u);
+  server_->Kill();
+
+  StartServer();
+  const std::vector<v1::JobEvent> after = WatchFrom(job.job_id(), seen);
+  ASSERT_FALSE(after.empty()) << "the job's current state, not an empty stream";
+  EXPECT_EQ(after.front().state(), v1::JOB_STATE_RUNNING) << "first: the stored state";
+  EXPECT_EQ(after.front().phase(), v1::PHASE_SOLVE) << "and phase";
+  EXPECT_EQ(after.back().state(), v1::JOB_STATE_SUCCEEDED) << after.back().message();
+  const uint64_t last = ExpectResumedAfter(after, seen);
+  bool snapshot = false;
+  for (const v1::JobEvent& e : after) snapshot = snapshot || e.has_snapshot();
+  EXPECT_TRUE(snapshot) << "snapshots asked for keep coming after the restart";
+
+  // Reconnecting with the last number gets nothing more (no snapshot after the final event
+  // either); after another restart, the final state again, numbered higher still.
+  EXPECT_TRUE(WatchFrom(job.job_id(), last).empty());
+  server_->Kill();
+  StartServer();
+  const std::vector<v1::JobEvent> final_state = WatchFrom(job.job_id(), last);
+  ASSERT_EQ(final_state.size(), 1u);
+  EXPECT_EQ(final_state[0].state(), v1::JOB_STATE_SUCCEEDED);
+  EXPECT_GT(final_state[0].sequence(), last);
+}
+
 }  // namespace
 }  // namespace radflux
