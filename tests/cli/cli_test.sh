@@ -23,6 +23,12 @@ grep -q '"rays_per_second"' "$tmp/c.json" || fail "report lacks rays_per_second"
 "$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/c.pfm" --size 32x16 || fail "pfm solve"
 [ "$(head -c 3 "$tmp/c.pfm" | od -An -c | tr -d ' ')" = 'PF\n' ] || fail "PFM header"
 
+# --memory-limit: rows spill to disk and B is the same as in memory (same CSV, byte for byte).
+"$radflux" solve "$cornell" --patches 300 --quiet --memory-limit 1K --patch-values "$tmp/s.csv" \
+  --report "$tmp/s.json" || fail "spilled solve exited $?"
+cmp -s "$tmp/c.csv" "$tmp/s.csv" || fail "spilled solve gives a different B"
+grep -q '"spilled_bytes"' "$tmp/s.json" || fail "report lacks spilled_bytes"
+
 "$radflux" viewfactors "$cornell" --by object --patches 300 -o "$tmp/vf.csv" || fail "viewfactors"
 head -1 "$tmp/vf.csv" | grep -q '^from,floor,ceiling,back_wall,red_wall' || fail "view-factor header"
 [ "$(wc -l <"$tmp/vf.csv")" -eq 9 ] || fail "view-factor rows (8 objects + header)"
@@ -44,7 +50,11 @@ expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
 expect_error "unknown solver" "solver" solve "$cornell" --solver magic
 printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
 expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$tmp/bad.obj"
+expect_error "cg cannot stream" "memory-limit" solve "$cornell" --memory-limit 1M --solver cg
+expect_error "spill dir is a file" "cannot create a spill file in" solve "$cornell" --patches 300 -q \
+  --memory-limit 1K --spill-dir "$tmp/c.csv"
 "$radflux" solve --help | grep -q -- "--hemicube-res" || fail "--help lists options"
+"$radflux" solve --help | grep -q -- "--memory-limit" || fail "--help lists --memory-limit"
 
-echo "$((18 - failures)) passed, $failures failed"
+echo "$((24 - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ]
