@@ -35,16 +35,29 @@ double RandomFloat(uint32_t i, uint32_t p);
 // prefix-free set of n is stratified in 2D and in each 1D projection.
 Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p);
 
+// u moved toroidally by `shift` on [0,1)^2 (Cranley-Patterson rotation): applied to a
+// shared stratified set with a random shift per use, it keeps the set stratified and
+// makes each estimate unbiased, at two additions per sample.
+inline Point2 CranleyPattersonShift(Point2 u, Point2 shift) {
+  const double x = u.x + shift.x, y = u.y + shift.y;
+  return {x >= 1 ? x - 1 : x, y >= 1 ? y - 1 : y};
+}
+// The random shift of pattern p (two hashed floats).
+inline Point2 RandomShift(uint32_t p, uint32_t first = 0) {
+  return {RandomFloat(first, p), RandomFloat(first + 1, p)};
+}
+
 namespace internal {
 // sin and cos of |a| <= pi/4 by their Taylor series to a^12 (error < 1e-11): the one
 // place a ray's cost is dominated by libm otherwise.
 inline void SinCosQuarter(double a, double& s, double& c) {
   const double a2 = a * a;
-  s = a * (1 + a2 * (-1.0 / 6 + a2 * (1.0 / 120 + a2 * (-1.0 / 5040 + a2 * (1.0 / 362880 +
-                                                                             a2 * (-1.0 / 39916800))))));
-  c = 1 + a2 * (-0.5 + a2 * (1.0 / 24 + a2 * (-1.0 / 720 + a2 * (1.0 / 40320 +
-                                                                  a2 * (-1.0 / 3628800 +
-                                                                        a2 / 479001600)))));
+  s = a * (1 + a2 * (-1.0 / 6 +
+                     a2 * (1.0 / 120 +
+                           a2 * (-1.0 / 5040 + a2 * (1.0 / 362880 + a2 * (-1.0 / 39916800))))));
+  c = 1 + a2 * (-0.5 + a2 * (1.0 / 24 +
+                             a2 * (-1.0 / 720 +
+                                   a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 + a2 / 479001600)))));
 }
 
 inline Point2 SampleUniformDiskConcentric(Point2 u) {

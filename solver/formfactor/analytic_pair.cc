@@ -1,5 +1,6 @@
 #include "solver/formfactor/analytic_pair.h"
 
+#include <array>
 #include <cmath>
 
 #include "solver/core/sampling.h"
@@ -12,9 +13,17 @@ namespace {
 constexpr uint64_t kPointStream = 1;
 constexpr uint64_t kTargetStream = 2;
 
-std::vector<Vec3> PatchPolygon(const PatchMesh& mesh, uint32_t p) {
-  std::vector<Vec3> polygon;
-  for (int k = 0; k < mesh.patches[p].VertexCount(); ++k) polygon.push_back(mesh.Vertex(p, k));
+// A patch (<= 4 vertices) clipped by one plane (<= 5): fixed storage, no allocation.
+struct SmallPolygon {
+  std::array<Vec3, 8> vertex;
+  size_t size = 0;
+  std::span<const Vec3> View() const { return {vertex.data(), size}; }
+};
+
+SmallPolygon PatchPolygon(const PatchMesh& mesh, uint32_t p) {
+  SmallPolygon polygon;
+  polygon.size = static_cast<size_t>(mesh.patches[p].VertexCount());
+  for (size_t k = 0; k < polygon.size; ++k) polygon.vertex[k] = mesh.Vertex(p, static_cast<int>(k));
   return polygon;
 }
 
@@ -27,11 +36,11 @@ double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) 
 }
 
 // A shadow ray between two surface points, each lifted off its surface by the epsilon.
-bool Blocked(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
-             const Vec3& ny) {
+Ray ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
+              const Vec3& ny) {
   const Vec3 origin = x + nx * context.ray_epsilon;
   const Vec3 target = y + ny * context.ray_epsilon;
-  return context.caster->Occluded({origin, target - origin, 0, 1 - 1e-6});
+  return {origin, target - origin, 0, 1 - 1e-6};
 }
 
 bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
@@ -40,6 +49,79 @@ bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
     if (Dot(mesh.Vertex(of, k) - plane.centroid, plane.normal) > 1e-9 * scale) return true;
   }
   return false;
+}
+
+// One pair's estimate before its shadow rays are traced: the mean exact unoccluded form
+// factor, and the kernel weight of each of its rays (appended to a shared batch).
+struct PairPlan {
+  uint32_t j = 0;
+  double unoccluded = 0;  // mean over the points of the exact point-to-polygon F
+  size_t first_ray = 0, ray_count = 0;
+};
+
+// Sets up F_ij (see AnalyticPairFormFactor): its unoccluded mean and its shadow rays,
+// appended to `rays` with their kernel weights in `kernels`.
+PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>& points,
+                  uint32_t j, uint64_t seed, std::vector<Ray>& rays, std::vector<double>& kernels) {
+  const PatchMesh& mesh = *context.mesh;
+  const Patch& pi = mesh.patches[i];
+  const Patch& pj = mesh.patches[j];
+  PairPlan plan;
+  plan.j = j;
+  plan.first_ray = rays.size();
+  // All points of i share i's plane, so clip j against it once.
+  const SmallPolygon whole = PatchPolygon(mesh, j);
+  SmallPolygon polygon;
+  polygon.size = ClipPolygonToHalfSpace(whole.View(), pi.centroid, pi.normal, polygon.vertex);
+  if (polygon.size < 3) return plan;
+  const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
+  const size_t s = points.size();
+  const PatchPointSampler sample_target(mesh, j);
+  double f = 0, unoccluded = 0;
+  for (size_t m = 0; m < s; ++m) {
+    // A point behind j's plane sees only j's back: no exchange from there (this matters
+    // where i runs under a solid, e.g. floor patches partly beneath a block).
+    if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
+    // Repeated points (hemicube: s copies of the centroid) share one contour integral.
+    if (m == 0 || !(points[m] == points[m - 1])) {
+      f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
+    }
+    unoccluded += f;
+    const Vec3 target = sample_target(
+        MultiJitteredSample(static_cast<uint32_t>(m), static_cast<uint32_t>(s), pattern));
+    const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
+    if (kernel <= 0) continue;
+    rays.push_back(ShadowRay(context, points[m], pi.normal, target, pj.normal));
+    kernels.push_back(kernel);
+  }
+  plan.unoccluded = unoccluded / static_cast<double>(s);
+  if (plan.unoccluded <= 0) {  // nothing to see: no rays needed
+    rays.resize(plan.first_ray);
+    kernels.resize(plan.first_ray);
+    return plan;
+  }
+  if (rays.size() == plan.first_ray) {
+    // Every sampled target lay behind i's plane: one ray to the visible part's centre.
+    Vec3 centre;
+    for (const Vec3& p : polygon.View()) centre += p / static_cast<double>(polygon.size);
+    rays.push_back(ShadowRay(context, points[0], pi.normal, centre, pj.normal));
+    kernels.push_back(1);
+  }
+  plan.ray_count = rays.size() - plan.first_ray;
+  return plan;
+}
+
+// F_ij of a planned pair once its rays are traced: the unoccluded mean times the
+// kernel-weighted visible fraction.
+double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
+                  const std::vector<uint8_t>& occluded) {
+  if (plan.unoccluded <= 0) return 0;
+  double weight = 0, visible = 0;
+  for (size_t r = plan.first_ray; r < plan.first_ray + plan.ray_count; ++r) {
+    weight += kernels[r];
+    if (!occluded[r]) visible += kernels[r];
+  }
+  return plan.unoccluded * (visible / weight);
 }
 
 }  // namespace
@@ -60,42 +142,13 @@ std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, ui
 double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays) {
-  const PatchMesh& mesh = *context.mesh;
-  const Patch& pi = mesh.patches[i];
-  const Patch& pj = mesh.patches[j];
-  // All points of i share i's plane, so clip j against it once.
-  std::vector<Vec3> polygon = PatchPolygon(mesh, j);
-  polygon = ClipPolygonToHalfSpace(polygon, pi.centroid, pi.normal);
-  if (polygon.size() < 3) return 0;
-  const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
-  const int s = static_cast<int>(points.size());
-  const PatchPointSampler sample_target(mesh, j);
-  double unoccluded = 0, weight = 0, visible_weight = 0, f = 0;
-  for (int m = 0; m < s; ++m) {
-    // A point behind j's plane sees only j's back: no exchange from there (this matters
-    // where i runs under a solid, e.g. floor patches partly beneath a block).
-    if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
-    // Repeated points (hemicube: s copies of the centroid) share one contour integral.
-    if (m == 0 || !(points[m] == points[m - 1])) {
-      f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
-    }
-    unoccluded += f;
-    const Vec3 target = sample_target(MultiJitteredSample(m, s, pattern));
-    const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
-    if (kernel <= 0) continue;
-    weight += kernel;
-    ++rays;
-    if (!Blocked(context, points[m], pi.normal, target, pj.normal)) visible_weight += kernel;
-  }
-  if (unoccluded <= 0) return 0;
-  if (weight <= 0) {
-    // Every sampled target lay behind i's plane: one ray to the visible part's centre.
-    Vec3 centre;
-    for (const Vec3& p : polygon) centre += p / static_cast<double>(polygon.size());
-    ++rays;
-    return Blocked(context, points[0], pi.normal, centre, pj.normal) ? 0 : unoccluded / s;
-  }
-  return unoccluded / s * (visible_weight / weight);
+  std::vector<Ray> batch;
+  std::vector<double> kernels;
+  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels);
+  std::vector<uint8_t> occluded(batch.size());
+  context.caster->OccludedBatch(batch, occluded);
+  rays += batch.size();
+  return FinishPair(plan, kernels, occluded);
 }
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
@@ -109,12 +162,23 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, const std::vector<Vec3>& points,
                             uint64_t seed, RowAccumulator& row) {
   const PatchMesh& mesh = *context.mesh;
-  uint64_t rays = 0;
+  // Per-thread scratch reused row to row: every pair of the row is planned first, then
+  // all their shadow rays are traced as one stream.
+  thread_local std::vector<PairPlan> plans;
+  thread_local std::vector<Ray> rays;
+  thread_local std::vector<double> kernels;
+  thread_local std::vector<uint8_t> occluded;
+  plans.clear();
+  rays.clear();
+  kernels.clear();
   for (uint32_t j : columns) {
     if (!PatchesCanExchange(mesh, i, j)) continue;
-    row.Add(j, AnalyticPairFormFactor(context, i, points, j, seed, rays));
+    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels));
   }
-  return rays;
+  occluded.resize(rays.size());
+  context.caster->OccludedBatch(rays, occluded);
+  for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, occluded));
+  return rays.size();
 }
 
 std::vector<uint32_t> EmitterPatches(const RowContext& context) {

@@ -15,8 +15,6 @@ constexpr uint64_t kShiftStream = 11;
 constexpr uint32_t kPositionPattern = 0x2545f491u;
 constexpr uint32_t kDirectionPattern = 0x9e3779b9u;
 
-double Wrap(double x) { return x >= 1 ? x - 1 : x; }
-
 class MonteCarloBuilder final : public RowBuilder {
  public:
   // The k position samples and k paired direction samples are one correlated
@@ -39,8 +37,8 @@ class MonteCarloBuilder final : public RowBuilder {
     const Patch& patch = mesh.patches[i];
     const Frame frame = Frame::FromNormal(patch.normal);
     const uint32_t shift = PatternSeed(options_.seed, i, kShiftStream);
-    const Point2 ps{RandomFloat(0, shift), RandomFloat(1, shift)};
-    const Point2 ds{RandomFloat(2, shift), RandomFloat(3, shift)};
+    const Point2 ps = RandomShift(shift, 0);
+    const Point2 ds = RandomShift(shift, 2);
     const Vec3 lift = patch.normal * context_.ray_epsilon;
     const double weight = 1.0 / static_cast<double>(positions_.size());
     const PatchPointSampler sample_point(mesh, i);
@@ -49,16 +47,16 @@ class MonteCarloBuilder final : public RowBuilder {
     ray_batch.resize(positions_.size());
     hit_batch.resize(positions_.size());
     for (size_t r = 0; r < positions_.size(); ++r) {
-      ray_batch[r].origin =
-          sample_point({Wrap(positions_[r].x + ps.x), Wrap(positions_[r].y + ps.y)}) + lift;
-      ray_batch[r].direction = frame.ToWorld(
-          SampleCosineHemisphere({Wrap(directions_[r].x + ds.x), Wrap(directions_[r].y + ds.y)}));
+      ray_batch[r].origin = sample_point(CranleyPattersonShift(positions_[r], ps)) + lift;
+      ray_batch[r].direction =
+          frame.ToWorld(SampleCosineHemisphere(CranleyPattersonShift(directions_[r], ds)));
     }
     context_.caster->IntersectBatch(ray_batch, hit_batch);
     for (size_t r = 0; r < ray_batch.size(); ++r) {
       const uint32_t j = hit_batch[r].patch;
       if (j == kNoPatch || context_.emitter[j]) continue;
-      if (Dot(ray_batch[r].direction, mesh.patches[j].normal) >= 0) continue;  // back side: absorbed
+      if (Dot(ray_batch[r].direction, mesh.patches[j].normal) >= 0)
+        continue;  // back side: absorbed
       row.Add(j, weight);
     }
     if (emitters_.empty()) return ray_batch.size();

@@ -6,22 +6,28 @@
 
 namespace radflux {
 
-std::vector<Vec3> ClipPolygonToHalfSpace(const std::vector<Vec3>& polygon, const Vec3& origin,
-                                         const Vec3& n) {
-  std::vector<Vec3> out;
-  out.reserve(polygon.size() + 1);
+size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
+                              std::span<Vec3> out) {
+  size_t count = 0;
   for (size_t k = 0; k < polygon.size(); ++k) {
     const Vec3& a = polygon[k];
     const Vec3& b = polygon[(k + 1) % polygon.size()];
     const double da = Dot(a - origin, n), db = Dot(b - origin, n);
-    if (da >= 0) out.push_back(a);
-    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+    if (da >= 0) out[count++] = a;
+    if ((da >= 0) != (db >= 0)) out[count++] = a + (b - a) * (da / (da - db));
   }
+  return count;
+}
+
+std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin,
+                                         const Vec3& n) {
+  std::vector<Vec3> out(polygon.size() + 1);
+  out.resize(ClipPolygonToHalfSpace(polygon, origin, n, out));
   return out;
 }
 
 double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
-                                         const std::vector<Vec3>& polygon) {
+                                         std::span<const Vec3> polygon) {
   double sum = 0;
   for (size_t k = 0; k < polygon.size(); ++k) {
     const Vec3 a = polygon[k] - x;
@@ -35,7 +41,7 @@ double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
   return std::clamp(std::abs(sum) / (2 * std::numbers::pi), 0.0, 1.0);
 }
 
-double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
+double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon) {
   bool all_front = true, any_front = false;
   for (const Vec3& p : polygon) {
     const double d = Dot(p - x, n);

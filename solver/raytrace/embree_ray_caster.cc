@@ -53,9 +53,9 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      std::max<size_t>(1, mesh.positions.size())));
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                              3 * sizeof(float), std::max<size_t>(1, mesh.positions.size())));
   auto* indices = static_cast<uint32_t*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
                               4 * sizeof(uint32_t), std::max<size_t>(1, mesh.patches.size())));
@@ -115,6 +115,17 @@ void EmbreeRayCaster::IntersectBatch(std::span<const Ray> rays, std::span<Hit> h
                   ? Hit{}
                   : Hit{rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v};
   }
+}
+
+void EmbreeRayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
+  thread_local std::vector<RTCRay> stream;
+  stream.resize(rays.size());
+  for (size_t k = 0; k < rays.size(); ++k) stream[k] = ToRTCRay(rays[k]);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
+                sizeof(RTCRay));
+  for (size_t k = 0; k < rays.size(); ++k) occluded[k] = stream[k].tfar < 0;
 }
 
 bool EmbreeRayCaster::Occluded(const Ray& ray) const {

@@ -36,6 +36,8 @@ class RayCaster {
   // Many rays at once (hits.size() == rays.size()): the same answers as Intersect on each
   // ray, but an implementation may trace them as a stream. The default loops.
   virtual void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const;
+  // occluded[k] = Occluded(rays[k]), possibly as a stream.
+  virtual void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 };
 
 }  // namespace radflux
