@@ -31,7 +31,8 @@ struct ManagerOptions {
   uint64_t max_memory = 0;             // bytes per job by EstimateJobBytes (0 = half the RAM)
   uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
   size_t max_queued = 1000;            // queued jobs beyond this are refused
-  double checkpoint_seconds = 1.0;     // at most one solver checkpoint per job per interval
+  double checkpoint_seconds = 1.0;     // at most one row-block and one solver checkpoint per job
+                                       // per interval (0 = after every block / iteration)
   int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
                                        // window in which a test can kill the server mid-solve)
   RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)

@@ -8,8 +8,8 @@
 
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
-#include "server/row_farm.h"
 #include "server/row_block_writer.h"
+#include "server/row_farm.h"
 #include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
@@ -44,21 +44,22 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
-  std::vector<StoredRowBlock> blocks(block_count);
-  std::vector<uint32_t> missing;
+  std::vector<std::shared_ptr<const StoredRowBlock>> blocks(block_count);
   int64_t done = 0;
+  std::vector<absl::Status> unreadable;
+  for (StoredRowBlock& stored : c.store->GetRowBlocks(job.job_id(), &unreadable)) {
+    const uint32_t b = stored.block.first_row / block_size;
+    if (b >= block_count || stored.block.first_row != b * block_size || blocks[b]) continue;
+    done += stored.block.RowCount();
+    blocks[b] = std::make_shared<const StoredRowBlock>(std::move(stored));
+  }
+  for (const absl::Status& s : unreadable) {
+    spdlog::warn("job {}: stored rows unreadable ({}), rebuilding them", job.job_id(),
+                 std::string(s.message()));
+  }
+  std::vector<uint32_t> missing;
   for (uint32_t b = 0; b < block_count; ++b) {
-    absl::StatusOr<StoredRowBlock> stored = c.store->GetRowBlock(job.job_id(), b);
-    if (stored.ok() && stored->block.first_row == b * block_size) {
-      blocks[b] = *std::move(stored);
-      done += blocks[b].block.RowCount();
-    } else {
-      if (stored.status().code() == absl::StatusCode::kDataLoss) {
-        spdlog::warn("job {}: row block {} unreadable ({}), rebuilding", job.job_id(), b,
-                     std::string(stored.status().message()));
-      }
-      missing.push_back(b);
-    }
+    if (!blocks[b]) missing.push_back(b);
   }
   if (done > 0) spdlog::info("job {}: reusing {} stored rows of {}", job.job_id(), done, n);
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(prepared.rows, options);
@@ -68,11 +69,11 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   uint64_t rays = 0;
   // Every block built (here or by a worker) goes to the store and the progress events.
   const auto store_block = [&](uint32_t b, StoredRowBlock s) {
-    blocks[b] = std::move(s);
-    writer.Put(b, blocks[b]);
+    blocks[b] = std::make_shared<const StoredRowBlock>(std::move(s));
+    writer.Put(blocks[b]);
     std::lock_guard lock(mu);
-    done += blocks[b].block.RowCount();
-    rays += blocks[b].stats.rays;
+    done += blocks[b]->block.RowCount();
+    rays += blocks[b]->stats.rays;
     v1::Progress progress;
     progress.set_rows_done(done);
     progress.set_rows_total(n);
@@ -110,12 +111,12 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   FormFactorResult result;
   result.matrix.cols = n;
   size_t nnz = 0;
-  for (const StoredRowBlock& s : blocks) nnz += s.block.col.size();
+  for (const auto& s : blocks) nnz += s->block.col.size();
   result.matrix.Reserve(n, nnz);
-  for (StoredRowBlock& s : blocks) {
-    result.matrix.Append(s.block);
-    result.stats.Merge(s.stats);
-    s = StoredRowBlock{};
+  for (auto& s : blocks) {
+    result.matrix.Append(s->block);
+    result.stats.Merge(s->stats);
+    s.reset();  // the writer may still hold it until its checkpoint
   }
   result.seconds = SecondsSince(start);
   return result;
@@ -200,6 +201,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 }  // namespace
 
 absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c) {
+  const auto start = Clock::now();
   absl::StatusOr<StoredScene> stored = c.store->GetScene(job.scene_sha256());
   if (!stored.ok()) return stored.status();
   absl::StatusOr<JobOptions> options = FromProto(job.options());
@@ -207,6 +209,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   options->form_factors.threads = c.threads;
   absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
   if (!scene.ok()) return scene.status();
+  const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
   absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
   if (!prepared.ok()) return prepared.status();
@@ -217,7 +220,9 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   c.on_phase(v1::PHASE_ROWS, n);
   // Stores row blocks behind the row builders, into the solve; on an early return
   // (shutdown, error) it stores what is queued so that it is kept for the resume.
-  RowBlockWriter writer(*c.store, job.job_id());
+  RowBlockWriter writer(*c.store, job.job_id(),
+                        static_cast<uint32_t>(std::max(1, options->form_factors.block_size)),
+                        c.checkpoint_seconds);
   struct FinishWriter {  // on every return: drop the queue when cancelled, else store it
     RowBlockWriter& writer;
     const RunContext& c;
@@ -241,8 +246,16 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   result.timings.embree = result.job->embree_seconds;
   result.timings.rows = rows->seconds;
   result.timings.solve = SecondsSince(solve_start);
+  const auto encode_start = Clock::now();
   const std::string report = MakeJobReport(result, *options, stored->name).dump(2);
-  return EncodeResultChunks(MakeResultChunks(result.job->mesh, result.solve, report));
+  std::string encoded =
+      EncodeResultChunks(MakeResultChunks(result.job->mesh, result.solve, report));
+  spdlog::debug(
+      "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
+      "result encoding {:.1f}",
+      job.job_id(), 1e3 * load_seconds, 1e3 * (result.timings.mesh + result.timings.embree),
+      1e3 * result.timings.rows, 1e3 * result.timings.solve, 1e3 * SecondsSince(encode_start));
+  return encoded;
 }
 
 }  // namespace radflux

@@ -1,5 +1,5 @@
 // RunStoredJob: the phases of one job as the server runs them: prepare, form-factor rows
-// block by block (each stored as it completes, stored blocks reused), then the solve
+// block by block (checkpointed in groups, stored blocks reused), then the solve
 // (checkpointed). A job resumed after a crash computes exactly what an uninterrupted run
 // computes: rows are deterministic per patch; the solve resumes from its checkpoint bit for
 // bit for jacobi, gauss_seidel (B) and southwell (B and the unshot radiosity), and cg warm
@@ -25,10 +25,10 @@ struct RunContext {
   const std::atomic<bool>* stop = nullptr;       // cancel or shutdown: stop at the next safe point
   const std::atomic<bool>* cancelled = nullptr;  // set (before stop) when stopping for a cancel
   int threads = 0;                               // OpenMP threads for this job (0 = all cores)
-  double checkpoint_seconds = 1.0;               // at most one solver checkpoint per this interval
-  int solve_delay_ms = 0;                        // testing: sleep after each solver iteration
-  RowFarm* farm = nullptr;    // shares the row blocks with worker nodes (null: this job's own)
-  int block_delay_ms = 0;     // testing: sleep after each row block built here
+  double checkpoint_seconds = 1.0;  // at most one row-block and one solver checkpoint per interval
+  int solve_delay_ms = 0;           // testing: sleep after each solver iteration
+  RowFarm* farm = nullptr;  // shares the row blocks with worker nodes (null: this job's own)
+  int block_delay_ms = 0;   // testing: sleep after each row block built here
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };

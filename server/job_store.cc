@@ -178,12 +178,21 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job) {
 
 absl::Status JobStore::UpdateJob(const v1::Job& job) {
   std::lock_guard lock(mu_);
-  Statement st(db_, "UPDATE jobs SET state = ?, job = ? WHERE job_id = ?");
-  st.BindInt(1, job.state());
-  st.BindBlob(2, job.SerializeAsString());
-  st.Bind(3, job.job_id());
-  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "update job");
-  return absl::OkStatus();
+  // A RUNNING job's phase is not fsynced (synchronous=NORMAL: it survives kill -9, an OS
+  // crash may lose it, and the job resumes from its files either way); every other state
+  // is, with whatever was committed before it.
+  const bool running = job.state() == v1::JOB_STATE_RUNNING;
+  if (running) (void)Exec("PRAGMA synchronous=NORMAL");
+  absl::Status status;
+  {
+    Statement st(db_, "UPDATE jobs SET state = ?, job = ? WHERE job_id = ?");
+    st.BindInt(1, job.state());
+    st.BindBlob(2, job.SerializeAsString());
+    st.Bind(3, job.job_id());
+    if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "update job");
+  }
+  if (running) (void)Exec("PRAGMA synchronous=FULL");
+  return status;
 }
 
 absl::StatusOr<std::vector<v1::Job>> JobStore::QueryJobs(const std::string& sql,
@@ -252,17 +261,30 @@ absl::StatusOr<std::vector<v1::Job>> JobStore::UnfinishedJobs() {
       {});
 }
 
-absl::Status JobStore::PutRowBlock(const std::string& job_id, uint32_t index,
-                                   const StoredRowBlock& b) {
-  return WriteBlobFile((fs::path(JobDir(job_id)) / RowBlockName(index)).string(),
-                       EncodeRowBlock(b));
+absl::Status JobStore::PutRowBlocks(const std::string& job_id, uint32_t name_index,
+                                    const std::vector<const StoredRowBlock*>& blocks) {
+  return WriteBlobFile((fs::path(JobDir(job_id)) / RowBlockName(name_index)).string(),
+                       EncodeRowBlockGroup(blocks));
 }
 
-absl::StatusOr<StoredRowBlock> JobStore::GetRowBlock(const std::string& job_id, uint32_t index) {
-  absl::StatusOr<std::string> bytes =
-      ReadBlobFile((fs::path(JobDir(job_id)) / RowBlockName(index)).string());
-  if (!bytes.ok()) return bytes.status();
-  return DecodeRowBlock(*bytes);
+std::vector<StoredRowBlock> JobStore::GetRowBlocks(const std::string& job_id,
+                                                   std::vector<absl::Status>* unreadable) {
+  std::vector<StoredRowBlock> blocks;
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(JobDir(job_id), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("rows_", 0) != 0 || entry.path().extension() != ".rfb") continue;
+    absl::StatusOr<std::string> bytes = ReadBlobFile(entry.path().string());
+    absl::StatusOr<std::vector<StoredRowBlock>> group =
+        bytes.ok() ? DecodeRowBlockGroup(*bytes) : bytes.status();
+    if (!group.ok()) {
+      unreadable->push_back(
+          absl::DataLossError(absl::StrCat(entry.path().string(), ": ", group.status().message())));
+      continue;
+    }
+    for (StoredRowBlock& block : *group) blocks.push_back(std::move(block));
+  }
+  return blocks;
 }
 
 absl::Status JobStore::PutCheckpoint(const std::string& job_id, const SolverCheckpoint& c) {

@@ -1,7 +1,8 @@
 // JobStore: everything the server keeps on disk, in its data directory. Jobs and scenes
 // are rows of an SQLite database (radflux.db); scene texts, form-factor row blocks,
 // solver checkpoints and results are checksummed blob files (see blob_file.h) under
-// scenes/ and jobs/<id>/. Every write is durable when the call returns. Thread-safe.
+// scenes/ and jobs/<id>/. Every write is durable (fsynced) when the call returns, except
+// UpdateJob of a RUNNING job, which survives kill -9 but not an OS crash. Thread-safe.
 #pragma once
 
 #include <memory>
@@ -70,9 +71,15 @@ class JobStore {
   // fewer than 2^32 events) and no watcher sees a number twice across a restart.
   absl::StatusOr<uint64_t> NextHistoryBase(const std::string& job_id);
 
-  // Row block `index` of a job; NOT_FOUND when it was not stored yet.
-  absl::Status PutRowBlock(const std::string& job_id, uint32_t index, const StoredRowBlock& b);
-  absl::StatusOr<StoredRowBlock> GetRowBlock(const std::string& job_id, uint32_t index);
+  // Stores row blocks of a job in one file (one write and fsync however many blocks);
+  // `name_index` names the file: the smallest block index in it, so it never replaces a
+  // readable file (whose blocks are stored, hence never written again).
+  absl::Status PutRowBlocks(const std::string& job_id, uint32_t name_index,
+                            const std::vector<const StoredRowBlock*>& blocks);
+  // Every stored row block of a job; a file that cannot be read is reported in
+  // `unreadable` (its blocks are simply not returned).
+  std::vector<StoredRowBlock> GetRowBlocks(const std::string& job_id,
+                                           std::vector<absl::Status>* unreadable);
   absl::Status PutCheckpoint(const std::string& job_id, const SolverCheckpoint& checkpoint);
   absl::StatusOr<SolverCheckpoint> GetCheckpoint(const std::string& job_id);
   // The serialized result stream of a finished job (see result_codec.h).

@@ -11,6 +11,7 @@
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <signal.h>
+#include <spdlog/cfg/env.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -153,6 +154,7 @@ int main(int argc, char** argv) {
   signal(SIGPIPE, SIG_IGN);
   // Logs go to stderr; stdout carries only the "listening on" line scripts read.
   spdlog::set_default_logger(spdlog::stderr_color_mt("radfluxd"));
+  spdlog::cfg::load_env_levels();  // SPDLOG_LEVEL=debug: per-step timings of every job
 
   CLI::App app{"radfluxd: the radflux radiosity solver service"};
   Flags flags;
@@ -182,7 +184,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
   app.add_option(
          "--checkpoint-seconds", flags.manager.checkpoint_seconds,
-         "at most one solver checkpoint per job per this many seconds (0 = every iteration)")
+         "at most one checkpoint of row blocks and one of the solver state per job per this "
+         "many seconds (0 = after every row block / iteration); a kill -9 loses at most this "
+         "much work")
       ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")

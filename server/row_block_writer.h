@@ -1,16 +1,19 @@
-// RowBlockWriter: stores a job's form-factor row blocks on a thread of its own, so the
-// threads that build rows never wait for the disk (each block is written, fsynced and
-// renamed: ~10 ms here, longer than building it). A block still queued when the process
-// dies is rebuilt on resume (rows are deterministic per patch): only time is lost, never
-// correctness. Failures are logged, not fatal, for the same reason. Thread-safe.
+// RowBlockWriter: checkpoints a job's form-factor row blocks on a thread of its own, so the
+// threads that build rows never wait for the disk. Blocks are gathered and stored together,
+// one file (one write + fsync + rename) per checkpoint, at most one checkpoint per
+// `interval_seconds` (0: as soon as the previous one is on disk). A block not yet stored
+// when the process dies is rebuilt on resume (rows are deterministic per patch): only time
+// is lost, never correctness. Failures are logged, not fatal, for the same reason.
+// Thread-safe.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
-#include <deque>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
-#include <utility>
+#include <vector>
 
 #include "server/job_store.h"
 
@@ -18,25 +21,32 @@ namespace radflux {
 
 class RowBlockWriter {
  public:
-  RowBlockWriter(JobStore& store, std::string job_id);
+  // `block_size` rows per block: block k holds the rows from k * block_size.
+  RowBlockWriter(JobStore& store, std::string job_id, uint32_t block_size, double interval_seconds);
   ~RowBlockWriter();  // Finish(/*drain=*/true)
   RowBlockWriter(const RowBlockWriter&) = delete;
   RowBlockWriter& operator=(const RowBlockWriter&) = delete;
 
-  // Queues block `index` for storing.
-  void Put(uint32_t index, StoredRowBlock block);
-  // Stops the thread once the queue is stored (drain) or at once, dropping what is queued
-  // (the job finished: its row blocks are about to be deleted). Idempotent.
+  // Queues a block for the next checkpoint (shared: the writer never copies rows).
+  void Put(std::shared_ptr<const StoredRowBlock> block);
+  // Stops the thread once the queue is stored (drain: a last checkpoint now) or at once,
+  // dropping what is queued (the job finished: its row blocks are about to be deleted).
+  // Idempotent.
   void Finish(bool drain);
 
  private:
+  using Clock = std::chrono::steady_clock;
   void Loop();
+  void Store(const std::vector<std::shared_ptr<const StoredRowBlock>>& blocks);
 
   JobStore& store_;
   const std::string job_id_;
+  const uint32_t block_size_;
+  const Clock::duration interval_;
   std::mutex mu_;
   std::condition_variable cv_;
-  std::deque<std::pair<uint32_t, StoredRowBlock>> queue_;
+  std::vector<std::shared_ptr<const StoredRowBlock>> queue_;
+  Clock::time_point next_checkpoint_;
   bool stopping_ = false;
   std::thread thread_;
 };

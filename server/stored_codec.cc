@@ -6,9 +6,10 @@
 namespace radflux {
 namespace {
 
-constexpr uint32_t kRowBlockTag = 0x52424c31;     // "RBL1"
-constexpr uint32_t kCheckpointTag = 0x43504b31;   // "CPK1": iteration, B
-constexpr uint32_t kCheckpointTag2 = 0x43504b32;  // "CPK2": iteration, B, method, unshot
+constexpr uint32_t kRowBlockTag = 0x52424c31;       // "RBL1"
+constexpr uint32_t kRowBlockGroupTag = 0x52424731;  // "RBG1": count, then sized blocks
+constexpr uint32_t kCheckpointTag = 0x43504b31;     // "CPK1": iteration, B
+constexpr uint32_t kCheckpointTag2 = 0x43504b32;    // "CPK2": iteration, B, method, unshot
 
 // Appends trivially copyable values (the platforms radflux runs on are little-endian).
 class Writer {
@@ -23,6 +24,7 @@ class Writer {
     Put<uint64_t>(v.size());
     out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
+  void PutBytes(std::string_view bytes) { out_.append(bytes); }
   std::string Take() { return std::move(out_); }
 
  private:
@@ -47,6 +49,13 @@ class Reader {
     v.resize(size);
     std::memcpy(v.data(), in_.data(), size * sizeof(T));
     in_.remove_prefix(size * sizeof(T));
+    return true;
+  }
+  // The next `size` bytes as a view into the input.
+  bool GetBytes(uint64_t size, std::string_view& v) {
+    if (size > in_.size()) return false;
+    v = in_.substr(0, size);
+    in_.remove_prefix(size);
     return true;
   }
   bool AtEnd() const { return in_.empty(); }
@@ -83,6 +92,41 @@ absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
     return absl::DataLossError("not a row block");
   }
   return s;
+}
+
+std::string EncodeRowBlockGroup(const std::vector<const StoredRowBlock*>& blocks) {
+  Writer w;
+  w.Put(kRowBlockGroupTag);
+  w.Put<uint64_t>(blocks.size());
+  for (const StoredRowBlock* block : blocks) {
+    const std::string bytes = EncodeRowBlock(*block);
+    w.Put<uint64_t>(bytes.size());
+    w.PutBytes(bytes);
+  }
+  return w.Take();
+}
+
+absl::StatusOr<std::vector<StoredRowBlock>> DecodeRowBlockGroup(std::string_view bytes) {
+  Reader r(bytes);
+  uint32_t tag = 0;
+  uint64_t count = 0;
+  if (!r.Get(tag) || tag != kRowBlockGroupTag || !r.Get(count) || count > bytes.size()) {
+    return absl::DataLossError("not a row block group");
+  }
+  std::vector<StoredRowBlock> blocks;
+  blocks.reserve(count);
+  for (uint64_t k = 0; k < count; ++k) {
+    uint64_t size = 0;
+    std::string_view block;
+    if (!r.Get(size) || !r.GetBytes(size, block)) {
+      return absl::DataLossError("row block group truncated");
+    }
+    absl::StatusOr<StoredRowBlock> decoded = DecodeRowBlock(block);
+    if (!decoded.ok()) return decoded.status();
+    blocks.push_back(*std::move(decoded));
+  }
+  if (!r.AtEnd()) return absl::DataLossError("row block group has trailing bytes");
+  return blocks;
 }
 
 std::string EncodeCheckpoint(const SolverCheckpoint& checkpoint) {

@@ -24,6 +24,11 @@ std::string EncodeRowBlock(const StoredRowBlock& stored);
 // DATA_LOSS when the bytes are not a row block.
 absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes);
 
+// Several row blocks in one encoding (one file per checkpoint), in the given order.
+std::string EncodeRowBlockGroup(const std::vector<const StoredRowBlock*>& blocks);
+// DATA_LOSS when the bytes are not a row block group or one of its blocks is not a block.
+absl::StatusOr<std::vector<StoredRowBlock>> DecodeRowBlockGroup(std::string_view bytes);
+
 // The solver's state after `iteration` iterations: B per patch per band, and for
 // southwell the unshot radiosity with it (empty for the other methods). `method` is the
 // SolverMethod that wrote it (as int; -1 in checkpoints of the first format).

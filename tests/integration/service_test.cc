@@ -16,8 +16,10 @@
 #include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/blob_file.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
+#include "server/stored_codec.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/integration/server_process.h"
@@ -112,7 +114,7 @@ TEST_F(ServiceTest, CancelMidRowsEndsCancelledAndCleansFiles) {
 }
 
 TEST_F(ServiceTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
-  StartServer();
+  StartServer({"--checkpoint-seconds", "0"});  // row blocks stored as soon as they are built
   const std::string sha = UploadCornell();
   const v1::SolveOptions options = SmallOptions(1200, "jacobi");
   v1::Job job;
@@ -149,6 +151,80 @@ TEST_F(ServiceTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
   std::vector<double> again;
   ASSERT_TRUE(Result(job.job_id(), &again).ok());
   ExpectBitIdentical(again, served);
+}
+
+// The row-block checkpoint files of a job (rows_<first block>.rfb, complete ones only).
+std::vector<fs::path> RowFiles(const std::string& job_dir) {
+  std::vector<fs::path> files;
+  for (const auto& f : fs::directory_iterator(job_dir)) {
+    const std::string name = f.path().filename().string();
+    if (name.rfind("rows_", 0) == 0 && f.path().extension() == ".rfb") files.push_back(f.path());
+  }
+  return files;
+}
+
+// The rows done reported by the first row-progress event of `events` (0 if none).
+int64_t FirstRowsDone(const std::vector<v1::JobEvent>& events) {
+  for (const v1::JobEvent& e : events) {
+    if (e.phase() == v1::PHASE_ROWS && e.progress().rows_done() > 0)
+      return e.progress().rows_done();
+  }
+  return 0;
+}
+
+TEST_F(ServiceTest, KillNineBetweenGroupedRowCheckpointsResumesFromThemBitIdentical) {
+  // 75 blocks of 16 rows, each held 50 ms after it is built on 2 threads: the rows take about
+  // 2 s and are checkpointed every 0.5 s, several blocks per file.
+  StartServer({"--checkpoint-seconds", "0.5", "--testing-block-delay-ms", "50"});
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  const std::string job_dir = data_dir_ + "/jobs/" + job.job_id();
+  Watch(job.job_id(), [](const v1::JobEvent& e) { return e.phase() == v1::PHASE_ROWS; });
+  while (RowFiles(job_dir).empty()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  server_->Kill();
+  size_t stored = 0;
+  for (const fs::path& file : RowFiles(job_dir)) {
+    absl::StatusOr<std::string> bytes = ReadBlobFile(file.string());
+    ASSERT_TRUE(bytes.ok()) << bytes.status();
+    absl::StatusOr<std::vector<StoredRowBlock>> group = DecodeRowBlockGroup(*bytes);
+    ASSERT_TRUE(group.ok()) << group.status();
+    stored += group->size();
+  }
+  EXPECT_GT(stored, RowFiles(job_dir).size()) << "a checkpoint stores several blocks in a file";
+  EXPECT_LT(stored, 75u) << "killed mid rows";
+
+  StartServer();
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  EXPECT_GE(FirstRowsDone(events), static_cast<int64_t>(16 * stored))
+      << "the restarted job reuses the checkpointed blocks";
+  std::vector<double> served;
+  ASSERT_TRUE(Result(job.job_id(), &served).ok());
+  ExpectBitIdentical(served, InProcess(options));
+}
+
+TEST_F(ServiceTest, KillNineBeforeTheFirstCheckpointRebuildsAndEndsBitIdentical) {
+  // A checkpoint interval longer than the job: nothing is stored when the kill lands, the
+  // restarted server builds every row again and ends with the same result.
+  StartServer({"--checkpoint-seconds", "3600", "--testing-block-delay-ms", "20"});
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "gauss_seidel");
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  const std::string job_dir = data_dir_ + "/jobs/" + job.job_id();
+  Watch(job.job_id(), [](const v1::JobEvent& e) { return e.progress().rows_done() >= 320; });
+  server_->Kill();
+  EXPECT_TRUE(RowFiles(job_dir).empty()) << "no checkpoint before the interval has passed";
+
+  StartServer();
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  EXPECT_LE(FirstRowsDone(events), 16 * 2) << "nothing was reused";
+  std::vector<double> served;
+  ASSERT_TRUE(Result(job.job_id(), &served).ok());
+  ExpectBitIdentical(served, InProcess(options));
 }
 
 // Starts a job, kills the server (kill -9) once the solve has reported iteration 5 (the
