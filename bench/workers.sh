@@ -8,7 +8,7 @@ build=${1:-build/workers}
 cores=${2:-2}
 patches=${3:-6000}
 radfluxd=$build/server/radfluxd
-cli=$build/tests/integration/radflux_service_cli
+cli=$build/client/radflux
 scene=$(dirname "$0")/../scenes/cornell_box.obj
 work=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT

@@ -1,30 +1,41 @@
 // radflux: the command-line client. `solve` and `viewfactors` run in-process; the
-// service verbs (submit, watch, result, cancel, list) talk to radfluxd.
-#include <CLI/CLI.hpp>
+// service verbs (submit, watch, result, cancel, list) talk to radfluxd and run in
+// radflux-service, which this binary becomes for them (client/service_dispatch.h).
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "client/service_dispatch.h"
 #include "client/solve_command.h"
 #include "client/viewfactors_command.h"
-#ifdef RADFLUX_WITH_SERVICE
-#include "client/service_commands.h"
-#endif
 
 int main(int argc, char** argv) {
+#ifdef RADFLUX_WITH_SERVICE
+  if (radflux::cli::IsServiceVerb(radflux::cli::FindVerb(argc, argv))) {
+    std::fprintf(stderr, "radflux: %s\n", radflux::cli::ExecServiceBinary(argv).c_str());
+    return 2;
+  }
+#endif
   spdlog::set_level(spdlog::level::warn);
   CLI::App app{"radflux: radiosity solver (in-process, or client of radfluxd)", "radflux"};
   app.require_subcommand(1);
+#ifdef RADFLUX_WITH_SERVICE
+  app.footer(
+      "Service verbs (client of radfluxd; `radflux VERB --help` for each):\n"
+      "  submit    upload a scene and submit a job\n"
+      "  watch     follow a job's progress\n"
+      "  result    fetch a finished job's result: the outputs of `radflux solve`\n"
+      "  cancel    cancel a queued or running job\n"
+      "  list      list jobs, newest first");
+#endif
   int exit_code = 0;
   radflux::cli::AddSolveCommand(app, exit_code);
   radflux::cli::AddViewFactorsCommand(app, exit_code);
-#ifdef RADFLUX_WITH_SERVICE
-  radflux::cli::AddServiceCommands(app, exit_code);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);   // --help
     std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
     return 2;
   }

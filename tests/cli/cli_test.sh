@@ -56,5 +56,16 @@ expect_error "spill dir is a file" "cannot create a spill file in" solve "$corne
 "$radflux" solve --help | grep -q -- "--hemicube-res" || fail "--help lists options"
 "$radflux" solve --help | grep -q -- "--memory-limit" || fail "--help lists --memory-limit"
 
-echo "$((24 - failures)) passed, $failures failed"
+checks=24
+# The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
+# command line reaches them, connection flags before or after the verb.
+if [ -x "$(dirname "$radflux")/radflux-service" ]; then
+  checks=$((checks + 4))
+  expect_error "server down" "cannot reach radfluxd at 127.0.0.1:1" --server 127.0.0.1:1 list
+  expect_error "server down, flag after verb" "cannot reach radfluxd" list --server=127.0.0.1:1
+  "$radflux" submit --help | grep -q -- "--request-id" || fail "submit --help lists --request-id"
+  "$radflux" --help | grep -q "submit" || fail "--help lists the service verbs"
+fi
+
+echo "$((checks - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -9,23 +9,23 @@
 #  - `watch --snapshots DIR` leaves at least one PNG in DIR, and every PNG decodes (chunk
 #    CRCs, zlib stream, size of the raw scanlines = height * (1 + 3 * width)).
 set -euo pipefail
-RADFLUXD=$1 SOLVE_CLI=$2 SERVICE_CLI=$3 SCENE=$4
+RADFLUXD=$1 RADFLUX=$2 SCENE=$3  # radflux runs solve itself and the service verbs via radflux-service
 source "$(dirname "$0")/radfluxd_fixture.sh"
 start_radfluxd "$RADFLUXD" /tmp/radflux_result_XXXXXX
 
 OPTS=(--patches 500 --rays 96 --seed 3 --solver southwell --tolerance 1e-5)
 CAMERA=(--size 96x72 --camera-pos 278,273,-800 --camera-look-at 278,273,0 --fov-deg 40)
-"$SERVICE_CLI" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" >"$DIR/submit.out" 2>/dev/null
+"$RADFLUX" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" >"$DIR/submit.out" 2>/dev/null
 JOB=$(tail -n 1 "$DIR/submit.out")
 # Watch from the start with snapshots; then the outputs of the finished job.
-"$SERVICE_CLI" watch "$JOB" --server "$ADDR" --snapshots "$DIR/snaps" "${CAMERA[@]}" 2>"$DIR/watch.err"
-"$SERVICE_CLI" result "$JOB" --server "$ADDR" --render "$DIR/r.png" --out "$DIR/r.ply" \
+"$RADFLUX" watch "$JOB" --server "$ADDR" --snapshots "$DIR/snaps" "${CAMERA[@]}" 2>"$DIR/watch.err"
+"$RADFLUX" result "$JOB" --server "$ADDR" --render "$DIR/r.png" --out "$DIR/r.ply" \
   --patch-values "$DIR/r.csv" --report "$DIR/r.json" "${CAMERA[@]}" >/dev/null
-"$SERVICE_CLI" result "$JOB" --server "$ADDR" --render "$DIR/r.pfm" --out "$DIR/r.glb" \
+"$RADFLUX" result "$JOB" --server "$ADDR" --render "$DIR/r.pfm" --out "$DIR/r.glb" \
   "${CAMERA[@]}" >/dev/null
-"$SOLVE_CLI" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.png" --out "$DIR/s.ply" \
+"$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.png" --out "$DIR/s.ply" \
   --patch-values "$DIR/s.csv" --report "$DIR/s.json" "${CAMERA[@]}"
-"$SOLVE_CLI" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}"
+"$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}"
 for f in png ply csv pfm glb; do
   cmp "$DIR/r.$f" "$DIR/s.$f" || { echo "result .$f differs from solve .$f"; exit 1; }
 done
