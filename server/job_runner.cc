@@ -6,6 +6,7 @@
 #include <optional>
 #include <thread>
 
+#include "server/progress_throttle.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
 #include "server/row_block_writer.h"
@@ -26,20 +27,24 @@ double SecondsSince(Clock::time_point start) {
 
 bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
 
-// Publishes a progress event of the running job.
-void PublishProgress(const RunContext& c, v1::Phase phase, const v1::Progress& progress) {
+// Watchers get at most one progress event per this interval (the newest).
+constexpr std::chrono::milliseconds kProgressInterval{50};
+
+// Publishes a progress event of the running job (throttled).
+void PublishProgress(ProgressThrottle& throttle, v1::Phase phase, const v1::Progress& progress) {
   v1::JobEvent event;
   event.set_state(v1::JOB_STATE_RUNNING);
   event.set_phase(phase);
   *event.mutable_progress() = progress;
-  c.hub->Publish(std::move(event));
+  throttle.Publish(std::move(event));
 }
 
 // All row blocks of the job: stored ones are read back, missing ones built (in parallel)
 // and handed to `writer` as each completes.
 absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
                                                  const FormFactorOptions& options,
-                                                 const RunContext& c, RowBlockWriter& writer) {
+                                                 const RunContext& c, RowBlockWriter& writer,
+                                                 ProgressThrottle& throttle) {
   const auto start = Clock::now();
   const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
@@ -80,7 +85,7 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
     const double seconds = SecondsSince(start);
     if (seconds > 0) progress.set_rays_per_second(static_cast<double>(rays) / seconds);
     progress.set_eta_seconds(seconds / static_cast<double>(done) * static_cast<double>(n - done));
-    PublishProgress(c, v1::PHASE_ROWS, progress);
+    PublishProgress(throttle, v1::PHASE_ROWS, progress);
   };
   // The missing blocks are shared with the worker nodes (if any) through the row farm;
   // the server's own threads take blocks from it too, so a job finishes without workers.
@@ -145,7 +150,7 @@ std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMetho
 // progress and snapshots every iteration, checkpoints every context.checkpoint_seconds.
 absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
                                         const CsrMatrix& rows, SolverOptions so,
-                                        const RunContext& c) {
+                                        const RunContext& c, ProgressThrottle& throttle) {
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   so.threads = c.threads;
   so.cancel = c.stop;
@@ -169,7 +174,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
     progress.set_iteration(offset + sp.iteration);
     progress.set_residual(sp.residual);
     progress.set_unshot_fraction(sp.unshot_fraction);
-    PublishProgress(c, v1::PHASE_SOLVE, progress);
+    PublishProgress(throttle, v1::PHASE_SOLVE, progress);
     if (c.solve_delay_ms > 0) {
       std::this_thread::sleep_for(std::chrono::milliseconds(c.solve_delay_ms));
     }
@@ -217,6 +222,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
 
+  ProgressThrottle throttle(*c.hub, kProgressInterval);  // flushed before each phase change
   c.on_phase(v1::PHASE_ROWS, n);
   // Stores row blocks behind the row builders, into the solve; on an early return
   // (shutdown, error) it stores what is queued so that it is kept for the resume.
@@ -228,13 +234,17 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
     const RunContext& c;
     ~FinishWriter() { writer.Finish(!(c.cancelled && c.cancelled->load())); }
   } finish_writer{writer, c};
-  absl::StatusOr<FormFactorResult> rows = BuildStoredRows(job, p, options->form_factors, c, writer);
+  absl::StatusOr<FormFactorResult> rows =
+      BuildStoredRows(job, p, options->form_factors, c, writer, throttle);
   if (!rows.ok()) return rows.status();
 
+  throttle.Flush();
   c.on_phase(v1::PHASE_SOLVE, n);
   const auto solve_start = Clock::now();
-  absl::StatusOr<SolveResult> solved = SolveStored(job, p, rows->matrix, options->solver, c);
+  absl::StatusOr<SolveResult> solved =
+      SolveStored(job, p, rows->matrix, options->solver, c, throttle);
   if (!solved.ok()) return solved.status();
+  throttle.Flush();  // the last iteration's progress goes before the job's final event
   writer.Finish(/*drain=*/false);  // solved: the row blocks are about to be deleted
   // The report of `radflux solve` (MakeJobReport), from the same pieces.
   JobResult result;

@@ -90,6 +90,44 @@ TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
   ExpectBitIdentical(served, InProcess(options));
 }
 
+// Progress events are throttled (at most one per 50 ms, the newest): the newest of each
+// phase is never lost, whatever was coalesced before it.
+TEST_F(ServiceTest, ThrottledProgressEndsEachPhaseWithItsNewestEvent) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  const v1::JobEvent* last_rows = nullptr;
+  const v1::JobEvent* last_solve = nullptr;
+  bool solving = false, finished = false;  // the SOLVE phase / the final event was seen
+  for (const v1::JobEvent& e : events) {
+    if (!e.has_progress()) {
+      solving = solving || e.phase() == v1::PHASE_SOLVE;
+      finished = finished || e.state() == v1::JOB_STATE_SUCCEEDED;
+      continue;
+    }
+    EXPECT_FALSE(finished) << "a progress event after the final event";
+    if (e.phase() == v1::PHASE_ROWS) {
+      EXPECT_FALSE(solving) << "a rows progress event after the SOLVE phase began";
+      last_rows = &e;
+    } else {
+      EXPECT_TRUE(solving) << "a solve progress event before the SOLVE phase began";
+      last_solve = &e;
+    }
+  }
+  ASSERT_NE(last_rows, nullptr);
+  EXPECT_EQ(last_rows->progress().rows_done(), last_rows->progress().rows_total());
+  EXPECT_GT(last_rows->progress().rows_total(), 1100);
+  std::string report;
+  std::vector<double> served;
+  ASSERT_TRUE(Result(job.job_id(), &served, &report).ok());
+  EXPECT_EQ(last_solve->progress().iteration(),
+            nlohmann::json::parse(report)["solve"]["iterations"].get<int>());
+}
+
 TEST_F(ServiceTest, CancelMidRowsEndsCancelledAndCleansFiles) {
   StartServer();
   const std::string sha = UploadCornell();
