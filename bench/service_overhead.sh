@@ -1,18 +1,24 @@
 #!/bin/bash
-# Service overhead (issue 4), on the Cornell box at ~8,500 patches, one radfluxd on loopback:
+# Service overhead (issue 4), on the Cornell box at ~8,500 patches, radfluxd on loopback:
 #  A. `radflux solve` in-process vs the service path `radflux submit --watch` + `radflux result`
-#     (upload, queue, rows stored block by block with fsync, checkpointed solve, result stored
-#     and streamed back): wall time, and the job's compute time (mesh+embree+rows+solve from
-#     each report). Median of 3 of each, interleaved.
-#  B. Snapshot streaming: the same job with 0 watchers vs 50 watchers asking a float32
-#     snapshot every iteration (`radflux watch --snapshot-every 1`, niced so that the clients'
-#     own decoding competes less with the server on this 2-core machine): the job's solve
-#     seconds and compute seconds from its report. Median of 3 of each, interleaved. A
-#     blocker job runs first so the watchers connect while the measured job is queued.
-# Usage: bench/service_overhead.sh [BUILD_DIR]   (default build/svc2; needs radflux, radfluxd)
+#     (upload, queue, rows checkpointed by time, checkpointed solve, result stored and
+#     streamed back): wall time, and the job's compute time (mesh+embree+rows+solve from
+#     each report). RUNS of each, interleaved; medians and the median of paired ratios.
+#  B. Snapshot streaming, unpinned: the same job with 0 watchers vs 50 watchers asking a
+#     float32 snapshot every iteration (`radflux watch --snapshot-every 1`, niced), all on
+#     the same cores as the server: the job's compute seconds from its report.
+#  C. Snapshot streaming as in production, where watchers are other machines: a second
+#     radfluxd pinned to CPU 0 (`taskset -c 0`, --threads 1), the 50 watcher processes
+#     pinned to CPU 1; the job's compute seconds with 0 vs 50 watchers, and `radflux solve
+#     --threads 1` on CPU 0 for reference.
+#  In B and C a blocker job runs first so the watchers connect while the measured job is
+#  queued: their start-up does not land on it.
+# Usage: bash bench/service_overhead.sh [BUILD_DIR] [RUNS]   (default build/release, 5;
+# needs radflux and radfluxd; set OMP_WAIT_POLICY=passive on a shared machine)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-BUILD=${1:-$ROOT/build/svc2}
+BUILD=${1:-$ROOT/build/release}
+RUNS=${2:-5}
 RADFLUX=$BUILD/client/radflux
 RADFLUXD=$BUILD/server/radfluxd
 SERVICE=$RADFLUX
@@ -21,105 +27,134 @@ SCENE=$ROOT/scenes/cornell_box.obj
 JOB_OPTS=(--patches 8500)
 THREADS=2
 DIR=$(mktemp -d /tmp/radflux_bench_XXXXXX)
-trap 'kill $PID 2>/dev/null || true; wait $PID 2>/dev/null || true; rm -rf "$DIR"' EXIT
-mkfifo "$DIR/out"
-"$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data" --threads $THREADS --jobs 1 \
-  >"$DIR/out" 2>"$DIR/server.log" &
-PID=$!
-read -r LINE <"$DIR/out"
-ADDR=${LINE#radfluxd listening on }
+PIDS=()
+trap 'for p in "${PIDS[@]}"; do kill "$p" 2>/dev/null || true; wait "$p" 2>/dev/null || true; done; rm -rf "$DIR"' EXIT
+# start_server NAME THREADS [taskset prefix...]: a radfluxd on its own data dir; sets
+# ADDR_<NAME> and PID_<NAME>.
+start_server() {
+  local name=$1 threads=$2
+  shift 2
+  mkfifo "$DIR/out_$name"
+  "$@" "$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data_$name" --threads "$threads" \
+    --jobs 1 >"$DIR/out_$name" 2>"$DIR/server_$name.log" &
+  local pid=$!
+  PIDS+=("$pid")
+  local line
+  read -r line <"$DIR/out_$name"
+  printf -v "ADDR_$name" '%s' "${line#radfluxd listening on }"
+  printf -v "PID_$name" '%s' "$pid"
+}
+start_server main $THREADS
+start_server pinned 1 taskset -c 0
 now() { date +%s.%N; }
 TICKS=$(getconf CLK_TCK)
-server_cpu() { awk -v t="$TICKS" '{printf "%.3f", ($14 + $15) / t}' "/proc/$PID/stat"; }
+server_cpu() { awk -v t="$TICKS" '{printf "%.3f", ($14 + $15) / t}' "/proc/$1/stat"; }
 LOAD_START=$(cut -d' ' -f1-3 /proc/loadavg)
 compute() {  # mesh+embree+rows+solve seconds and solve seconds of a report
   python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['seconds']; \
 print(s['mesh']+s['embree']+s['rows']+s['solve'], s['solve'])" "$1"
 }
 
-echo "# part A: solve vs service (median of 3)" >&2
-for i in 1 2 3; do
+# watched_job PART RUN WATCHERS ADDR PID [taskset prefix for the watchers...]: one measured
+# job with that many snapshot watchers; appends a line to $DIR/PART.txt.
+watched_job() {
+  local part=$1 i=$2 watchers=$3 addr=$4 pid=$5
+  shift 5
+  local c0 c1 job got started connected pids=()
+  c0=$(server_cpu "$pid")
+  "$SERVICE" submit "$SCENE" --patches 4000 --server "$addr" >/dev/null 2>&1
+  job=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --server "$addr" 2>/dev/null | tail -n 1)
+  rm -f "$DIR"/w_*.err
+  for ((w = 0; w < watchers; ++w)); do
+    "$@" nice -n 10 "$SERVICE" watch "$job" --server "$addr" --snapshot-every 1 \
+      2>"$DIR/w_$w.err" >/dev/null &
+    pids+=($!)
+  done
+  connected=0
+  while ((connected < watchers)); do
+    connected=$( (grep -l "JOB_STATE_QUEUED" "$DIR"/w_*.err 2>/dev/null || true) | wc -l)
+    sleep 0.05
+  done
+  started=$("$SERVICE" list --server "$addr" | grep -c "^$job .*JOB_STATE_QUEUED" || true)
+  "$SERVICE" watch "$job" --server "$addr" 2>/dev/null
+  for p in "${pids[@]}"; do wait "$p" || { echo "a watcher failed:" >&2; cat "$DIR"/w_*.err | grep radflux: | sort | uniq -c >&2; exit 1; }; done
+  c1=$(server_cpu "$pid")
+  "$SERVICE" result "$job" --server "$addr" --report "$DIR/${part}_${i}_$watchers.json" >/dev/null
+  got=0 events=0
+  if ((watchers > 0)); then
+    got=$(cat "$DIR"/w_*.err | awk '/snapshots received/ {s += $1} END {print s / '"$watchers"'}')
+    events=$(cat "$DIR"/w_*.err | grep -c '^\[' || true)
+    events=$(echo "$events / $watchers" | bc -l)
+  fi
+  echo "$part $i watchers $watchers compute_solve $(compute "$DIR/${part}_${i}_$watchers.json")" \
+       "snapshots_per_watcher $got still_queued_when_all_connected $started" \
+       "server_cpu_blocker_and_job $(echo "$c1 - $c0" | bc) events_per_watcher $events" \
+    | tee -a "$DIR/$part.txt" >&2
+}
+
+for i in $(seq "$RUNS"); do
+  echo "# run $i of $RUNS, load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+  # A: solve vs service, 2 threads each.
   t0=$(now)
   TIMEFORMAT='%U %S'
   solve_cpu=$( { time "$RADFLUX" solve "$SCENE" "${JOB_OPTS[@]}" --threads $THREADS -q \
                    --report "$DIR/solve_$i.json" ; } 2>&1 | awk '{print $1 + $2}')
   t1=$(now)
-  c0=$(server_cpu)
-  JOB=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --watch --server "$ADDR" 2>/dev/null | tail -n 1)
-  "$SERVICE" result "$JOB" --server "$ADDR" --report "$DIR/svc_$i.json" >/dev/null
+  c0=$(server_cpu "$PID_main")
+  JOB=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --watch --server "$ADDR_main" 2>/dev/null | tail -n 1)
+  "$SERVICE" result "$JOB" --server "$ADDR_main" --report "$DIR/svc_$i.json" >/dev/null
   t2=$(now)
-  c1=$(server_cpu)
+  c1=$(server_cpu "$PID_main")
   echo "A $i solve_wall $(echo "$t1 - $t0" | bc) service_wall $(echo "$t2 - $t1" | bc)" \
        "solve_compute $(compute "$DIR/solve_$i.json") service_compute $(compute "$DIR/svc_$i.json")" \
        "solve_cpu $solve_cpu server_cpu $(echo "$c1 - $c0" | bc)" \
-    | tee -a "$DIR/a.txt" >&2
-done
-
-echo "# part B: 0 vs 50 snapshot watchers (median of 3)" >&2
-for i in 1 2 3; do
-  for watchers in 0 50; do
-    # A blocker job runs first (--jobs 1) so that the 50 watcher processes start and
-    # connect while the measured job is still queued: their start-up does not land on it.
-    c0=$(server_cpu)
-    "$SERVICE" submit "$SCENE" --patches 4000 --server "$ADDR" >/dev/null 2>&1
-    JOB=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --server "$ADDR" 2>/dev/null | tail -n 1)
-    pids=()
-    for ((w = 0; w < watchers; ++w)); do
-      nice -n 10 "$SERVICE" watch "$JOB" --server "$ADDR" --snapshot-every 1 \
-        2>"$DIR/w_${i}_$w.err" >/dev/null &
-      pids+=($!)
-    done
-    connected=0
-    while ((connected < watchers)); do
-      connected=$( (grep -l "JOB_STATE_QUEUED" "$DIR"/w_"${i}"_*.err 2>/dev/null || true) | wc -l)
-      sleep 0.05
-    done
-    started=$("$SERVICE" list --server "$ADDR" | grep -c "^$JOB .*JOB_STATE_QUEUED" || true)
-    "$SERVICE" watch "$JOB" --server "$ADDR" 2>/dev/null
-    for p in "${pids[@]}"; do wait "$p" || { echo "a watcher failed:" >&2; cat "$DIR"/w_"${i}"_*.err | grep radflux: | sort | uniq -c >&2; exit 1; }; done
-    c1=$(server_cpu)
-    "$SERVICE" result "$JOB" --server "$ADDR" --report "$DIR/b_${i}_$watchers.json" >/dev/null
-    got=0
-    if ((watchers > 0)); then
-      got=$(cat "$DIR"/w_"${i}"_*.err | awk '/snapshots received/ {s += $1} END {print s / '"$watchers"'}')
-    fi
-    echo "B $i watchers $watchers compute_solve $(compute "$DIR/b_${i}_$watchers.json")" \
-         "snapshots_per_watcher $got still_queued_when_all_connected $started" \
-         "server_cpu_blocker_and_job $(echo "$c1 - $c0" | bc)" \
-      | tee -a "$DIR/b.txt" >&2
-  done
+    | tee -a "$DIR/A.txt" >&2
+  # B: 0 vs 50 watchers, unpinned.
+  watched_job B "$i" 0 "$ADDR_main" "$PID_main"
+  watched_job B "$i" 50 "$ADDR_main" "$PID_main"
+  # C: server on CPU 0 (1 thread), watchers on CPU 1; solve --threads 1 on CPU 0.
+  taskset -c 0 "$RADFLUX" solve "$SCENE" "${JOB_OPTS[@]}" --threads 1 -q \
+    --report "$DIR/C_solve_$i.json"
+  echo "Csolve $i compute_solve $(compute "$DIR/C_solve_$i.json")" | tee -a "$DIR/Csolve.txt" >&2
+  watched_job C "$i" 0 "$ADDR_pinned" "$PID_pinned" taskset -c 1
+  watched_job C "$i" 50 "$ADDR_pinned" "$PID_pinned" taskset -c 1
 done
 
 echo "load average (1/5/15 min) at start: $LOAD_START, at end: $(cut -d' ' -f1-3 /proc/loadavg)"
-python3 - "$DIR" <<'PY'
+python3 - "$DIR" "$RUNS" <<'PY'
 import statistics as st, sys
-d = sys.argv[1]
-a = [l.split() for l in open(f"{d}/a.txt")]
+d, runs = sys.argv[1], sys.argv[2]
 med = lambda xs: st.median(float(x) for x in xs)
+pct = lambda a, b: f"{100 * (b / a - 1):+.1f}%"
+a = [l.split() for l in open(f"{d}/A.txt")]
 sw, vw = med(r[3] for r in a), med(r[5] for r in a)
 sc, vc = med(r[7] for r in a), med(r[10] for r in a)
-print("| measure (median of 3) | radflux solve | service | overhead |")
+print(f"| A: measure (median of {runs}) | radflux solve | service | overhead |")
 print("|---|---|---|---|")
-print(f"| wall time, s | {sw:.3f} | {vw:.3f} | {100 * (vw / sw - 1):+.1f}% |")
-print(f"| job compute (mesh+embree+rows+solve), s | {sc:.3f} | {vc:.3f} | {100 * (vc / sc - 1):+.1f}% |")
+print(f"| wall time, s | {sw:.3f} | {vw:.3f} | {pct(sw, vw)} |")
+print(f"| job compute (mesh+embree+rows+solve), s | {sc:.3f} | {vc:.3f} | {pct(sc, vc)} |")
 pc, vpc = med(r[13] for r in a), med(r[15] for r in a)
-print(f"| CPU s (solve process / server process) | {pc:.3f} | {vpc:.3f} | {100 * (vpc / pc - 1):+.1f}% |")
-ratio = st.median(float(r[5]) / float(r[3]) for r in a)
-print(f"| median of paired wall-time ratios | | | {100 * (ratio - 1):+.1f}% |")
-b = [l.split() for l in open(f"{d}/b.txt")]
-zero = [r for r in b if r[3] == "0"]
-fifty = [r for r in b if r[3] == "50"]
-c0, c50 = med(r[5] for r in zero), med(r[5] for r in fifty)
-s0, s50 = med(r[6] for r in zero), med(r[6] for r in fifty)
-snaps = med(r[8] for r in fifty)
-print()
-print("| measure (median of 3) | 0 watchers | 50 watchers | cost |")
-print("|---|---|---|---|")
-print(f"| job compute (mesh+embree+rows+solve), s | {c0:.3f} | {c50:.3f} | {100 * (c50 / c0 - 1):+.1f}% |")
-print(f"| solve phase, s | {s0:.3f} | {s50:.3f} | {100 * (s50 / s0 - 1):+.1f}% |")
-print(f"| snapshots received per watcher | - | {snaps:.1f} | |")
-u0, u50 = med(r[12] for r in zero), med(r[12] for r in fifty)
-print(f"| server CPU s, blocker + job | {u0:.3f} | {u50:.3f} | {u50 - u0:+.3f} s |")
-ratio = st.median(float(f[5]) / float(z[5]) for z, f in zip(zero, fifty))
-print(f"| median of paired job-compute ratios | | | {100 * (ratio - 1):+.1f}% |")
+print(f"| CPU s (solve process / server process) | {pc:.3f} | {vpc:.3f} | {pct(pc, vpc)} |")
+print(f"| median of paired wall-time ratios | | | {pct(1, st.median(float(r[5]) / float(r[3]) for r in a))} |")
+print(f"| median of paired job-compute ratios | | | {pct(1, st.median(float(r[10]) / float(r[7]) for r in a))} |")
+def watchers(part, title, solve_ref=None):
+    b = [l.split() for l in open(f"{d}/{part}.txt")]
+    zero = [r for r in b if r[3] == "0"]
+    fifty = [r for r in b if r[3] == "50"]
+    c0, c50 = med(r[5] for r in zero), med(r[5] for r in fifty)
+    print()
+    print(f"| {title} (median of {runs}) | 0 watchers | 50 watchers | cost |")
+    print("|---|---|---|---|")
+    if solve_ref:
+        print(f"| `radflux solve --threads 1` on CPU 0, compute s | {solve_ref:.3f} | | |")
+    print(f"| job compute (mesh+embree+rows+solve), s | {c0:.3f} | {c50:.3f} | {pct(c0, c50)} |")
+    print(f"| solve phase, s | {med(r[6] for r in zero):.3f} | {med(r[6] for r in fifty):.3f} | |")
+    print(f"| snapshots / events received per watcher | - | {med(r[8] for r in fifty):.1f} / {med(r[14] for r in fifty):.1f} | |")
+    u0, u50 = med(r[12] for r in zero), med(r[12] for r in fifty)
+    print(f"| server CPU s, blocker + job | {u0:.3f} | {u50:.3f} | {u50 - u0:+.3f} s |")
+    ratio = st.median(float(f[5]) / float(z[5]) for z, f in zip(zero, fifty))
+    print(f"| median of paired job-compute ratios | | | {pct(1, ratio)} |")
+watchers("B", "B: unpinned, watchers on the server's cores")
+cs = med(l.split()[3] for l in open(f"{d}/Csolve.txt"))
+watchers("C", "C: server on CPU 0 (1 thread), watchers on CPU 1", cs)
 PY

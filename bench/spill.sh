@@ -6,6 +6,7 @@
 # Needs root for the cgroup (v2 at /sys/fs/cgroup, else v1 under the caller's memory cgroup).
 #
 #   OMP_WAIT_POLICY=passive bench/spill.sh OUT_DIR [PATCHES] [CAP] [LIMIT] [BIN]
+# RUNS="spill" runs only some of the three (the comparison then uses OUT_DIR/memory.csv).
 set -uo pipefail
 out=$1
 patches=${2:-1000000}
@@ -41,9 +42,10 @@ run() {
   rm -f "$out/$name.failed"
   [ "$code" -eq 0 ] || touch "$out/$name.failed"
 }
-run memory free
-run memory_capped cg
-run spill cg --memory-limit "$limit"
+runs=${RUNS:-memory memory_capped spill}
+[[ " $runs " == *" memory "* ]] && run memory free
+[[ " $runs " == *" memory_capped "* ]] && run memory_capped cg
+[[ " $runs " == *" spill "* ]] && run spill cg --memory-limit "$limit"
 rmdir "$cg"
 
 python3 - "$out" <<'PY'

@@ -142,21 +142,39 @@ absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      RowStore& store,
                                                      const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  // Blocks finish in any order; the ones ahead of the next row wait here.
-  std::mutex mutex;
+  // Blocks finish in any order and wait in `pending` until they are next in row order. One
+  // thread at a time appends them to the store (which may write to disk); the others leave
+  // their block and go on building. A block left behind by a drainer that was just
+  // finishing goes with the next delivery, or with the last drain below.
+  std::mutex pending_mutex, drain_mutex;
   std::map<uint32_t, RowBlock> pending;
   uint32_t next = 0;
+  const auto drain = [&]() -> absl::Status {
+    std::unique_lock drainer(drain_mutex, std::try_to_lock);
+    if (!drainer.owns_lock()) return absl::OkStatus();
+    for (;;) {
+      RowBlock block;
+      {
+        std::lock_guard lock(pending_mutex);
+        const auto it = pending.find(next);
+        if (it == pending.end()) return absl::OkStatus();
+        block = std::move(it->second);
+        pending.erase(it);
+        ++next;
+      }
+      if (absl::Status s = store.Append(std::move(block)); !s.ok()) return s;
+    }
+  };
   absl::StatusOr<RowBlockStats> stats =
       BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
-        std::lock_guard lock(mutex);
-        pending.emplace(b, std::move(block));
-        for (auto it = pending.begin(); it != pending.end() && it->first == next;
-             it = pending.erase(it), ++next) {
-          if (absl::Status s = store.Append(std::move(it->second)); !s.ok()) return s;
+        {
+          std::lock_guard lock(pending_mutex);
+          pending.emplace(b, std::move(block));
         }
-        return absl::OkStatus();
+        return drain();
       });
   if (!stats.ok()) return stats.status();
+  if (absl::Status s = drain(); !s.ok()) return s;
   if (absl::Status s = store.Finish(); !s.ok()) return s;
   return RowBuildSummary{*stats, SecondsSince(start)};
 }

@@ -85,14 +85,17 @@ Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const s
 }
 
 Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r) {
+  // Serial, so a sweep pays for no extra parallel region (O(n), small next to the rows),
+  // and summed exactly as ReduceBlocks(kSolveBlock) would: per block, then blocks in order.
   const std::vector<double>& area = *bands.area;
-  const Rgb norm2 =
-      ReduceBlocks(bands.n, kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
-        Rgb s{};
-        for (int64_t i = begin; i < end; ++i)
-          for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * r[i][k] * r[i][k];
-        return s;
-      });
+  Rgb norm2{};
+  for (int64_t begin = 0; begin < bands.n; begin += kSolveBlock) {
+    const int64_t end = std::min<int64_t>(bands.n, begin + kSolveBlock);
+    Rgb s{};
+    for (int64_t i = begin; i < end; ++i)
+      for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * r[i][k] * r[i][k];
+    for (int k = 0; k < kBands; ++k) norm2[k] += s[k];
+  }
   Rgb relative{};
   for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
   return relative;

@@ -75,7 +75,8 @@ absl::Status ForEachRowRange(const BandSystem& bands, const RowsFn& fn);
 Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const std::vector<Rgb>& x,
               uint32_t col_begin, uint32_t col_end);
 
-// ||r||_A / ||E||_A per lane, summed per fixed block of kSolveBlock rows in block order.
+// ||r||_A / ||E||_A per lane, summed per fixed block of kSolveBlock rows in block order
+// (the same numbers as a ReduceBlocks over r), on the calling thread.
 Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r);
 
 // r = E + rho F B - B (if `r` is non-null, stored there) and ||r||_A / ||E||_A per lane;
