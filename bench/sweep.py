@@ -6,9 +6,13 @@ error against a reference (bench/compare_patch_values). Writes CSV and a log-log
 plot (gnuplot): one line per method.
 
   bench/sweep.py --scene scenes/cornell_box.obj --patches 2000 --out bench/results/cornell_2000
+  bench/sweep.py --patches 8500 --knobs "monte_carlo=16,64,256,1024;hemicube=4,8,16,32;analytic=1" \
+      --repeat 1 --reference-samples 8 --out bench/results/cornell_8500
 
 The reference (analytic rows with many samples + direct for n <= 4000, else cg to
-1e-9) is computed once per scene and patch count and kept beside the CSV.
+1e-9) is computed once per scene and patch count and kept beside the CSV. Where analytic
+rows are impractical (O(n^2): ~1 h at 30k patches) --reference-rays K makes it
+monte_carlo rows with K rays and --reference-samples points for the emitter columns.
 """
 import argparse, csv, json, os, statistics, subprocess, sys, tempfile, time
 
@@ -78,6 +82,11 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--reference-samples", type=int, default=32)
     p.add_argument("--methods", default="monte_carlo,hemicube,analytic")
+    p.add_argument("--knobs", default="",
+                   help="override knob lists, e.g. 'monte_carlo=16,64;hemicube=4,8' (methods listed run)")
+    p.add_argument("--reference-rays", type=int, default=0,
+                   help="monte_carlo reference with this many rays instead of analytic rows")
+    p.add_argument("--solver-rays", type=int, default=256, help="monte_carlo k of the solver sweep")
     p.add_argument("--plot-only", action="store_true", help="redraw the plots from the CSV")
     p.add_argument("--bin", default=BIN, help="radflux binary (copy it when rebuilding meanwhile)")
     p.add_argument("--compare", default=COMPARE, help="compare_patch_values binary")
@@ -90,20 +99,27 @@ def main():
     REFERENCE = a.out + "_reference.csv"
     if not os.path.exists(REFERENCE):
         solver = ["--solver", "direct"] if a.patches <= 4000 else ["--solver", "cg", "--tolerance", "1e-9", "--max-iterations", "10000"]
-        subprocess.run([BIN, "solve", *base, "--form-factors", "analytic", "--samples",
-                        str(a.reference_samples), *solver, "-q", "--patch-values", REFERENCE], check=True)
+        rows = (["--form-factors", "monte_carlo", "--rays", str(a.reference_rays)] if a.reference_rays
+                else ["--form-factors", "analytic"])
+        subprocess.run([BIN, "solve", *base, *rows, "--samples", str(a.reference_samples), *solver,
+                        "-q", "--patch-values", REFERENCE], check=True)
+    sweeps = {m: SWEEPS[m] for m in a.methods.split(",")}
+    if a.knobs:
+        sweeps = {}
+        for part in a.knobs.split(";"):
+            method, values = part.split("=")
+            sweeps[method] = (SWEEPS[method][0], [int(v) for v in values.split(",")])
     rows = []
-    for method in a.methods.split(","):
-        flag, knobs = SWEEPS[method]
+    for method, (flag, knobs) in sweeps.items():
         for knob in knobs:
             wall, report, errors = run([*base, "--form-factors", method, flag, str(knob)], a.repeat)
-            rows.append(row(f"{method} {knob}", method, knob, "cg", wall, report, errors))
+            rows.append(row(f"{method} {knob}", method, knob, "auto", wall, report, errors))
             print(rows[-1], flush=True)
     for solver in SOLVERS:
         for tol in ["1e-2", "1e-3", "1e-4", "1e-6"]:
-            wall, report, errors = run([*base, "--solver", solver, "--tolerance", tol,
-                                        "--max-iterations", "100000"], a.repeat)
-            rows.append(row(f"{solver} {tol}", "monte_carlo", 256, solver, wall, report, errors))
+            wall, report, errors = run([*base, "--rays", str(a.solver_rays), "--solver", solver,
+                                        "--tolerance", tol, "--max-iterations", "100000"], a.repeat)
+            rows.append(row(f"{solver} {tol}", "monte_carlo", a.solver_rays, solver, wall, report, errors))
             rows[-1]["knob"] = tol
             print(rows[-1], flush=True)
     with open(a.out + ".csv", "w", newline="") as f:

@@ -3,9 +3,9 @@
 namespace radflux::cli {
 
 void AddJobFlags(CLI::App& app, JobFlags& f) {
-  auto* patches = app.add_option("--patches", f.patches,
-                                 "target patch count for the scene (default " +
-                                     std::to_string(kDefaultPatches) + ")");
+  auto* patches = app.add_option(
+      "--patches", f.patches,
+      "target patch count for the scene (default " + std::to_string(kDefaultPatches) + ")");
   app.add_option("--max-edge", f.max_edge, "or: longest patch edge, scene units")
       ->excludes(patches);
   app.add_option("--form-factors", f.form_factors, "form-factor method")
@@ -13,14 +13,16 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
       ->capture_default_str();
   app.add_option("--rays", f.rays, "monte_carlo: rays per patch k (default 64)");
   app.add_option("--hemicube-res", f.hemicube_res, "hemicube: top-face resolution r (default 32)");
-  app.add_option("--samples", f.samples,
-                 "analytic: points per patch s; monte_carlo: points for emitter columns (default 4)");
+  app.add_option(
+      "--samples", f.samples,
+      "analytic: points per patch s; monte_carlo: points for emitter columns (default 4)");
   app.add_option("--cutoff", f.cutoff, "drop form factors below this (default 1e-6)");
   app.add_option("--solver", f.solver, "linear solver")
       ->check(CLI::IsMember(
           {"auto", "jacobi", "gauss_seidel", "southwell", "cg", "direct", "hierarchical"}))
       ->capture_default_str();
-  app.add_option("--tolerance", f.tolerance, "stop at this relative residual")->capture_default_str();
+  app.add_option("--tolerance", f.tolerance, "stop at this relative residual")
+      ->capture_default_str();
   app.add_option("--max-iterations", f.max_iterations, "stop after this many sweeps")
       ->capture_default_str();
   app.add_option("--threads", f.threads, "threads (0 = all cores)")->capture_default_str();

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -17,13 +16,13 @@ struct JobFlags {
   std::string form_factors = "monte_carlo";
   int rays = 0, hemicube_res = 0, samples = 0;  // 0: the method's default
   double cutoff = -1;                           // < 0: default
-  std::string solver = "auto";  // gauss_seidel, or cg when some rho > 0.9
+  std::string solver = "auto";                  // gauss_seidel, or cg when some rho > 0.9
   double tolerance = 1e-4;
   int max_iterations = 1000;
   int threads = 0;
   uint64_t seed = 1;
-  double link_epsilon = 1e-4;     // --solver hierarchical: BFA refinement threshold
-  int adaptive_passes = 0;        // adaptive meshing passes after the first solve
+  double link_epsilon = 1e-4;  // --solver hierarchical: BFA refinement threshold
+  int adaptive_passes = 0;     // adaptive meshing passes after the first solve
   double adaptive_threshold = 0.1;
 };
 

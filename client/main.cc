@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "client/run_app.h"
 #include "client/service_dispatch.h"
 #include "client/solve_command.h"
 #include "client/viewfactors_command.h"
@@ -32,12 +33,5 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   radflux::cli::AddSolveCommand(app, exit_code);
   radflux::cli::AddViewFactorsCommand(app, exit_code);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);   // --help
-    std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
-    return 2;
-  }
-  return exit_code;
+  return radflux::cli::RunApp(app, argc, argv, exit_code);
 }

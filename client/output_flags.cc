@@ -42,7 +42,9 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
   app.add_option("--render", f.render, "picture: FILE.png (tone mapped) or FILE.pfm (linear)");
   app.add_option("--report", f.report, "job report: FILE.json");
   app.add_option("--patch-values", f.patch_values, "per-patch radiosity: FILE.csv");
-  app.add_option("--camera-pos", f.camera_pos, "camera position X,Y,Z")->delimiter(',')->expected(3);
+  app.add_option("--camera-pos", f.camera_pos, "camera position X,Y,Z")
+      ->delimiter(',')
+      ->expected(3);
   app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
       ->delimiter(',')
       ->expected(3);

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,8 +23,8 @@ struct OutputFlags {
   std::vector<double> camera_pos, camera_look_at, camera_up;
   double fov_deg = 39.3077;
   std::string size = "512x512";
-  double exposure = 0;            // stops
-  bool linear_png = false;        // PNG without the sRGB curve
+  double exposure = 0;             // stops
+  bool linear_png = false;         // PNG without the sRGB curve
   double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
 };
 

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "client/run_app.h"
 #include "client/service_commands.h"
 
 int main(int argc, char** argv) {
@@ -14,12 +15,5 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   radflux::cli::AddServiceCommands(app, exit_code);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);   // --help
-    std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
-    return 2;
-  }
-  return exit_code;
+  return radflux::cli::RunApp(app, argc, argv, exit_code);
 }

@@ -87,6 +87,12 @@ class ServiceFixture : public ::testing::Test {
     request.set_job_id(job_id);
     request.set_snapshot_every(snapshot_every);
     request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT16);
+    return Watch(request, stop);
+  }
+
+  // Reads the WatchJob stream of `request` until `stop(event)` or its end; all events.
+  std::vector<v1::JobEvent> Watch(const v1::WatchJobRequest& request,
+                                  const std::function<bool(const v1::JobEvent&)>& stop) {
     auto context = Context();
     auto reader = stub_->WatchJob(context.get(), request);
     std::vector<v1::JobEvent> events;

@@ -337,19 +337,7 @@ class WatchAcrossRestartTest : public testing::ServiceFixture {
     request.set_job_id(job_id);
     request.set_after_sequence(after);
     request.set_snapshot_every(1);
-    auto context = Context();
-    auto reader = stub_->WatchJob(context.get(), request);
-    std::vector<v1::JobEvent> events;
-    v1::JobEvent event;
-    while (reader->Read(&event)) {
-      events.push_back(event);
-      if (stop && stop(event)) {
-        context->TryCancel();
-        break;
-      }
-    }
-    reader->Finish();
-    return events;
+    return Watch(request, stop);
   }
 };
 
