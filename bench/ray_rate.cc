@@ -6,8 +6,8 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -39,9 +39,11 @@ class RecordingCaster final : public RayCaster {
   explicit RecordingCaster(const RayCaster& inner) : inner_(inner) {}
   Hit Intersect(const Ray& ray) const override { return Record(ray, false), inner_.Intersect(ray); }
   bool Occluded(const Ray& ray) const override { return Record(ray, true), inner_.Occluded(ray); }
-  void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const override {
-    for (const Ray& r : rays) Record(r, false);
-    inner_.IntersectBatch(rays, hits);
+  void IntersectStream(std::span<StreamRay> rays) const override {
+    for (const StreamRay& r : rays) {
+      Record({{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.t_near, r.t_far}, false);
+    }
+    inner_.IntersectStream(rays);
   }
   std::vector<std::pair<Ray, bool>> recorded;  // (ray, occlusion query)
 
@@ -59,9 +61,18 @@ class BareLoop {
   BareLoop(RTCScene scene, const std::vector<std::pair<Ray, bool>>& rays) : scene_(scene) {
     for (const auto& [ray, occluded] : rays) {
       RTCRayHit rh{};
-      rh.ray = {float(ray.origin.x), float(ray.origin.y), float(ray.origin.z), float(ray.t_near),
-                float(ray.direction.x), float(ray.direction.y), float(ray.direction.z), 0.f,
-                std::isinf(ray.t_far) ? 1e30f : float(ray.t_far), 0xffffffffu, 0, 0};
+      rh.ray = {float(ray.origin.x),
+                float(ray.origin.y),
+                float(ray.origin.z),
+                float(ray.t_near),
+                float(ray.direction.x),
+                float(ray.direction.y),
+                float(ray.direction.z),
+                0.f,
+                std::isinf(ray.t_far) ? 1e30f : float(ray.t_far),
+                0xffffffffu,
+                0,
+                0};
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rays_.push_back(rh);
       occluded_.push_back(occluded);
@@ -102,8 +113,9 @@ int Run(int patches, const char* only, int knob) {
     FormFactorMethod method;
     int knob;
   };
-  for (const Case& c : {Case{FormFactorMethod::kMonteCarlo, 64},
-                        Case{FormFactorMethod::kHemicube, 8}, Case{FormFactorMethod::kAnalytic, 1}}) {
+  for (const Case& c :
+       {Case{FormFactorMethod::kMonteCarlo, 64}, Case{FormFactorMethod::kHemicube, 8},
+        Case{FormFactorMethod::kAnalytic, 1}}) {
     if (only && MethodName(c.method) != only) continue;
     FormFactorOptions f;
     f.method = c.method;
@@ -131,9 +143,10 @@ int Run(int patches, const char* only, int knob) {
       rates.back() *= rays;
       ratios.push_back(rates.back() / bare_rates.back());
     }
-    std::printf("%-12s knob %3d: %.3g rays/s, bare Embree %.3g rays/s: %.0f%% (median of 7 pairs)\n",
-                std::string(MethodName(c.method)).c_str(), k, Median(rates),
-                Median(bare_rates), 100 * Median(ratios));
+    std::printf(
+        "%-12s knob %3d: %.3g rays/s, bare Embree %.3g rays/s: %.0f%% (median of 7 pairs)\n",
+        std::string(MethodName(c.method)).c_str(), k, Median(rates), Median(bare_rates),
+        100 * Median(ratios));
   }
   return 0;
 }
@@ -144,5 +157,6 @@ int Run(int patches, const char* only, int knob) {
 // Usage: ray_rate [PATCHES [METHOD|all [KNOB]]]
 int main(int argc, char** argv) {
   const char* only = argc > 2 && std::string(argv[2]) != "all" ? argv[2] : nullptr;
-  return radflux::Run(argc > 1 ? std::atoi(argv[1]) : 10000, only, argc > 3 ? std::atoi(argv[3]) : 0);
+  return radflux::Run(argc > 1 ? std::atoi(argv[1]) : 10000, only,
+                      argc > 3 ? std::atoi(argv[3]) : 0);
 }

@@ -60,16 +60,16 @@ inline void SinCosQuarter(double a, double& s, double& c) {
                                    a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 + a2 / 479001600)))));
 }
 
+// Branch-free (selects, not jumps): the two wedges of the square are equally likely, so a
+// branch on them would be mispredicted on every other ray.
 inline Point2 SampleUniformDiskConcentric(Point2 u) {
   const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
-  if (ox == 0 && oy == 0) return {0, 0};
+  // |ox| > |oy|: theta = pi/4 * oy/ox; otherwise theta = pi/2 - pi/4 * ox/oy.
+  const bool wide = std::abs(ox) > std::abs(oy);
+  const double r = wide ? ox : oy, q = wide ? oy : ox;
   double s, c;
-  if (std::abs(ox) > std::abs(oy)) {  // theta = pi/4 * oy/ox
-    SinCosQuarter(std::numbers::pi / 4 * (oy / ox), s, c);
-    return {ox * c, ox * s};
-  }
-  SinCosQuarter(std::numbers::pi / 4 * (ox / oy), s, c);  // theta = pi/2 - pi/4 * ox/oy
-  return {oy * s, oy * c};
+  SinCosQuarter(r == 0 ? 0 : std::numbers::pi / 4 * (q / r), s, c);
+  return {wide ? r * c : r * s, wide ? r * s : r * c};
 }
 }  // namespace internal
 
@@ -87,14 +87,9 @@ Point2 InvertCosineHemisphereSample(const Vec3& w);
 // Uniform barycentric point (b0, b1) on a triangle; b2 = 1 - b0 - b1 (Heitz's
 // low-distortion mapping, which keeps stratification).
 inline std::pair<double, double> SampleUniformTriangle(Point2 u) {
-  double b0, b1;
-  if (u.x < u.y) {
-    b0 = u.x / 2;
-    b1 = u.y - b0;
-  } else {
-    b1 = u.y / 2;
-    b0 = u.x - b1;
-  }
+  const bool lower = u.x < u.y;  // selects, not a branch: either side is equally likely
+  const double b0 = lower ? u.x / 2 : u.x - u.y / 2;
+  const double b1 = lower ? u.y - u.x / 2 : u.y / 2;
   return {b0, b1};
 }
 Point2 InvertUniformTriangleSample(double b0, double b1);

@@ -65,19 +65,17 @@ class HemicubeBuilder final : public RowBuilder {
     const Vec3 s = edge * std::cos(turn) + Cross(patch.normal, edge) * std::sin(turn);
     const Frame frame{s, Cross(patch.normal, s), patch.normal};
     const Vec3 origin = patch.centroid + patch.normal * context_.ray_epsilon;
-    thread_local std::vector<Ray> ray_batch;  // per-thread scratch, reused row to row
-    thread_local std::vector<Hit> hit_batch;
-    ray_batch.resize(cells_.size());
-    hit_batch.resize(cells_.size());
+    thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
+    stream.resize(cells_.size());
     for (size_t c = 0; c < cells_.size(); ++c) {
-      ray_batch[c] = {origin, frame.ToWorld(cells_[c].direction)};
+      stream[c].SetOrigin(origin);
+      stream[c].SetDirection(frame.ToWorld(cells_[c].direction));
+      stream[c].ResetHit();
     }
-    context_.caster->IntersectBatch(ray_batch, hit_batch);
+    context_.caster->IntersectStream(stream);
     for (size_t c = 0; c < cells_.size(); ++c) {
-      const uint32_t j = hit_batch[c].patch;
-      if (j == kNoPatch || context_.emitter[j]) continue;
-      if (Dot(ray_batch[c].direction, mesh.patches[j].normal) >= 0) continue;
-      row.Add(j, cells_[c].delta_form_factor);
+      const uint32_t j = stream[c].FrontPatch();  // a back side absorbs the ray
+      if (j != kNoPatch && !context_.emitter[j]) row.Add(j, cells_[c].delta_form_factor);
     }
     if (emitters_.empty()) return cells_.size();
     // A hemicube is a point method: emitter columns from the centroid too (exact point form

@@ -42,25 +42,22 @@ class MonteCarloBuilder final : public RowBuilder {
     const Vec3 lift = patch.normal * context_.ray_epsilon;
     const double weight = 1.0 / static_cast<double>(positions_.size());
     const PatchPointSampler sample_point(mesh, i);
-    thread_local std::vector<Ray> ray_batch;  // per-thread scratch, reused row to row
-    thread_local std::vector<Hit> hit_batch;
-    ray_batch.resize(positions_.size());
-    hit_batch.resize(positions_.size());
+    thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
+    stream.resize(positions_.size());
     for (size_t r = 0; r < positions_.size(); ++r) {
-      ray_batch[r].origin = sample_point(CranleyPattersonShift(positions_[r], ps)) + lift;
-      ray_batch[r].direction =
-          frame.ToWorld(SampleCosineHemisphere(CranleyPattersonShift(directions_[r], ds)));
+      StreamRay& ray = stream[r];
+      ray.SetOrigin(sample_point(CranleyPattersonShift(positions_[r], ps)) + lift);
+      ray.SetDirection(
+          frame.ToWorld(SampleCosineHemisphere(CranleyPattersonShift(directions_[r], ds))));
+      ray.ResetHit();
     }
-    context_.caster->IntersectBatch(ray_batch, hit_batch);
-    for (size_t r = 0; r < ray_batch.size(); ++r) {
-      const uint32_t j = hit_batch[r].patch;
-      if (j == kNoPatch || context_.emitter[j]) continue;
-      if (Dot(ray_batch[r].direction, mesh.patches[j].normal) >= 0)
-        continue;  // back side: absorbed
-      row.Add(j, weight);
+    context_.caster->IntersectStream(stream);
+    for (const StreamRay& ray : stream) {
+      const uint32_t j = ray.FrontPatch();  // a back side absorbs the ray
+      if (j != kNoPatch && !context_.emitter[j]) row.Add(j, weight);
     }
-    if (emitters_.empty()) return ray_batch.size();
-    return ray_batch.size() +
+    if (emitters_.empty()) return stream.size();
+    return stream.size() +
            AddAnalyticColumns(context_, i, emitters_, options_.samples, options_.seed, row);
   }
 

@@ -5,10 +5,6 @@ namespace {
 double TriangleArea(const Vec3& a, const Vec3& b, const Vec3& c) {
   return Length(Cross(b - a, c - a)) / 2;
 }
-Vec3 TrianglePoint(const Vec3& a, const Vec3& b, const Vec3& c, Point2 u) {
-  const auto [b0, b1] = SampleUniformTriangle(u);
-  return a * b0 + b * b1 + c * (1 - b0 - b1);
-}
 }  // namespace
 
 PatchPointSampler::PatchPointSampler(const PatchMesh& mesh, uint32_t p) {
@@ -18,12 +14,6 @@ PatchPointSampler::PatchPointSampler(const PatchMesh& mesh, uint32_t p) {
   c_ = mesh.positions[patch.v[2]];
   d_ = mesh.positions[patch.v[3]];
   first_ = patch.IsTriangle() ? 1.0 : TriangleArea(a_, b_, c_) / patch.area;
-}
-
-Vec3 PatchPointSampler::operator()(Point2 u) const {
-  if (u.x < first_) return TrianglePoint(a_, b_, c_, {u.x / first_, u.y});
-  return TrianglePoint(a_, c_, d_,
-                       {std::min((u.x - first_) / (1 - first_), 0x1.fffffffffffffp-1), u.y});
 }
 
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch) {

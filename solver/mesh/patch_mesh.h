@@ -4,6 +4,7 @@
 // share vertices, so per-vertex values keep creases between faces sharp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -27,7 +28,7 @@ struct Patch {
 struct PatchMesh {
   std::vector<Vec3> positions;
   std::vector<Patch> patches;
-  std::vector<uint32_t> face_first_patch;  // patches of face f: [first[f], first[f+1])
+  std::vector<uint32_t> face_first_patch;   // patches of face f: [first[f], first[f+1])
   std::vector<uint32_t> face_first_vertex;  // vertices of face f: [first[f], first[f+1])
 
   size_t size() const { return patches.size(); }
@@ -35,17 +36,26 @@ struct PatchMesh {
 };
 
 // Uniform-by-area points on one patch, with its corners and split precomputed so that a
-// sample costs a few multiply-adds. Stratification of u is kept.
+// sample costs a few multiply-adds and no branch (inline: the builders call it per ray).
+// Stratification of u is kept.
 class PatchPointSampler {
  public:
   PatchPointSampler(const PatchMesh& mesh, uint32_t p);
-  Vec3 operator()(Point2 u) const;
+  Vec3 operator()(Point2 u) const {
+    // u.x < first_ picks triangle (a, b, c), else (a, c, d); u.x is rescaled to [0, 1).
+    const bool first = u.x < first_;
+    const Vec3& b = first ? b_ : c_;
+    const Vec3& c = first ? c_ : d_;
+    const double x = std::min((first ? u.x : u.x - first_) / (first ? first_ : 1 - first_),
+                              0x1.fffffffffffffp-1);
+    const auto [b0, b1] = SampleUniformTriangle({x, u.y});
+    return a_ * b0 + b * b1 + c * (1 - b0 - b1);
+  }
 
  private:
   Vec3 a_, b_, c_, d_;
   double first_;  // area fraction of triangle (a, b, c); 1 for a triangle patch
 };
-
 
 // Fills area, centroid and normal of `patch` from its vertices and face normal.
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch);

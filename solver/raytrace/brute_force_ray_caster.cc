@@ -30,7 +30,7 @@ Hit BruteForceRayCaster::Intersect(const Ray& ray) const {
     for (double t : {IntersectTriangle(ray, a, b, c), IntersectTriangle(ray, a, c, d)}) {
       if (t > ray.t_near && t < best_t) {
         best_t = t;
-        best = {p, t, 0, 0};
+        best = {p, t, 0, 0, Cross(b - a, c - a)};  // ccw vertices: towards the front
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <mutex>
 #include <vector>
@@ -35,6 +36,22 @@ RTCRay ToRTCRay(const Ray& ray) {
   r.flags = 0;
   return r;
 }
+
+// StreamRay is traced in place as an RTCRayHit: the same fields at the same offsets.
+static_assert(sizeof(StreamRay) == sizeof(RTCRayHit) && alignof(StreamRay) == alignof(RTCRayHit));
+static_assert(offsetof(StreamRay, org_x) == offsetof(RTCRayHit, ray.org_x) &&
+              offsetof(StreamRay, t_near) == offsetof(RTCRayHit, ray.tnear) &&
+              offsetof(StreamRay, dir_x) == offsetof(RTCRayHit, ray.dir_x) &&
+              offsetof(StreamRay, time) == offsetof(RTCRayHit, ray.time) &&
+              offsetof(StreamRay, t_far) == offsetof(RTCRayHit, ray.tfar) &&
+              offsetof(StreamRay, mask) == offsetof(RTCRayHit, ray.mask) &&
+              offsetof(StreamRay, flags) == offsetof(RTCRayHit, ray.flags) &&
+              offsetof(StreamRay, ng_x) == offsetof(RTCRayHit, hit.Ng_x) &&
+              offsetof(StreamRay, u) == offsetof(RTCRayHit, hit.u) &&
+              offsetof(StreamRay, prim) == offsetof(RTCRayHit, hit.primID) &&
+              offsetof(StreamRay, geom) == offsetof(RTCRayHit, hit.geomID) &&
+              offsetof(StreamRay, inst) == offsetof(RTCRayHit, hit.instID));
+static_assert(kNoPatch == RTC_INVALID_GEOMETRY_ID);
 
 }  // namespace
 
@@ -97,27 +114,18 @@ Hit EmbreeRayCaster::Intersect(const Ray& ray) const {
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {rayhit.hit.primID, rayhit.ray.tfar, rayhit.hit.u, rayhit.hit.v};
+  return {rayhit.hit.primID,
+          rayhit.ray.tfar,
+          rayhit.hit.u,
+          rayhit.hit.v,
+          {rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z}};
 }
 
-void EmbreeRayCaster::IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const {
-  thread_local std::vector<RTCRayHit> stream;  // per-thread scratch
-  stream.resize(rays.size());
-  for (size_t k = 0; k < rays.size(); ++k) {
-    stream[k].ray = ToRTCRay(rays[k]);
-    stream[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    stream[k].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  }
+void EmbreeRayCaster::IntersectStream(std::span<StreamRay> rays) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcIntersect1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
-                 sizeof(RTCRayHit));
-  for (size_t k = 0; k < rays.size(); ++k) {
-    const RTCRayHit& rh = stream[k];
-    hits[k] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
-                  ? Hit{}
-                  : Hit{rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v};
-  }
+  rtcIntersect1M(scene_, &context, reinterpret_cast<RTCRayHit*>(rays.data()),
+                 static_cast<unsigned>(rays.size()), sizeof(StreamRay));
 }
 
 void EmbreeRayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {

@@ -23,7 +23,7 @@ class EmbreeRayCaster final : public RayCaster {
   Hit Intersect(const Ray& ray) const override;
   bool Occluded(const Ray& ray) const override;
   // Traced with Embree's stream API (rtcIntersect1M / rtcOccluded1M).
-  void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const override;
+  void IntersectStream(std::span<StreamRay> rays) const override;
   void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
 
   RTCScene scene() const { return scene_; }

@@ -1,4 +1,4 @@
-// RayCaster: the two ray queries radflux needs, against the patches of one mesh.
+// RayCaster: the ray queries radflux needs, against the patches of one mesh.
 // EmbreeRayCaster is the fast one; BruteForceRayCaster checks it in tests.
 #pragma once
 
@@ -23,6 +23,41 @@ struct Hit {
   uint32_t patch = kNoPatch;  // kNoPatch when the ray escapes
   double t = 0;
   float u = 0, v = 0;  // Embree's parametric coordinates on the hit primitive
+  Vec3 normal;         // geometric normal of the hit patch, unnormalised, towards its front
+};
+
+// One ray of a single-precision stream with room for its hit: what the row builders cast
+// by the thousand per row, written in place (no conversion pass). Its layout is Embree's
+// RTCRayHit (checked in embree_ray_caster.cc), so EmbreeRayCaster traces it as it is.
+struct alignas(16) StreamRay {
+  float org_x = 0, org_y = 0, org_z = 0, t_near = 0;
+  float dir_x = 0, dir_y = 0, dir_z = 0, time = 0;
+  float t_far = std::numeric_limits<float>::infinity();
+  uint32_t mask = 0xffffffffu, id = 0, flags = 0;
+  // The hit, filled by IntersectStream:
+  float ng_x = 0, ng_y = 0, ng_z = 0;  // geometric normal as in Hit::normal
+  float u = 0, v = 0;
+  uint32_t prim = kNoPatch;  // the patch hit; meaningful only when geom != kNoPatch
+  uint32_t geom = kNoPatch;  // kNoPatch when the ray escapes
+  uint32_t inst = kNoPatch;
+
+  void SetOrigin(const Vec3& o) {
+    org_x = static_cast<float>(o.x), org_y = static_cast<float>(o.y),
+    org_z = static_cast<float>(o.z);
+  }
+  void SetDirection(const Vec3& d) {
+    dir_x = static_cast<float>(d.x), dir_y = static_cast<float>(d.y),
+    dir_z = static_cast<float>(d.z);
+  }
+  // Makes the ray ready to trace again (no hit yet, t_far back to infinity).
+  void ResetHit() {
+    t_far = std::numeric_limits<float>::infinity();
+    geom = inst = kNoPatch;
+  }
+  // The patch whose front side the ray hit; kNoPatch for a miss or a back side.
+  uint32_t FrontPatch() const {
+    return geom != kNoPatch && dir_x * ng_x + dir_y * ng_y + dir_z * ng_z < 0 ? prim : kNoPatch;
+  }
 };
 
 class RayCaster {
@@ -33,9 +68,9 @@ class RayCaster {
   // True when any patch lies in (t_near, t_far).
   virtual bool Occluded(const Ray& ray) const = 0;
 
-  // Many rays at once (hits.size() == rays.size()): the same answers as Intersect on each
-  // ray, but an implementation may trace them as a stream. The default loops.
-  virtual void IntersectBatch(std::span<const Ray> rays, std::span<Hit> hits) const;
+  // Intersect on every ray of the stream, with its hit written into it (t_far becomes the
+  // hit distance); an implementation may trace them as a stream. The default loops.
+  virtual void IntersectStream(std::span<StreamRay> rays) const;
   // occluded[k] = Occluded(rays[k]), possibly as a stream.
   virtual void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 };

@@ -147,6 +147,21 @@ TEST(SpillJob, RunJobWithAMemoryLimitMatchesTheInMemoryJob) {
   EXPECT_EQ(spilled->solve.radiosity, memory->solve.radiosity);
 }
 
+// The estimate counts the rows' budget (plus the chunks in flight) instead of all rows
+// twice (rows and cg's symmetric copy).
+TEST(SpillJob, EstimateCountsAtMostTheBudgetForRows) {
+  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  JobOptions options;
+  options.mesh.target_patches = 100000;
+  const uint64_t n = SubdivideScene(*scene, options.mesh)->size();
+  const uint64_t rows = n * (options.form_factors.rays + 64) * 8;  // bytes of all rows
+  const uint64_t in_memory = EstimateJobBytes(*scene, options);
+  options.spill.memory_limit = 16 << 20;
+  const uint64_t spilling = EstimateJobBytes(*scene, options);
+  EXPECT_EQ(in_memory - spilling, 2 * rows - ((16 << 20) + (kRowReadAhead + 2) * kRowChunkBytes));
+}
+
 TEST(SpillJob, OptionsThatCannotStreamAreRefusedUpFront) {
   JobOptions options;
   options.spill.memory_limit = 1 << 20;
