@@ -38,27 +38,41 @@ std::pair<int, int> ParseSize(const std::string& size) {
 }  // namespace
 
 void AddOutputFlags(CLI::App& app, OutputFlags& f) {
-  app.add_option("--out", f.out, "lit mesh: FILE.ply or FILE.glb");
-  app.add_option("--render", f.render, "picture: FILE.png (tone mapped) or FILE.pfm (linear)");
-  app.add_option("--report", f.report, "job report: FILE.json");
-  app.add_option("--patch-values", f.patch_values, "per-patch radiosity: FILE.csv");
-  app.add_option("--camera-pos", f.camera_pos, "camera position X,Y,Z")
-      ->delimiter(',')
-      ->expected(3);
-  app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
-      ->delimiter(',')
-      ->expected(3);
-  app.add_option("--camera-up", f.camera_up, "camera up vector X,Y,Z (default 0,1,0)")
-      ->delimiter(',')
-      ->expected(3);
-  app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")->capture_default_str();
-  app.add_option("--size", f.size, "image size WxH")->capture_default_str();
-  app.add_option("--exposure", f.exposure,
-                 "PNG exposure in stops on top of auto exposure (95th percentile = white)")
-      ->capture_default_str();
-  app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve");
-  app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
-      ->capture_default_str();
+  const std::vector<CLI::Option*> added = {
+      app.add_option("--out", f.out, "lit mesh: FILE.ply or FILE.glb"),
+      app.add_option("--render", f.render, "picture: FILE.png (tone mapped) or FILE.pfm (linear)"),
+      app.add_option("--report", f.report, "job report: FILE.json"),
+      app.add_option("--patch-values", f.patch_values, "per-patch radiosity: FILE.csv"),
+      app.add_option("--camera-pos", f.camera_pos, "camera position X,Y,Z")
+          ->delimiter(',')
+          ->expected(3),
+      app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
+          ->delimiter(',')
+          ->expected(3),
+      app.add_option("--camera-up", f.camera_up, "camera up vector X,Y,Z (default 0,1,0)")
+          ->delimiter(',')
+          ->expected(3),
+      app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")
+          ->capture_default_str(),
+      app.add_option("--size", f.size, "image size WxH")->capture_default_str(),
+      app.add_option("--exposure", f.exposure,
+                     "PNG exposure in stops on top of auto exposure (95th percentile = white)")
+          ->capture_default_str(),
+      app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve"),
+      app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
+          ->capture_default_str(),
+  };
+  for (CLI::Option* option : added) option->group(kOutputGroup);
+}
+
+std::vector<std::string> GivenOutputFlags(const CLI::App& app) {
+  std::vector<std::string> given;
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_group() == kOutputGroup && option->count() > 0) {
+      given.push_back(option->get_name());
+    }
+  }
+  return given;
 }
 
 absl::Status ValidateOutputFlags(const OutputFlags& f) {

@@ -28,7 +28,12 @@ struct OutputFlags {
   double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
 };
 
+// Adds the output flags to `app`, in its help group kOutputGroup.
 void AddOutputFlags(CLI::App& app, OutputFlags& flags);
+inline constexpr const char* kOutputGroup = "Outputs";
+
+// The output flags given on `app`'s command line, by their long name (empty: none).
+std::vector<std::string> GivenOutputFlags(const CLI::App& app);
 
 // Checks file extensions and camera values before any work starts.
 absl::Status ValidateOutputFlags(const OutputFlags& flags);

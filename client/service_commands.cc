@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "client/exit_status.h"
 #include "client/job_flags.h"
 #include "client/output_flags.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
@@ -208,22 +209,18 @@ void PrintEvent(const v1::JobEvent& event) {
 }
 
 // Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
-// snapshots_dir (if set); snapshots are asked every `snapshot_every` iterations (without a
-// directory they are only counted). Returns 0 when the job SUCCEEDED.
+// snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
+// `snapshot_every` iterations (without a directory they are only counted). Returns 0 when
+// the job SUCCEEDED.
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
-             const OutputArgs& args, int snapshot_every = 0) {
+             const JobGeometry* geometry, const OutputArgs& args, int snapshot_every) {
   v1::WatchJobRequest request;
   request.set_job_id(job_id);
   request.set_snapshot_every(snapshot_every);
-  std::optional<JobGeometry> geometry;
   if (!snapshots_dir.empty()) {
-    v1::Job job;
-    if (absl::Status s = FetchJob(client, job_id, &job); !s.ok()) return Fail(s, client.flags());
-    absl::StatusOr<JobGeometry> fetched = FetchGeometry(client, job);
-    if (!fetched.ok()) return Fail(fetched.status(), client.flags());
-    geometry = *std::move(fetched);
     request.set_snapshot_every(std::max(1, snapshot_every));
-    request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT32);
+    // The PNGs are 8-bit: float16 B (11 significant bits) renders the same picture.
+    request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT16);
     std::error_code error;
     fs::create_directories(snapshots_dir, error);
   }
@@ -236,7 +233,7 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   while (reader->Read(&event)) {
     if (event.has_snapshot()) {
       ++snapshots;
-      if (!geometry) continue;
+      if (snapshots_dir.empty()) continue;
       if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
           !s.ok()) {
         std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
@@ -322,14 +319,21 @@ bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
   return true;
 }
 
-// `radflux result`: the outputs of `radflux solve` from a finished job.
-int GetResult(Client& client, const std::string& job_id, const OutputArgs& args) {
+// `radflux result`: the outputs of `radflux solve` from a finished job. `prefetched` is the
+// job's geometry when the caller already has it (else it is fetched when needed).
+int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
+              const JobGeometry* prefetched = nullptr) {
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
   absl::StatusOr<StreamedResult> result = FetchResult(client, job_id);
   if (!result.ok()) return Fail(result.status(), client.flags());
   if (WantsGeometry(args.output)) {
-    absl::StatusOr<JobGeometry> geometry = FetchGeometry(client, result->job);
-    if (!geometry.ok()) return Fail(geometry.status(), client.flags());
+    std::optional<JobGeometry> fetched;
+    if (!prefetched) {
+      absl::StatusOr<JobGeometry> g = FetchGeometry(client, result->job);
+      if (!g.ok()) return Fail(g.status(), client.flags());
+      fetched = *std::move(g);
+    }
+    const JobGeometry* geometry = prefetched ? prefetched : &*fetched;
     if (!SameMesh(geometry->mesh, *result)) {
       return Fail(absl::DataLossError("the scene re-meshed here differs from the server's mesh "
                                       "(client and server of different radflux versions?)"),
@@ -350,6 +354,27 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args)
   }
   std::cout << result->faces.size() << " patches\n";
   return 0;
+}
+
+// `radflux watch` and `radflux submit --watch`: follows the job (snapshots as PNGs into
+// snapshots_dir, if set) and, when it succeeds, writes the outputs `args` asks for exactly as
+// `radflux result` does. The geometry that snapshots and outputs need is fetched and
+// meshed before watching, while the server still runs the job.
+int WatchAndWriteResult(Client& client, const std::string& job_id, const std::string& snapshots_dir,
+                        const OutputArgs& args, int snapshot_every) {
+  const bool wants_result = WantsGeometry(args.output) || !args.output.report.empty();
+  std::optional<JobGeometry> geometry;
+  if (!snapshots_dir.empty() || WantsGeometry(args.output)) {
+    v1::Job job;
+    if (absl::Status s = FetchJob(client, job_id, &job); !s.ok()) return Fail(s, client.flags());
+    absl::StatusOr<JobGeometry> fetched = FetchGeometry(client, job);
+    if (!fetched.ok()) return Fail(fetched.status(), client.flags());
+    geometry = *std::move(fetched);
+  }
+  const JobGeometry* g = geometry ? &*geometry : nullptr;
+  const int watched = WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every);
+  if (watched != 0 || !wants_result) return watched;
+  return GetResult(client, job_id, args, g);
 }
 
 // Adds the connection flags to `command` (and to the top level once), bound to `c`.
@@ -377,10 +402,26 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   auto request_id = std::make_shared<std::string>();
   submit->add_option("scene", *scene, "OBJ file (its MTL is found via mtllib)")->required();
   AddJobFlags(*submit, *job_flags);
-  submit->add_flag("--watch", *watch, "watch the job until it ends");
+  auto submit_outputs = std::make_shared<OutputFlags>();
+  submit->add_flag("--watch", *watch,
+                   "watch the job until it ends; then write the output options' files, as "
+                   "`radflux result` does");
   submit->add_option("--request-id", *request_id, "idempotency key: a retry returns the same job");
+  AddOutputFlags(*submit, *submit_outputs);
   AddConnectionFlags(*submit, *c);
   submit->callback([=, &exit_code] {
+    if (const std::vector<std::string> given = GivenOutputFlags(*submit);
+        !given.empty() && !*watch) {
+      return void(exit_code = ReportStatus(
+                      "submit", absl::InvalidArgumentError(absl::StrCat(
+                                    given.front(),
+                                    " needs --watch: outputs are written when the watched job "
+                                    "succeeds (without --watch, run `radflux result JOB ",
+                                    given.front(), " ...` once it has)"))));
+    }
+    if (absl::Status s = ValidateOutputFlags(*submit_outputs); !s.ok()) {
+      return void(exit_code = Fail(s, *c));
+    }
     absl::StatusOr<JobOptions> options = ToJobOptions(*job_flags);
     if (options.ok() && (options->hierarchical.enabled || options->adaptive.passes > 0)) {
       options = absl::InvalidArgumentError(
@@ -403,7 +444,10 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     if (!status.ok()) return void(exit_code = Report(status, *c));
     std::cerr << "submitted " << job.job_id() << " (scene " << request.scene_sha256().substr(0, 12)
               << ")\n";
-    if (*watch) exit_code = WatchJob(client, job.job_id(), "", OutputArgs{});
+    if (*watch) {
+      const OutputArgs outputs{*submit_outputs, job_flags->threads};  // render as `solve` does
+      exit_code = WatchAndWriteResult(client, job.job_id(), "", outputs, 0);
+    }
     std::cout << job.job_id() << std::endl;
   });
 
@@ -428,11 +472,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
       return void(exit_code = Fail(s, *c));
     }
     Client client(*c);
-    exit_code = WatchJob(client, *job_id, *snapshots, *watch_args, *snapshot_every);
-    const OutputFlags& f = watch_args->output;
-    if (exit_code == 0 && (WantsGeometry(f) || !f.report.empty())) {
-      exit_code = GetResult(client, *job_id, *watch_args);
-    }
+    exit_code = WatchAndWriteResult(client, *job_id, *snapshots, *watch_args, *snapshot_every);
   });
 
   auto* result =

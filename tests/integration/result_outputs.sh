@@ -2,8 +2,8 @@
 # `radflux result` writes what `radflux solve` writes, and `radflux watch --snapshots` writes
 # rendered PNGs. radfluxd on a loopback port it picks itself; the client re-loads the job's
 # scene (GetScene) and re-meshes it. Checks:
-#  - the PNG, PLY, GLB, PFM and patch-values CSV of `result` equal those of `solve` with the
-#    same options byte for byte;
+#  - the PNG, PLY, GLB, PFM and patch-values CSV of `result`, and those `submit --watch` writes
+#    in one process, equal those of `solve` with the same options byte for byte;
 #  - the report JSONs agree on patches, non-zeros, rays, iterations, residual and energy
 #    balance (timings differ);
 #  - `watch --snapshots DIR` leaves at least one PNG in DIR, and every PNG decodes (chunk
@@ -26,19 +26,36 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 "$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.png" --out "$DIR/s.ply" \
   --patch-values "$DIR/s.csv" --report "$DIR/s.json" "${CAMERA[@]}"
 "$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}"
+# One process: submit, watch, then the same outputs as `result` writes.
+"$RADFLUX" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" --watch --render "$DIR/w.png" \
+  --out "$DIR/w.ply" --patch-values "$DIR/w.csv" --report "$DIR/w.json" "${CAMERA[@]}" \
+  >"$DIR/submit_watch.out" 2>/dev/null
+[[ "$(tail -n 1 "$DIR/submit_watch.out")" =~ ^job-[0-9a-f]{16}$ ]] || {
+  echo "submit --watch with outputs: last line is not the job id"; exit 1; }
 for f in png ply csv pfm glb; do
   cmp "$DIR/r.$f" "$DIR/s.$f" || { echo "result .$f differs from solve .$f"; exit 1; }
 done
+for f in png ply csv; do
+  cmp "$DIR/w.$f" "$DIR/s.$f" || { echo "submit --watch .$f differs from solve .$f"; exit 1; }
+done
+# Output options without --watch are refused before anything is submitted.
+if "$RADFLUX" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" --render "$DIR/x.png" 2>"$DIR/err"; then
+  echo "submit --render without --watch succeeded"; exit 1
+fi
+grep -q -- "--render needs --watch" "$DIR/err" || { cat "$DIR/err"; exit 1; }
+[ "$("$RADFLUX" list --server "$ADDR" | wc -l)" -eq 2 ] || { echo "a refused submit made a job"; exit 1; }
 
 python3 - "$DIR" <<'PY'
 import json, struct, sys, zlib, glob, os
 d = sys.argv[1]
-r, s = json.load(open(f"{d}/r.json")), json.load(open(f"{d}/s.json"))
-for path in (("mesh", "patches"), ("matrix", "nnz"), ("rays",), ("solve", "iterations"),
-             ("solve", "residual"), ("energy_balance", "relative_imbalance")):
-    a, b = r, s
-    for k in path: a, b = a[k], b[k]
-    assert a == b, f"report {'.'.join(path)}: result {a} != solve {b}"
+s = json.load(open(f"{d}/s.json"))
+for name in ("r", "w"):
+    r = json.load(open(f"{d}/{name}.json"))
+    for path in (("mesh", "patches"), ("matrix", "nnz"), ("rays",), ("solve", "iterations"),
+                 ("solve", "residual"), ("energy_balance", "relative_imbalance")):
+        a, b = r, s
+        for k in path: a, b = a[k], b[k]
+        assert a == b, f"report {'.'.join(path)}: {name}.json {a} != solve {b}"
 
 def decode_png(path):
     data = open(path, "rb").read()
