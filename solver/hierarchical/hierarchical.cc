@@ -3,20 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "solver/core/parallel.h"
-#include "solver/formfactor/polygon_form_factor.h"
 #include "solver/formfactor/row_builder.h"
+#include "solver/hierarchical/exposure.h"
+#include "solver/hierarchical/link_estimate.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux {
 namespace {
-
-constexpr uint64_t kPointStream = 11;
-constexpr uint64_t kTargetStream = 12;
-constexpr int kNearFactor = 16;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -24,7 +22,7 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 
 struct NewLink {
   uint32_t receiver, source;
-  float ff = 0, bound = 0;
+  float ff = 0, spread = 0;
 };
 
 // Everything the refinement and the gather need besides the tree and the links.
@@ -32,7 +30,8 @@ struct Context {
   const Scene* scene = nullptr;
   const HierarchicalOptions* options = nullptr;
   const RayCaster* caster = nullptr;
-  double ray_epsilon = 0;
+  const PatchMesh* roots = nullptr;  // the mesh `caster` was built on
+  LinkSampling sampling;
   double min_area = 0;
   double threshold = 0;  // link_epsilon * emitted power
   int threads = 0;
@@ -41,54 +40,47 @@ struct Context {
   }
 };
 
-bool AnyCornerInFront(const Element& of, const Element& plane) {
-  const double scale = std::sqrt(plane.area);
-  for (int k = 0; k < of.CornerCount(); ++k) {
-    if (Dot(of.corners[k] - plane.centroid, plane.normal) > 1e-9 * scale) return true;
+// Per element: radiosity of its exposed part (what links carry), W/m^2 per band; the range
+// of MaxComponent of that over its exposed leaves; its exposed fraction (ExposedFraction).
+struct NodeState {
+  std::vector<Rgb> b;
+  std::vector<float> range;
+  std::vector<float> exposure;
+};
+
+constexpr int kExposureSamples = 32;
+constexpr uint64_t kExposureStream = 14;
+
+// State for nodes [first, tree size): their exposure, and their parent's radiosity to start
+// from (roots: their emission).
+void AddNodes(const Context& c, const ElementTree& tree, size_t first, NodeState& state) {
+  const size_t n = tree.nodes.size();
+  state.b.resize(n);
+  state.range.resize(n, 0);
+  state.exposure.resize(n, 1);
+  for (size_t k = first; k < n; ++k) {
+    const Element& e = tree.nodes[k];
+    state.b[k] = e.parent == kNoElement ? c.MaterialOf(e).emission : state.b[e.parent];
   }
-  return false;
+  ParallelFor(static_cast<int64_t>(n - first), 64, c.threads, [&](int64_t b, int64_t e) {
+    for (int64_t k = b; k < e; ++k) {
+      const size_t node = first + static_cast<size_t>(k);
+      state.exposure[node] = static_cast<float>(ExposedFraction(
+          tree.nodes[node], *c.roots, *c.caster, kExposureSamples,
+          PatternSeed(c.options->seed, node, kExposureStream), c.sampling.ray_epsilon));
+    }
+  });
 }
 
-// F_pq at `samples` points of p with one shadow ray each; false when p and q cannot exchange.
+// F_pq with its spread for a pending pair; false when p and q cannot exchange.
 bool LinkFormFactor(const Context& c, const ElementTree& tree, uint32_t p, uint32_t q,
                     NewLink& link, uint64_t& rays) {
-  const Element& ep = tree.nodes[p];
-  const Element& eq = tree.nodes[q];
-  if (p == q || !AnyCornerInFront(eq, ep) || !AnyCornerInFront(ep, eq)) return false;
-  const std::vector<Vec3> polygon = ClipPolygonToHalfSpace(ElementPolygon(eq), ep.centroid,
-                                                           ep.normal);
-  if (polygon.size() < 3) return false;
-  // Near pairs (within about one element size) have a near-singular kernel over p: point
-  // sampling needs many more points there for the links of one leaf to sum close to 1.
-  const double size = std::sqrt(std::max(ep.area, eq.area));
-  const bool near = Length(ep.centroid - eq.centroid) < 1.5 * size;
-  const int s = c.options->samples * (near ? kNearFactor : 1);
-  const uint64_t seed = c.options->seed;
-  const uint32_t point_pattern = PatternSeed(seed, p, kPointStream);
-  const uint32_t target_pattern = PatternSeed(seed ^ (uint64_t{p} << 32), q, kTargetStream);
-  double seen = 0, unoccluded = 0;
-  int visible = 0, blocked = 0;
-  for (int m = 0; m < s; ++m) {
-    const Vec3 x = SampleElementPoint(ep, MultiJitteredSample(m, s, point_pattern));
-    const double f = UnclippedPointToPolygonFormFactor(x, ep.normal, polygon);
-    if (f <= 0) continue;
-    unoccluded += f;
-    const Vec3 y = SampleElementPoint(eq, MultiJitteredSample(m, s, target_pattern)) +
-                   eq.normal * c.ray_epsilon;
-    const Vec3 origin = x + ep.normal * c.ray_epsilon;
-    ++rays;
-    if (c.caster->Occluded({origin, y - origin, 0, 1 - 1e-6})) {
-      ++blocked;
-    } else {
-      ++visible;
-      seen += f;
-    }
+  LinkEstimate estimate;
+  if (!EstimateElementLink(tree.nodes[p], tree.nodes[q], p, q, c.sampling, *c.caster, estimate,
+                           rays)) {
+    return false;
   }
-  if (unoccluded <= 0) return false;
-  link.receiver = p;
-  link.source = q;
-  link.ff = static_cast<float>(seen / s);
-  link.bound = static_cast<float>((visible > 0 && blocked > 0 ? unoccluded : seen) / s);
+  link = {p, q, estimate.ff, estimate.spread};
   return true;
 }
 
@@ -123,12 +115,12 @@ LinkSet Assemble(const std::vector<NewLink>& links, size_t nodes) {
   std::vector<uint64_t> next(set.begin.begin(), set.begin.end() - 1);
   set.source.resize(links.size());
   set.ff.resize(links.size());
-  set.bound.resize(links.size());
+  set.spread.resize(links.size());
   for (const NewLink& l : links) {
     const uint64_t k = next[l.receiver]++;
     set.source[k] = l.source;
     set.ff[k] = l.ff;
-    set.bound[k] = l.bound;
+    set.spread[k] = l.spread;
   }
   return set;
 }
@@ -149,22 +141,33 @@ LinkSet InitialLinks(const Context& c, const ElementTree& tree, uint64_t& rays) 
 
 enum Decision : uint8_t { kKeep = 0, kSplitReceiver = 1, kSplitSource = 2 };
 
-// One refinement round: every link over threshold splits its larger element (one level).
+// The error of link p <- q in power: the receiver part (q's radiosity times how much F_pq
+// varies over p, which p's single value misses) plus the source part (F_pq times how much B
+// varies over q's leaves, which q's mean misses); both times rho_p A_p.
+struct LinkError {
+  double receiver = 0, source = 0;
+  double Total() const { return receiver + source; }
+};
+
+// One refinement round: every link over threshold splits one side (one level): the receiver
+// when the receiver part dominates, else the source, whichever can still be split.
 // Returns true when any link was refined.
-bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, std::vector<Rgb>& b,
+bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, NodeState& state,
                  uint64_t& rays) {
   const size_t nodes = tree.nodes.size();
   std::vector<uint8_t> decision(links.size(), kKeep);
   ParallelFor(static_cast<int64_t>(nodes), 256, c.threads, [&](int64_t begin, int64_t end) {
     for (int64_t p = begin; p < end; ++p) {
       const Element& ep = tree.nodes[p];
-      const double rho = MaxComponent(c.MaterialOf(ep).reflectance);
+      const double rho_a = MaxComponent(c.MaterialOf(ep).reflectance) * ep.area;
       for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-        const Element& eq = tree.nodes[links.source[k]];
-        const double error = rho * MaxComponent(b[links.source[k]]) * links.bound[k] * ep.area;
-        if (!(error > c.threshold)) continue;
-        const bool can_p = ep.area / 4 >= c.min_area, can_q = eq.area / 4 >= c.min_area;
-        if (can_p && (ep.area >= eq.area || !can_q)) {
+        const uint32_t q = links.source[k];
+        const LinkError error{rho_a * MaxComponent(state.b[q]) * links.spread[k],
+                              rho_a * links.ff[k] * state.range[q]};
+        if (!(error.Total() > c.threshold)) continue;
+        const bool can_p = ep.area / 4 >= c.min_area;
+        const bool can_q = tree.nodes[q].area / 4 >= c.min_area;
+        if (can_p && (error.receiver >= error.source || !can_q)) {
           decision[k] = kSplitReceiver;
         } else if (can_q) {
           decision[k] = kSplitSource;
@@ -178,21 +181,18 @@ bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, std::vecto
       if (decision[k] == kKeep) continue;
       any = true;
       const uint32_t n = decision[k] == kSplitReceiver ? static_cast<uint32_t>(p) : links.source[k];
-      if (tree.nodes[n].IsLeaf()) {
-        const uint32_t first = tree.Split(n);
-        b.resize(tree.nodes.size());
-        for (int ch = 0; ch < 4; ++ch) b[first + ch] = b[n];
-      }
+      if (tree.nodes[n].IsLeaf()) tree.Split(n);
     }
   }
   if (!any) return false;
+  AddNodes(c, tree, nodes, state);
   std::vector<NewLink> kept;
   std::vector<std::pair<uint32_t, uint32_t>> pending;
   for (size_t p = 0; p < nodes; ++p) {
     for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
       const uint32_t q = links.source[k];
       if (decision[k] == kKeep) {
-        kept.push_back({static_cast<uint32_t>(p), q, links.ff[k], links.bound[k]});
+        kept.push_back({static_cast<uint32_t>(p), q, links.ff[k], links.spread[k]});
       } else if (decision[k] == kSplitReceiver) {
         const uint32_t first = tree.nodes[p].first_child;
         for (uint32_t ch = first; ch < first + 4; ++ch) pending.push_back({ch, q});
@@ -205,60 +205,89 @@ bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, std::vecto
   }
   std::vector<NewLink> fresh = ComputeLinks(c, tree, pending, rays);
   kept.insert(kept.end(), fresh.begin(), fresh.end());
-  std::stable_sort(kept.begin(), kept.end(), [](const NewLink& x, const NewLink& y) {
-    return x.receiver < y.receiver;
-  });
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const NewLink& x, const NewLink& y) { return x.receiver < y.receiver; });
   links = Assemble(kept, tree.nodes.size());
   return true;
 }
 
-// Push-pull below `p`: `down` is the radiosity gathered by p's ancestors (with rho).
-Rgb PushPull(const Context& c, const ElementTree& tree, const std::vector<Rgb>& gathered,
-             uint32_t p, Rgb down, std::vector<Rgb>& b) {
+// Push-pull below `p`: `down` is the exposed radiosity gathered by p's ancestors (with rho).
+// A node's gathered radiosity is averaged over all its area, so it is divided by the node's
+// exposed fraction. Sets state.b (exposed-area-weighted mean over the leaves below) and
+// state.range of p and its descendants; returns p's exposed area (sum over its leaves).
+double PushPull(const Context& c, const ElementTree& tree, const std::vector<Rgb>& gathered,
+                uint32_t p, Rgb down, NodeState& state, double& lo, double& hi) {
   const Element& e = tree.nodes[p];
   const Material& m = c.MaterialOf(e);
-  for (int k = 0; k < kBands; ++k) down[k] += m.reflectance[k] * gathered[p][k];
+  const double exposure = state.exposure[p];
+  if (exposure > 0) {
+    for (int k = 0; k < kBands; ++k) down[k] += m.reflectance[k] * gathered[p][k] / exposure;
+  }
   Rgb result{};
+  double exposed = 0;
+  lo = std::numeric_limits<double>::infinity();
+  hi = -lo;
   if (e.IsLeaf()) {
     for (int k = 0; k < kBands; ++k) result[k] = m.emission[k] + down[k];
+    exposed = e.area * exposure;
+    if (exposed > 0) lo = hi = MaxComponent(result);
   } else {
     for (uint32_t ch = e.first_child; ch < e.first_child + 4; ++ch) {
-      const Rgb child = PushPull(c, tree, gathered, ch, down, b);
-      for (int k = 0; k < kBands; ++k) result[k] += child[k] * tree.nodes[ch].area / e.area;
+      double child_lo = 0, child_hi = 0;
+      const double a = PushPull(c, tree, gathered, ch, down, state, child_lo, child_hi);
+      for (int k = 0; k < kBands; ++k) result[k] += state.b[ch][k] * a;
+      exposed += a;
+      lo = std::min(lo, child_lo);
+      hi = std::max(hi, child_hi);
+    }
+    if (exposed > 0) {
+      for (double& v : result) v /= exposed;
+    } else {
+      result = m.emission;
     }
   }
-  b[p] = result;
-  return result;
+  state.b[p] = result;
+  state.range[p] = hi > lo ? static_cast<float>(hi - lo) : 0.0f;
+  return exposed;
+}
+
+// The area-weighted mean radiosity of leaf `l` (what the outputs show): zero where buried.
+Rgb LeafRadiosity(const NodeState& state, uint32_t l) {
+  Rgb b = state.b[l];
+  for (double& v : b) v *= state.exposure[l];
+  return b;
 }
 
 // One gathering sweep (Jacobi over links, then push-pull); returns the area-weighted
 // relative change of B over the leaves, max over bands.
 double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& links,
-                   const std::vector<uint32_t>& leaves, const Rgb& e_norm, std::vector<Rgb>& b) {
+                   const std::vector<uint32_t>& leaves, const Rgb& e_norm, NodeState& state) {
   const size_t nodes = tree.nodes.size();
   std::vector<Rgb> gathered(nodes, Rgb{});
   ParallelFor(static_cast<int64_t>(nodes), 256, c.threads, [&](int64_t begin, int64_t end) {
     for (int64_t p = begin; p < end; ++p) {
       Rgb g{};
       for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-        const Rgb& bq = b[links.source[k]];
+        const Rgb& bq = state.b[links.source[k]];
         for (int band = 0; band < kBands; ++band) g[band] += links.ff[k] * bq[band];
       }
       gathered[p] = g;
     }
   });
   std::vector<Rgb> old(leaves.size());
-  for (size_t i = 0; i < leaves.size(); ++i) old[i] = b[leaves[i]];
+  for (size_t i = 0; i < leaves.size(); ++i) old[i] = LeafRadiosity(state, leaves[i]);
   ParallelFor(static_cast<int64_t>(tree.roots.size()), 16, c.threads,
               [&](int64_t begin, int64_t end) {
-                for (int64_t r = begin; r < end; ++r)
-                  PushPull(c, tree, gathered, tree.roots[r], Rgb{}, b);
+                for (int64_t r = begin; r < end; ++r) {
+                  double lo = 0, hi = 0;
+                  PushPull(c, tree, gathered, tree.roots[r], Rgb{}, state, lo, hi);
+                }
               });
   Rgb diff{};
   for (size_t i = 0; i < leaves.size(); ++i) {
     const double a = tree.nodes[leaves[i]].area;
     for (int k = 0; k < kBands; ++k) {
-      const double d = b[leaves[i]][k] - old[i][k];
+      const double d = LeafRadiosity(state, leaves[i])[k] - old[i][k];
       diff[k] += a * d * d;
     }
   }
@@ -290,7 +319,10 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   c.scene = &scene;
   c.options = &options;
   c.caster = caster->get();
-  c.ray_epsilon = RayEpsilonFor(*roots);
+  c.roots = &*roots;
+  c.sampling.samples = options.samples;
+  c.sampling.seed = options.seed;
+  c.sampling.ray_epsilon = RayEpsilonFor(*roots);
   c.threads = solver.threads;
   double total_area = 0, power = 0;
   Rgb e_norm{};
@@ -308,15 +340,15 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   auto start = std::chrono::steady_clock::now();
   LinkSet links = InitialLinks(c, tree, stats.rays);
   stats.refine_seconds += Seconds(start);
-  std::vector<Rgb> b(tree.nodes.size());
-  for (size_t n = 0; n < tree.nodes.size(); ++n) b[n] = c.MaterialOf(tree.nodes[n]).emission;
+  NodeState state;
+  AddNodes(c, tree, 0, state);
 
   SolveResult& solve = result.solve;
   std::vector<uint32_t> leaves;
   for (int pass = 0; pass < options.max_passes && !solve.cancelled; ++pass) {
     start = std::chrono::steady_clock::now();
     bool changed = false;
-    for (int round = 0; round < 64 && RefineRound(c, tree, links, b, stats.rays); ++round) {
+    for (int round = 0; round < 64 && RefineRound(c, tree, links, state, stats.rays); ++round) {
       changed = true;
       ++stats.refine_rounds;
     }
@@ -331,7 +363,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
         solve.cancelled = true;
         break;
       }
-      const double change = GatherSweep(c, tree, links, leaves, e_norm, b);
+      const double change = GatherSweep(c, tree, links, leaves, e_norm, state);
       ++solve.iterations;
       solve.residual_history.push_back(change);
       solve.residual = change;
@@ -341,7 +373,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
         progress.residual = change;
         std::vector<Rgb> snapshot;
         if (solver.snapshot_every > 0 && solve.iterations % solver.snapshot_every == 0) {
-          for (uint32_t l : leaves) snapshot.push_back(b[l]);
+          for (uint32_t l : leaves) snapshot.push_back(LeafRadiosity(state, l));
           progress.snapshot = &snapshot;
           progress.state = &snapshot;
         }
@@ -355,7 +387,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
     stats.solve_seconds += Seconds(start);
   }
   result.leaves = tree.Leaves();
-  for (uint32_t l : result.leaves) result.leaf_radiosity.push_back(b[l]);
+  for (uint32_t l : result.leaves) result.leaf_radiosity.push_back(LeafRadiosity(state, l));
   result.mesh = BuildLeafMesh(tree, result.leaves, /*conforming=*/true, &result.patch_leaf);
   solve.radiosity.resize(result.mesh.size());
   for (size_t p = 0; p < result.mesh.size(); ++p)

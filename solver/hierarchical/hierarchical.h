@@ -4,12 +4,14 @@
 // over the links with push-pull. No clustering above the faces (every pair of root faces
 // that can see each other starts with one link, O(faces^2)).
 //
-// Refinement: a link p <- q (p gathers from q) is refined when
-//   rho_p * B_q * F_pq * A_p > link_epsilon * (total emitted power)
-// where F_pq is Lambert's exact point-to-polygon form factor at `samples` points of p, times
-// visibility by one shadow ray per point; when those rays disagree (partial visibility) the
-// unoccluded F_pq is used instead, so shadow boundaries refine first. The larger element of
-// the link is split, down to min_area_fraction of the scene's total area.
+// Refinement: a link p <- q (p gathers from q, estimated by EstimateElementLink) is refined
+// when its error in power
+//   rho_p A_p (B_q * spread_pq + F_pq * range_q) > link_epsilon * (total emitted power)
+// where spread_pq is how much F(x, q) varies over p (the whole unoccluded F when a shadow edge
+// may cross p) and range_q how much B varies over q's leaves: the receiver is split when the
+// first term dominates, else the source, down to min_area_fraction of the total area.
+// Radiosity is kept per exposed area (ExposedFraction): what is buried inside a solid neither
+// receives nor sends light, and outputs show the area mean (zero where buried).
 #pragma once
 
 #include <cstdint>
@@ -38,7 +40,7 @@ struct LinkSet {
   std::vector<uint64_t> begin{0};
   std::vector<uint32_t> source;  // element gathered from
   std::vector<float> ff;         // F_pq with visibility
-  std::vector<float> bound;      // F_pq for the error estimate (unoccluded when partial)
+  std::vector<float> spread;     // max - min of F(x, q) over x in p (LinkEstimate::spread)
 
   size_t size() const { return source.size(); }
   size_t Bytes() const {
@@ -60,11 +62,11 @@ struct HierarchicalStats {
 struct HierarchicalResult {
   ElementTree tree;
   LinkSet links;
-  std::vector<uint32_t> leaves;       // leaf elements in output order
-  std::vector<Rgb> leaf_radiosity;    // B per leaf, W/m^2 per band
-  PatchMesh mesh;                     // conforming mesh of the leaves (BuildLeafMesh)
-  std::vector<uint32_t> patch_leaf;   // mesh patch -> index into leaves
-  SolveResult solve;                  // radiosity per mesh patch (its leaf's B)
+  std::vector<uint32_t> leaves;      // leaf elements in output order
+  std::vector<Rgb> leaf_radiosity;   // B per leaf, W/m^2 per band
+  PatchMesh mesh;                    // conforming mesh of the leaves (BuildLeafMesh)
+  std::vector<uint32_t> patch_leaf;  // mesh patch -> index into leaves
+  SolveResult solve;                 // radiosity per mesh patch (its leaf's B)
   HierarchicalStats stats;
 };
 

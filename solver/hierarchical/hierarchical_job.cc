@@ -87,10 +87,10 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   for (size_t k = 0; k < solved->passes.size(); ++k) {
     const AdaptivePass& p = solved->passes[k];
     rows_seconds += p.seconds;
-    spdlog::warn("adaptive pass {}: {} patches ({} split), {} rows recomputed, {} entries, "
-                 "{:.3f}s, change in B {:.3e}",
-                 k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds,
-                 p.change_in_b);
+    spdlog::warn(
+        "adaptive pass {}: {} patches ({} split), {} rows recomputed, {} entries, "
+        "{:.3f}s, change in B {:.3e}",
+        k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds, p.change_in_b);
   }
   // Expand leaf rows to the display patches.
   const AdaptiveResult& a = *solved;
@@ -114,8 +114,7 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
     f.row_begin.push_back(f.col.size());
   }
   JobResult result;
-  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
-      PrepareFromMesh(std::move(scene), display);
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareFromMesh(std::move(scene), display);
   if (!job.ok()) return job.status();
   result.job = *std::move(job);
   result.form_factors = std::move(f);

@@ -40,8 +40,8 @@ TEST(HierarchicalClosedForm, ParallelSquaresWithinAnalyticTolerance) {
     const double exact = testing::ParallelRectangles(1, 1, d);
     const HierarchicalResult r = Solved(scene, 1e-4, 16);
     const double f = GatheredFormFactor(scene, r);
-    std::printf("parallel d=%g exact %.6f hierarchical %.6f (%zu leaves, %zu links)\n", d, exact,
-                f, r.stats.leaves, r.stats.links);
+    std::printf("parallel d=%g exact %.6f hierarchical %.6f (%zu leaves, %zu links)\n", d, exact, f,
+                r.stats.leaves, r.stats.links);
     EXPECT_NEAR(f, exact, 0.002) << "d=" << d;  // the analytic builder's tolerance
     EXPECT_TRUE(r.solve.converged);
   }
@@ -58,11 +58,12 @@ TEST(HierarchicalClosedForm, PerpendicularPlatesWithinAnalyticTolerance) {
   EXPECT_GT(r.stats.leaves, 2u);  // the shared edge forces refinement
 }
 
-// NOT the uniform analytic tolerance (1e-6 there): a uniform row averages F over one point
-// set, so a closed cube's rows sum to 1; a leaf's links sit at several levels, each averaging
-// F over its own element, and the BFA oracle leaves many small coarse links near the cube's
-// edges. Measured: area-weighted RMS 5.3e-2 at epsilon 1e-3, 5.1e-2 at 1e-4, 4.1e-2 at 3e-5.
-TEST(HierarchicalClosedForm, FurnaceCubeWithinStatedLooseTolerance) {
+// Closed form: every face emits E = pi and reflects rho = 0.5 in a closed cube, so B = E /
+// (1 - rho) = 2 pi everywhere. Looser than the uniform analytic rows (1e-6 there, whose rows
+// average F over one point set and sum to 1): a leaf's links sit at several levels, each
+// averaging F over its own element, so a leaf's sum is 1 only to the spread the refinement
+// allows (link_epsilon 1e-3 with the spread oracle). Measured: RMS 1.7e-2, mean 4e-5.
+TEST(HierarchicalClosedForm, FurnaceCubeWithinStatedTolerance) {
   const Scene scene = testing::FurnaceCube();
   const double exact = std::numbers::pi / (1 - 0.5);
   const HierarchicalResult r = Solved(scene, 1e-3, 16);
@@ -75,8 +76,8 @@ TEST(HierarchicalClosedForm, FurnaceCubeWithinStatedLooseTolerance) {
   }
   std::printf("furnace: rms %.2e mean %.2e (%zu leaves, %zu links)\n", std::sqrt(sq / area),
               mean / area, r.stats.leaves, r.stats.links);
-  EXPECT_LT(std::sqrt(sq / area), 0.06);
-  EXPECT_LT(std::abs(mean / area), 0.03);
+  EXPECT_LT(std::sqrt(sq / area), 0.025);
+  EXPECT_LT(std::abs(mean / area), 0.003);
 }
 
 }  // namespace
