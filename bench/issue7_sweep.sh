@@ -2,7 +2,7 @@
 # Speed against error on the Cornell box for uniform, adaptive and hierarchical (issue 7).
 # Error: RMS over scene objects (light excluded) of the relative error of each object's
 # area-weighted mean B (r+g+b), against a fine uniform monte_carlo reference; works across
-# different meshes. Usage: bench/issue7_sweep.sh RADFLUX OUTDIR
+# different meshes. Usage: OMP_WAIT_POLICY=passive bench/issue7_sweep.sh RADFLUX OUTDIR
 set -euo pipefail
 RADFLUX=$1; OUT=$2; SCENE=$(dirname "$0")/../scenes/cornell_box.obj
 mkdir -p "$OUT"
@@ -25,14 +25,17 @@ run() {  # name, then flags
   local name=$1; shift
   local t0=$(date +%s.%N)
   "$RADFLUX" solve "$SCENE" "$@" --patch-values "$OUT/$name.csv" --render "$OUT/$name.png" -q \
-    2> "$OUT/$name.log"
+    > "$OUT/$name.log" 2>&1
   local t1=$(date +%s.%N)
   local n=$(($(wc -l < "$OUT/$name.csv") - 1))
-  printf "| %s | %s | %d | %.2f | %s |\n" "$name" "$*" "$n" "$(echo "$t1 - $t0" | bc)" "$(err "$OUT/$name.csv")"
+  # hierarchical: leaves, links and link memory from its log line
+  local links=$(sed -n 's/.* \([0-9]*\) leaves .*; \([0-9]*\) links (\([0-9.]*\) MB links.*/\1 \/ \2 \/ \3 MB/p' "$OUT/$name.log")
+  printf "| %s | %s | %d | %.2f | %s | %s |\n" "$name" "$*" "$n" "$(echo "$t1 - $t0" | bc)" \
+    "$(err "$OUT/$name.csv")" "${links:--}"
 }
-echo "| run | flags | patches | seconds | object-mean error |"
-echo "|---|---|---|---|---|"
+echo "| run | flags | patches | seconds | object-mean error | leaves / links / link MB |"
+echo "|---|---|---|---|---|---|"
 for p in 250 1000 2500; do run uniform_mc_$p --patches $p; done
 for p in 250 1000; do run uniform_analytic_$p --patches $p --form-factors analytic; done
 for k in 1 2; do run adaptive_$k --patches 100 --form-factors analytic --adaptive-passes $k --adaptive-threshold 0.3; done
-for e in 1e-3 1e-4 1e-5; do run hier_$e --solver hierarchical --link-epsilon $e; done
+for e in 1e-3 3e-4 1e-4 3e-5 1e-5; do run hier_$e --solver hierarchical --link-epsilon $e; done
