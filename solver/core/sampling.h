@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -16,6 +17,14 @@ namespace radflux {
 struct Point2 {
   double x = 0, y = 0;
 };
+
+// c ? a : b without a branch (bit masks): the samplers choose between two equally likely
+// cases per ray, where a conditional jump would be mispredicted every other time.
+inline double Select(bool c, double a, double b) {
+  const uint64_t mask = uint64_t{0} - static_cast<uint64_t>(c);
+  return std::bit_cast<double>((std::bit_cast<uint64_t>(a) & mask) |
+                               (std::bit_cast<uint64_t>(b) & ~mask));
+}
 
 // 64-bit mix of (seed, index) into a 32-bit pattern id (splitmix64 finaliser).
 inline uint32_t PatternSeed(uint64_t seed, uint64_t index, uint64_t stream = 0) {
@@ -40,7 +49,7 @@ Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p);
 // makes each estimate unbiased, at two additions per sample.
 inline Point2 CranleyPattersonShift(Point2 u, Point2 shift) {
   const double x = u.x + shift.x, y = u.y + shift.y;
-  return {x >= 1 ? x - 1 : x, y >= 1 ? y - 1 : y};
+  return {Select(x >= 1, x - 1, x), Select(y >= 1, y - 1, y)};
 }
 // The random shift of pattern p (two hashed floats).
 inline Point2 RandomShift(uint32_t p, uint32_t first = 0) {
@@ -60,16 +69,15 @@ inline void SinCosQuarter(double a, double& s, double& c) {
                                    a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 + a2 / 479001600)))));
 }
 
-// Branch-free (selects, not jumps): the two wedges of the square are equally likely, so a
-// branch on them would be mispredicted on every other ray.
+// Branch-free (Select): the two wedges of the square are equally likely.
 inline Point2 SampleUniformDiskConcentric(Point2 u) {
   const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
   // |ox| > |oy|: theta = pi/4 * oy/ox; otherwise theta = pi/2 - pi/4 * ox/oy.
   const bool wide = std::abs(ox) > std::abs(oy);
-  const double r = wide ? ox : oy, q = wide ? oy : ox;
+  const double r = Select(wide, ox, oy), q = Select(wide, oy, ox);  // |q| <= |r|; q = 0 if r = 0
   double s, c;
-  SinCosQuarter(r == 0 ? 0 : std::numbers::pi / 4 * (q / r), s, c);
-  return {wide ? r * c : r * s, wide ? r * s : r * c};
+  SinCosQuarter(std::numbers::pi / 4 * (q / Select(r == 0, 1, r)), s, c);
+  return {Select(wide, r * c, r * s), Select(wide, r * s, r * c)};
 }
 }  // namespace internal
 
@@ -87,9 +95,9 @@ Point2 InvertCosineHemisphereSample(const Vec3& w);
 // Uniform barycentric point (b0, b1) on a triangle; b2 = 1 - b0 - b1 (Heitz's
 // low-distortion mapping, which keeps stratification).
 inline std::pair<double, double> SampleUniformTriangle(Point2 u) {
-  const bool lower = u.x < u.y;  // selects, not a branch: either side is equally likely
-  const double b0 = lower ? u.x / 2 : u.x - u.y / 2;
-  const double b1 = lower ? u.y - u.x / 2 : u.y / 2;
+  const bool lower = u.x < u.y;  // either side equally likely: Select, not a branch
+  const double b0 = Select(lower, u.x / 2, u.x - u.y / 2);
+  const double b1 = Select(lower, u.y - u.x / 2, u.y / 2);
   return {b0, b1};
 }
 Point2 InvertUniformTriangleSample(double b0, double b1);

@@ -46,7 +46,7 @@ class PatchPointSampler {
     const bool first = u.x < first_;
     const Vec3& b = first ? b_ : c_;
     const Vec3& c = first ? c_ : d_;
-    const double x = std::min((first ? u.x : u.x - first_) / (first ? first_ : 1 - first_),
+    const double x = std::min(Select(first, u.x, u.x - first_) / Select(first, first_, 1 - first_),
                               0x1.fffffffffffffp-1);
     const auto [b0, b1] = SampleUniformTriangle({x, u.y});
     return a_ * b0 + b * b1 + c * (1 - b0 - b1);
