@@ -12,6 +12,7 @@
 #include "server/job_runner.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
+#include "server/row_budget.h"
 #include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
@@ -46,7 +47,9 @@ bool Terminal(v1::JobState s) {
   return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED || s == v1::JOB_STATE_CANCELLED;
 }
 
-uint64_t DefaultMaxMemory() {
+// Bytes per job: --max-memory, or half the RAM.
+uint64_t MaxJobMemory(const ManagerOptions& options) {
+  if (options.max_memory > 0) return options.max_memory;
   const long pages = sysconf(_SC_PHYS_PAGES);
   const long page = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) / 2
@@ -151,14 +154,7 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(*scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  const uint64_t max_memory = options_.max_memory > 0 ? options_.max_memory : DefaultMaxMemory();
-  const uint64_t bytes = EstimateJobBytes(*scene, *options);
-  if (bytes > max_memory) {
-    return absl::ResourceExhaustedError(absl::StrCat("job needs an estimated ", bytes,
-                                                     " bytes; this server allows ", max_memory,
-                                                     " per job (--max-memory)"));
-  }
-  return absl::OkStatus();
+  return RowMemoryBudget(*scene, *options, MaxJobMemory(options_)).status();
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
@@ -384,6 +380,7 @@ void JobManager::RunOne(const std::string& job_id) {
   context.solve_delay_ms = options_.solve_delay_ms;
   context.farm = options_.farm;
   context.block_delay_ms = options_.block_delay_ms;
+  context.max_memory = MaxJobMemory(options_);
   const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
   context.threads = std::max(1, threads / std::max(1, options_.jobs));
   context.on_phase = [&](v1::Phase phase, int64_t patches) {

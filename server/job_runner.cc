@@ -10,11 +10,14 @@
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
 #include "server/row_block_writer.h"
+#include "server/row_budget.h"
 #include "server/row_farm.h"
+#include "server/row_sink.h"
 #include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "solver/report.h"
+#include "solver/sparse/file_block_spill.h"
 
 namespace radflux {
 namespace {
@@ -39,46 +42,69 @@ void PublishProgress(ProgressThrottle& throttle, v1::Phase phase, const v1::Prog
   throttle.Publish(std::move(event));
 }
 
+// The job's rows, in memory, or in a RowStore keeping `row_budget` bytes (> 0) in memory
+// and spilling the rest to a file in the job's directory.
+RowSink MakeRowSink(const v1::Job& job, uint32_t n, uint32_t block_count, uint64_t row_budget,
+                    const RunContext& c) {
+  if (row_budget == 0) return RowSink(n, block_count, nullptr);
+  return RowSink(
+      n, block_count,
+      std::make_unique<RowStore>(n, row_budget,
+                                 std::make_unique<FileBlockSpill>(c.store->JobDir(job.job_id()))));
+}
+
 // All row blocks of the job: stored ones are read back, missing ones built (in parallel)
-// and handed to `writer` as each completes.
-absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
-                                                 const FormFactorOptions& options,
-                                                 const RunContext& c, RowBlockWriter& writer,
-                                                 ProgressThrottle& throttle) {
+// and handed to `writer` as each completes; all go to the sink.
+absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
+                                        const FormFactorOptions& options, uint64_t row_budget,
+                                        const RunContext& c, RowBlockWriter& writer,
+                                        ProgressThrottle& throttle) {
   const auto start = Clock::now();
   const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
-  std::vector<std::shared_ptr<const StoredRowBlock>> blocks(block_count);
+  RowSink sink = MakeRowSink(job, n, block_count, row_budget, c);
+  absl::Status sink_error;  // the first failure to append (guarded by mu below)
   int64_t done = 0;
   std::vector<absl::Status> unreadable;
-  for (StoredRowBlock& stored : c.store->GetRowBlocks(job.job_id(), &unreadable)) {
-    const uint32_t b = stored.block.first_row / block_size;
-    if (b >= block_count || stored.block.first_row != b * block_size || blocks[b]) continue;
-    done += stored.block.RowCount();
-    blocks[b] = std::make_shared<const StoredRowBlock>(std::move(stored));
-  }
+  c.store->ForEachRowBlock(
+      job.job_id(),
+      [&](StoredRowBlock stored) {
+        const uint32_t b = stored.block.first_row / block_size;
+        if (b >= block_count || stored.block.first_row != b * block_size || sink.Has(b)) return;
+        done += stored.block.RowCount();
+        if (absl::Status s = sink.Put(b, std::make_shared<const StoredRowBlock>(std::move(stored)));
+            !s.ok() && sink_error.ok()) {
+          sink_error = s;
+        }
+      },
+      &unreadable);
   for (const absl::Status& s : unreadable) {
     spdlog::warn("job {}: stored rows unreadable ({}), rebuilding them", job.job_id(),
                  std::string(s.message()));
   }
   std::vector<uint32_t> missing;
   for (uint32_t b = 0; b < block_count; ++b) {
-    if (!blocks[b]) missing.push_back(b);
+    if (!sink.Has(b)) missing.push_back(b);
   }
   if (done > 0) spdlog::info("job {}: reusing {} stored rows of {}", job.job_id(), done, n);
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(prepared.rows, options);
   const int threads = c.threads > 0 ? c.threads : DefaultThreadCount();
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
-  std::mutex mu;  // guards done, rays and event publishing order
+  std::mutex mu;  // guards done, rays, sink_error and event publishing order
   uint64_t rays = 0;
-  // Every block built (here or by a worker) goes to the store and the progress events.
+  // Every block built (here or by a worker) goes to the store, the sink and the progress
+  // events.
   const auto store_block = [&](uint32_t b, StoredRowBlock s) {
-    blocks[b] = std::make_shared<const StoredRowBlock>(std::move(s));
-    writer.Put(blocks[b]);
+    const int64_t count = s.block.RowCount();
+    const uint64_t block_rays = s.stats.rays;
+    auto shared = std::make_shared<const StoredRowBlock>(std::move(s));
+    writer.Put(shared);
+    absl::Status put = sink.Put(b, std::move(shared));
     std::lock_guard lock(mu);
-    done += blocks[b]->block.RowCount();
-    rays += blocks[b]->stats.rays;
+    if (!put.ok() && sink_error.ok()) sink_error = put;
+    done += count;
+    rays += block_rays;
     v1::Progress progress;
     progress.set_rows_done(done);
     progress.set_rows_total(n);
@@ -113,18 +139,10 @@ absl::StatusOr<FormFactorResult> BuildStoredRows(const v1::Job& job, const Prepa
   farm.Close(job.job_id());
   if (!all_done && !Stopped(c)) return absl::InternalError("row phase ended with blocks missing");
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
-  FormFactorResult result;
-  result.matrix.cols = n;
-  size_t nnz = 0;
-  for (const auto& s : blocks) nnz += s->block.col.size();
-  result.matrix.Reserve(n, nnz);
-  for (auto& s : blocks) {
-    result.matrix.Append(s->block);
-    result.stats.Merge(s->stats);
-    s.reset();  // the writer may still hold it until its checkpoint
-  }
-  result.seconds = SecondsSince(start);
-  return result;
+  if (!sink_error.ok()) return sink_error;
+  absl::StatusOr<JobRows> rows = sink.Finish();
+  if (rows.ok()) rows->seconds = SecondsSince(start);
+  return rows;
 }
 
 // Every iterative method resumes from a checkpoint: jacobi and gauss_seidel from B
@@ -149,8 +167,8 @@ std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMetho
 // The solve phase: resumes from the job's checkpoint when there is a usable one, publishes
 // progress and snapshots every iteration, checkpoints every context.checkpoint_seconds.
 absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
-                                        const CsrMatrix& rows, SolverOptions so,
-                                        const RunContext& c, ProgressThrottle& throttle) {
+                                        const JobRows& rows, SolverOptions so, const RunContext& c,
+                                        ProgressThrottle& throttle) {
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   so.threads = c.threads;
   so.cancel = c.stop;
@@ -193,7 +211,8 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
     }
   };
   absl::StatusOr<SolveResult> solved =
-      Solve(RadiositySystem{&rows, &p.attributes}, so, on_progress);
+      Solve(RadiositySystem{rows.store ? nullptr : &rows.matrix, &p.attributes, rows.store.get()},
+            so, on_progress);
   if (!solved.ok()) return solved.status();
   if (solved->cancelled || Stopped(c)) {
     if (!last.radiosity.empty()) (void)c.store->PutCheckpoint(job.job_id(), last);
@@ -214,6 +233,9 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   options->form_factors.threads = c.threads;
   absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
   if (!scene.ok()) return scene.status();
+  absl::StatusOr<uint64_t> row_budget = RowMemoryBudget(*scene, *options, c.max_memory);
+  if (!row_budget.ok()) return row_budget.status();
+  options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
   absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
@@ -234,15 +256,14 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
     const RunContext& c;
     ~FinishWriter() { writer.Finish(!(c.cancelled && c.cancelled->load())); }
   } finish_writer{writer, c};
-  absl::StatusOr<FormFactorResult> rows =
-      BuildStoredRows(job, p, options->form_factors, c, writer, throttle);
+  absl::StatusOr<JobRows> rows =
+      BuildStoredRows(job, p, options->form_factors, *row_budget, c, writer, throttle);
   if (!rows.ok()) return rows.status();
 
   throttle.Flush();
   c.on_phase(v1::PHASE_SOLVE, n);
   const auto solve_start = Clock::now();
-  absl::StatusOr<SolveResult> solved =
-      SolveStored(job, p, rows->matrix, options->solver, c, throttle);
+  absl::StatusOr<SolveResult> solved = SolveStored(job, p, *rows, options->solver, c, throttle);
   if (!solved.ok()) return solved.status();
   throttle.Flush();  // the last iteration's progress goes before the job's final event
   writer.Finish(/*drain=*/false);  // solved: the row blocks are about to be deleted
@@ -250,6 +271,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   JobResult result;
   result.job = *std::move(prepared);
   result.form_factors = std::move(rows->matrix);
+  result.row_store = std::move(rows->store);
   result.row_stats = rows->stats;
   result.solve = *std::move(solved);
   result.timings.mesh = result.job->mesh_seconds;

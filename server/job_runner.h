@@ -4,9 +4,12 @@
 // computes: rows are deterministic per patch; the solve resumes from its checkpoint bit for
 // bit for jacobi, gauss_seidel (B) and southwell (B and the unshot radiosity), and cg warm
 // starts from the checkpointed B (same answer within the tolerance); direct restarts.
+// A job whose rows do not fit context.max_memory keeps them in a RowStore that spills to a
+// file in its job directory (rebuilt from the stored rows on resume).
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -29,6 +32,9 @@ struct RunContext {
   int solve_delay_ms = 0;           // testing: sleep after each solver iteration
   RowFarm* farm = nullptr;  // shares the row blocks with worker nodes (null: this job's own)
   int block_delay_ms = 0;   // testing: sleep after each row block built here
+  // Bytes per job (EstimateJobBytes); a job whose rows do not fit spills them to a file in
+  // its directory of the store (see row_budget.h).
+  uint64_t max_memory = UINT64_MAX;
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };

@@ -3,7 +3,9 @@
 #include <sqlite3.h>
 
 #include <filesystem>
+#include <map>
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "server/blob_file.h"
@@ -267,24 +269,31 @@ absl::Status JobStore::PutRowBlocks(const std::string& job_id, uint32_t name_ind
                        EncodeRowBlockGroup(blocks));
 }
 
-std::vector<StoredRowBlock> JobStore::GetRowBlocks(const std::string& job_id,
-                                                   std::vector<absl::Status>* unreadable) {
-  std::vector<StoredRowBlock> blocks;
+void JobStore::ForEachRowBlock(const std::string& job_id,
+                               const std::function<void(StoredRowBlock)>& fn,
+                               std::vector<absl::Status>* unreadable) {
+  std::map<uint32_t, fs::path> files;  // by the index in their name
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(JobDir(job_id), ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("rows_", 0) != 0 || entry.path().extension() != ".rfb") continue;
-    absl::StatusOr<std::string> bytes = ReadBlobFile(entry.path().string());
+    const std::string name = entry.path().stem().string();
+    uint32_t index = 0;
+    if (name.rfind("rows_", 0) != 0 || entry.path().extension() != ".rfb" ||
+        !absl::SimpleAtoi(name.substr(5), &index)) {
+      continue;
+    }
+    files.emplace(index, entry.path());
+  }
+  for (const auto& [index, path] : files) {
+    absl::StatusOr<std::string> bytes = ReadBlobFile(path.string());
     absl::StatusOr<std::vector<StoredRowBlock>> group =
         bytes.ok() ? DecodeRowBlockGroup(*bytes) : bytes.status();
     if (!group.ok()) {
       unreadable->push_back(
-          absl::DataLossError(absl::StrCat(entry.path().string(), ": ", group.status().message())));
+          absl::DataLossError(absl::StrCat(path.string(), ": ", group.status().message())));
       continue;
     }
-    for (StoredRowBlock& block : *group) blocks.push_back(std::move(block));
+    for (StoredRowBlock& block : *group) fn(std::move(block));
   }
-  return blocks;
 }
 
 absl::Status JobStore::PutCheckpoint(const std::string& job_id, const SolverCheckpoint& c) {

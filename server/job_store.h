@@ -5,6 +5,7 @@
 // UpdateJob of a RUNNING job, which survives kill -9 but not an OS crash. Thread-safe.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -76,10 +77,11 @@ class JobStore {
   // readable file (whose blocks are stored, hence never written again).
   absl::Status PutRowBlocks(const std::string& job_id, uint32_t name_index,
                             const std::vector<const StoredRowBlock*>& blocks);
-  // Every stored row block of a job; a file that cannot be read is reported in
-  // `unreadable` (its blocks are simply not returned).
-  std::vector<StoredRowBlock> GetRowBlocks(const std::string& job_id,
-                                           std::vector<absl::Status>* unreadable);
+  // Every stored row block of a job, file by file in the order of their names' index (so
+  // the rows come roughly in row order, a file's worth in memory at a time); a file that
+  // cannot be read is reported in `unreadable` (its blocks are simply not passed on).
+  void ForEachRowBlock(const std::string& job_id, const std::function<void(StoredRowBlock)>& fn,
+                       std::vector<absl::Status>* unreadable);
   absl::Status PutCheckpoint(const std::string& job_id, const SolverCheckpoint& checkpoint);
   absl::StatusOr<SolverCheckpoint> GetCheckpoint(const std::string& job_id);
   // The serialized result stream of a finished job (see result_codec.h).
@@ -87,11 +89,12 @@ class JobStore {
   absl::StatusOr<std::string> GetResult(const std::string& job_id);
   // Deletes the row blocks and checkpoint of a job (after it finished or was cancelled).
   void RemoveWorkFiles(const std::string& job_id);
+  // The directory of a job's work files (removed with them: a file left in it goes too).
+  std::string JobDir(const std::string& job_id) const;
 
  private:
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::Status Exec(const std::string& sql);
-  std::string JobDir(const std::string& job_id) const;
   absl::StatusOr<std::vector<v1::Job>> QueryJobs(const std::string& sql,
                                                  const std::vector<std::string>& args);
 

@@ -180,7 +180,12 @@ int main(int argc, char** argv) {
   app.add_option("--max-patches", flags.manager.max_patches, "refuse jobs with more patches")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-memory", flags.manager.max_memory,
-                 "refuse jobs whose estimated memory exceeds BYTES (default: half the RAM)");
+                 "memory per job (estimated at submit; default: half the RAM). A job whose "
+                 "rows do not fit runs with BYTES minus the rest of its estimate of rows in "
+                 "memory and the others spilled to its job directory (jacobi, gauss_seidel, "
+                 "auto; auto becomes gauss_seidel); refused: jobs that do not fit even "
+                 "spilled, or do not fit and cannot spill (cg, southwell, direct, "
+                 "hierarchical, adaptive)");
   app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
   app.add_option(
          "--checkpoint-seconds", flags.manager.checkpoint_seconds,

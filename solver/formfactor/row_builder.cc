@@ -4,11 +4,11 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
-#include <map>
 #include <mutex>
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/builders.h"
+#include "solver/sparse/ordered_row_appender.h"
 
 namespace radflux {
 
@@ -142,40 +142,12 @@ absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      RowStore& store,
                                                      const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  // Blocks finish in any order and wait in `pending` until they are next in row order. One
-  // thread at a time appends them to the store (which may write to disk); the others leave
-  // their block and go on building. A block left behind by a drainer that was just
-  // finishing goes with the next delivery, or with the last drain below.
-  std::mutex pending_mutex, drain_mutex;
-  std::map<uint32_t, RowBlock> pending;
-  uint32_t next = 0;
-  const auto drain = [&]() -> absl::Status {
-    std::unique_lock drainer(drain_mutex, std::try_to_lock);
-    if (!drainer.owns_lock()) return absl::OkStatus();
-    for (;;) {
-      RowBlock block;
-      {
-        std::lock_guard lock(pending_mutex);
-        const auto it = pending.find(next);
-        if (it == pending.end()) return absl::OkStatus();
-        block = std::move(it->second);
-        pending.erase(it);
-        ++next;
-      }
-      if (absl::Status s = store.Append(std::move(block)); !s.ok()) return s;
-    }
-  };
+  OrderedRowAppender appender(store);
   absl::StatusOr<RowBlockStats> stats =
-      BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
-        {
-          std::lock_guard lock(pending_mutex);
-          pending.emplace(b, std::move(block));
-        }
-        return drain();
-      });
+      BuildBlocks(context, options, progress,
+                  [&](uint32_t b, RowBlock block) { return appender.Put(b, std::move(block)); });
   if (!stats.ok()) return stats.status();
-  if (absl::Status s = drain(); !s.ok()) return s;
-  if (absl::Status s = store.Finish(); !s.ok()) return s;
+  if (absl::Status s = appender.Finish(); !s.ok()) return s;
   return RowBuildSummary{*stats, SecondsSince(start)};
 }
 

@@ -144,4 +144,42 @@ v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver) {
   return options;
 }
 
+// Starts a job, kills the server (kill -9) once the solve has reported iteration 5 (the
+// server checkpoints every iteration and sleeps 20 ms after each, so the kill lands mid
+// solve), restarts it (no delay; both times with `extra` flags) and returns the finished
+// job's B. *first_iteration is the first solve iteration the restarted server reported: >= 5
+// proves it resumed from the checkpoint of iteration 4 or later (iteration 5's may not be on
+// disk when the kill lands).
+inline std::vector<double> KillDuringSolveAndResume(ServiceFixture& t,
+                                                    const v1::SolveOptions& options,
+                                                    int* first_iteration, std::string* report,
+                                                    const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> flags = {"--checkpoint-seconds", "0", "--solve-delay-ms", "20"};
+  flags.insert(flags.end(), extra.begin(), extra.end());
+  t.StartServer(flags);
+  const std::string sha = t.UploadCornell();
+  v1::Job job;
+  EXPECT_TRUE(t.Submit(options, &job, sha).ok());
+  const std::vector<v1::JobEvent> before = t.Watch(job.job_id(), [](const v1::JobEvent& e) {
+    return e.phase() == v1::PHASE_SOLVE && e.progress().iteration() >= 5;
+  });
+  EXPECT_NE(before.back().state(), v1::JOB_STATE_SUCCEEDED);
+  t.server_->Kill();
+  EXPECT_TRUE(std::filesystem::exists(t.data_dir_ + "/jobs/" + job.job_id() + "/checkpoint.rfb"));
+
+  t.StartServer(extra);
+  const std::vector<v1::JobEvent> after = t.Watch(job.job_id());
+  EXPECT_EQ(after.back().state(), v1::JOB_STATE_SUCCEEDED) << after.back().message();
+  *first_iteration = 0;
+  for (const v1::JobEvent& e : after) {
+    if (e.phase() == v1::PHASE_SOLVE && e.progress().iteration() > 0) {
+      *first_iteration = e.progress().iteration();
+      break;
+    }
+  }
+  std::vector<double> served;
+  EXPECT_TRUE(t.Result(job.job_id(), &served, report).ok());
+  return served;
+}
+
 }  // namespace radflux::testing

@@ -32,6 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ExpectBitIdentical;
 using testing::InProcess;
+using testing::KillDuringSolveAndResume;
 using testing::kMtl;
 using testing::kObj;
 using testing::ReadText;
@@ -61,11 +62,16 @@ TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
     if (e.has_snapshot()) {
       saw_snapshot = true;
       EXPECT_EQ(e.sequence(), last) << "a snapshot carries the sequence it follows";
+      // Its header is the watcher's own, its snapshot field the bytes shared by all.
+      EXPECT_EQ(e.job_id(), job.job_id());
+      EXPECT_EQ(e.state(), v1::JOB_STATE_RUNNING);
+      EXPECT_EQ(e.phase(), v1::PHASE_SOLVE);
       EXPECT_EQ(e.snapshot().patch_count(), static_cast<uint64_t>(patches));
       EXPECT_TRUE(SnapshotValues(e.snapshot()).ok());
       continue;
     }
     EXPECT_EQ(e.sequence(), last + 1);
+    EXPECT_EQ(e.job_id(), job.job_id());
     last = e.sequence();
     if (e.phase() == v1::PHASE_ROWS) patches = std::max(patches, e.progress().rows_total());
   }
@@ -263,40 +269,6 @@ TEST_F(ServiceTest, KillNineBeforeTheFirstCheckpointRebuildsAndEndsBitIdentical)
   std::vector<double> served;
   ASSERT_TRUE(Result(job.job_id(), &served).ok());
   ExpectBitIdentical(served, InProcess(options));
-}
-
-// Starts a job, kills the server (kill -9) once the solve has reported iteration 5 (the
-// server checkpoints every iteration and sleeps 20 ms after each, so the kill lands mid
-// solve), restarts it (no delay) and returns the finished job's B. *first_iteration is the
-// first solve iteration the restarted server reported: >= 5 proves it resumed from the
-// checkpoint of iteration 4 or later (iteration 5's may not be on disk when the kill lands).
-std::vector<double> KillDuringSolveAndResume(ServiceTest& t, const v1::SolveOptions& options,
-                                             int* first_iteration, std::string* report) {
-  const std::vector<std::string> flags = {"--checkpoint-seconds", "0", "--solve-delay-ms", "20"};
-  t.StartServer(flags);
-  const std::string sha = t.UploadCornell();
-  v1::Job job;
-  EXPECT_TRUE(t.Submit(options, &job, sha).ok());
-  const std::vector<v1::JobEvent> before = t.Watch(job.job_id(), [](const v1::JobEvent& e) {
-    return e.phase() == v1::PHASE_SOLVE && e.progress().iteration() >= 5;
-  });
-  EXPECT_NE(before.back().state(), v1::JOB_STATE_SUCCEEDED);
-  t.server_->Kill();
-  EXPECT_TRUE(fs::exists(t.data_dir_ + "/jobs/" + job.job_id() + "/checkpoint.rfb"));
-
-  t.StartServer();
-  const std::vector<v1::JobEvent> after = t.Watch(job.job_id());
-  EXPECT_EQ(after.back().state(), v1::JOB_STATE_SUCCEEDED) << after.back().message();
-  *first_iteration = 0;
-  for (const v1::JobEvent& e : after) {
-    if (e.phase() == v1::PHASE_SOLVE && e.progress().iteration() > 0) {
-      *first_iteration = e.progress().iteration();
-      break;
-    }
-  }
-  std::vector<double> served;
-  EXPECT_TRUE(t.Result(job.job_id(), &served, report).ok());
-  return served;
 }
 
 TEST_F(ServiceTest, KillNineDuringSouthwellSolveResumesBitIdentical) {
