@@ -1,12 +1,15 @@
 #!/bin/bash
 # Service overhead (issue 4), on the Cornell box at ~8,500 patches, radfluxd on loopback:
-#  A. `radflux solve` in-process vs the service path `radflux submit --watch` + `radflux result`
-#     (upload, queue, rows checkpointed by time, checkpointed solve, result stored and
-#     streamed back): wall time, and the job's compute time (mesh+embree+rows+solve from
-#     each report). RUNS of each, interleaved; medians and the median of paired ratios.
+#  A. `radflux solve` in-process vs the service path in one client process, `radflux submit
+#     --watch --report` (upload, queue, rows checkpointed by time, checkpointed solve, result
+#     stored and streamed back), and in two (`submit --watch` then `radflux result`, the path
+#     before submit took output options): wall time, and the job's compute time
+#     (mesh+embree+rows+solve from each report). RUNS of each, interleaved; medians and the
+#     median of paired ratios.
 #  B. Snapshot streaming, unpinned: the same job with 0 watchers vs 50 watchers asking a
-#     float32 snapshot every iteration (`radflux watch --snapshot-every 1`, niced), all on
-#     the same cores as the server: the job's compute seconds from its report.
+#     snapshot every iteration (`radflux watch --snapshot-every 1`, niced: float16 since
+#     commit "watch asks float16", float32 before), all on the same cores as the server:
+#     the job's compute seconds from its report.
 #  C. Snapshot streaming as in production, where watchers are other machines: a second
 #     radfluxd pinned to CPU 0 (`taskset -c 0`, --threads 1), the 50 watcher processes
 #     pinned to CPU 1; the job's compute seconds with 0 vs 50 watchers, and `radflux solve
@@ -101,13 +104,17 @@ for i in $(seq "$RUNS"); do
                    --report "$DIR/solve_$i.json" ; } 2>&1 | awk '{print $1 + $2}')
   t1=$(now)
   c0=$(server_cpu "$PID_main")
-  JOB=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --watch --server "$ADDR_main" 2>/dev/null | tail -n 1)
-  "$SERVICE" result "$JOB" --server "$ADDR_main" --report "$DIR/svc_$i.json" >/dev/null
+  "$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --watch --server "$ADDR_main" \
+    --report "$DIR/svc_$i.json" >/dev/null 2>&1
   t2=$(now)
   c1=$(server_cpu "$PID_main")
+  JOB=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --watch --server "$ADDR_main" 2>/dev/null | tail -n 1)
+  "$SERVICE" result "$JOB" --server "$ADDR_main" --report "$DIR/svc2_$i.json" >/dev/null
+  t3=$(now)
   echo "A $i solve_wall $(echo "$t1 - $t0" | bc) service_wall $(echo "$t2 - $t1" | bc)" \
        "solve_compute $(compute "$DIR/solve_$i.json") service_compute $(compute "$DIR/svc_$i.json")" \
        "solve_cpu $solve_cpu server_cpu $(echo "$c1 - $c0" | bc)" \
+       "two_process_wall $(echo "$t3 - $t2" | bc)" \
     | tee -a "$DIR/A.txt" >&2
   # B: 0 vs 50 watchers, unpinned.
   watched_job B "$i" 0 "$ADDR_main" "$PID_main"
@@ -131,11 +138,14 @@ sw, vw = med(r[3] for r in a), med(r[5] for r in a)
 sc, vc = med(r[7] for r in a), med(r[10] for r in a)
 print(f"| A: measure (median of {runs}) | radflux solve | service | overhead |")
 print("|---|---|---|---|")
-print(f"| wall time, s | {sw:.3f} | {vw:.3f} | {pct(sw, vw)} |")
+print(f"| wall time, s (service: `submit --watch --report`, one process) | {sw:.3f} | {vw:.3f} | {pct(sw, vw)} |")
+tw = med(r[17] for r in a)
+print(f"| wall time, s (service: `submit --watch` + `result`, two processes) | {sw:.3f} | {tw:.3f} | {pct(sw, tw)} |")
 print(f"| job compute (mesh+embree+rows+solve), s | {sc:.3f} | {vc:.3f} | {pct(sc, vc)} |")
 pc, vpc = med(r[13] for r in a), med(r[15] for r in a)
 print(f"| CPU s (solve process / server process) | {pc:.3f} | {vpc:.3f} | {pct(pc, vpc)} |")
-print(f"| median of paired wall-time ratios | | | {pct(1, st.median(float(r[5]) / float(r[3]) for r in a))} |")
+print(f"| median of paired wall-time ratios (one process) | | | {pct(1, st.median(float(r[5]) / float(r[3]) for r in a))} |")
+print(f"| median of paired wall-time ratios (two processes) | | | {pct(1, st.median(float(r[17]) / float(r[3]) for r in a))} |")
 print(f"| median of paired job-compute ratios | | | {pct(1, st.median(float(r[10]) / float(r[7]) for r in a))} |")
 def watchers(part, title, solve_ref=None):
     b = [l.split() for l in open(f"{d}/{part}.txt")]

@@ -14,7 +14,8 @@ void JobHub::Publish(v1::JobEvent event) {
     std::lock_guard lock(mu_);
     event.set_sequence(base_ + events_.size() + 1);
     event.set_job_id(job_id_);
-    events_.push_back(std::move(event));
+    events_.push_back({event.sequence(), event.state(),
+                       std::make_shared<const std::string>(event.SerializeAsString())});
   }
   WakeAll();
 }
@@ -35,7 +36,7 @@ void JobHub::Close() {
   WakeAll();
 }
 
-bool JobHub::NextEvent(uint64_t after, v1::JobEvent* out) const {
+bool JobHub::NextEvent(uint64_t after, HubEvent* out) const {
   std::lock_guard lock(mu_);
   const uint64_t index = after > base_ ? after - base_ : 0;
   if (index >= events_.size()) return false;
@@ -50,17 +51,18 @@ bool JobHub::NewestSnapshot(int min_iteration, SnapshotData* out) const {
   return true;
 }
 
-std::shared_ptr<const v1::Snapshot> JobHub::EncodedSnapshot(const SnapshotData& snapshot,
-                                                            const std::vector<int>& bands,
-                                                            v1::SnapshotFormat format) {
+EventWire JobHub::EncodedSnapshot(const SnapshotData& snapshot, const std::vector<int>& bands,
+                                  v1::SnapshotFormat format) {
   std::string key = std::to_string(static_cast<int>(format)) + ":";
   for (int b : bands) key += std::to_string(b) + ",";
   std::lock_guard lock(encoded_mu_);
   Encoded& entry = encoded_[key];
   if (entry.source != snapshot.radiosity || !entry.message) {
     entry.source = snapshot.radiosity;
-    entry.message = std::make_shared<const v1::Snapshot>(
-        ToProtoSnapshot(snapshot.iteration, *snapshot.radiosity, bands, format));
+    v1::JobEvent only_snapshot;
+    *only_snapshot.mutable_snapshot() =
+        ToProtoSnapshot(snapshot.iteration, *snapshot.radiosity, bands, format);
+    entry.message = std::make_shared<const std::string>(only_snapshot.SerializeAsString());
   }
   return entry.message;
 }

@@ -18,6 +18,16 @@
 
 namespace radflux {
 
+// Serialized bytes of a JobEvent (or of a part of one), shared by every watcher sending them.
+using EventWire = std::shared_ptr<const std::string>;
+
+// An event of the history as watchers send it: serialized once, when published.
+struct HubEvent {
+  uint64_t sequence = 0;
+  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
+  EventWire wire;
+};
+
 // B of every patch at one solver iteration.
 struct SnapshotData {
   int iteration = 0;
@@ -39,15 +49,15 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
 
   // The first event with sequence > after, if there is one yet; for `after` below this
   // history's base (a number from an earlier history), its first event.
-  bool NextEvent(uint64_t after, v1::JobEvent* out) const;
+  bool NextEvent(uint64_t after, HubEvent* out) const;
   // The newest snapshot, if its iteration is at least min_iteration.
   bool NewestSnapshot(int min_iteration, SnapshotData* out) const;
-  // `snapshot` as a message with these bands and format, encoded once and shared by every
-  // watcher asking the same (the newest snapshot reaches N watchers at the cost of one
-  // encoding). Never takes the lock the publisher needs.
-  std::shared_ptr<const v1::Snapshot> EncodedSnapshot(const SnapshotData& snapshot,
-                                                      const std::vector<int>& bands,
-                                                      v1::SnapshotFormat format);
+  // `snapshot` with these bands and format as the serialized JobEvent that holds only it
+  // (its `snapshot` field), encoded and serialized once and shared by every watcher asking
+  // the same: the newest snapshot reaches N watchers at the cost of one encoding, each
+  // watcher prefixing its own few header bytes. Never takes the lock the publisher needs.
+  EventWire EncodedSnapshot(const SnapshotData& snapshot, const std::vector<int>& bands,
+                            v1::SnapshotFormat format);
   bool closed() const;
   uint64_t last_sequence() const;
 
@@ -67,14 +77,14 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
   const std::string job_id_;
   const uint64_t base_;
   mutable std::mutex mu_;
-  std::vector<v1::JobEvent> events_;  // events_[k].sequence() == base_ + k + 1
+  std::vector<HubEvent> events_;  // events_[k].sequence == base_ + k + 1
   SnapshotData snapshot_;
   bool closed_ = false;
   bool wake_pending_ = false;
   int next_subscriber_ = 0;
   struct Encoded {
     std::shared_ptr<const std::vector<Rgb>> source;  // the snapshot it encodes
-    std::shared_ptr<const v1::Snapshot> message;
+    EventWire message;
   };
   std::mutex encoded_mu_;                   // guards encoded_ (not mu_: encoding is slow)
   std::map<std::string, Encoded> encoded_;  // by format and bands (validated: a few keys)

@@ -207,17 +207,19 @@ grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContex
   });
 }
 
-grpc::ServerWriteReactor<v1::JobEvent>* RadiosityService::WatchJob(
-    grpc::CallbackServerContext* context, const v1::WatchJobRequest* request) {
-  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
-    return new ErrorWriteReactor<v1::JobEvent>(auth);
+grpc::ServerWriteReactor<grpc::ByteBuffer>* RadiosityService::WatchJob(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* raw_request) {
+  using Error = ErrorWriteReactor<grpc::ByteBuffer>;
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) return new Error(auth);
+  v1::WatchJobRequest request;
+  grpc::ByteBuffer bytes(*raw_request);  // shares the slices; Deserialize consumes it
+  if (!grpc::SerializationTraits<v1::WatchJobRequest>::Deserialize(&bytes, &request).ok()) {
+    return new Error(grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "malformed WatchJobRequest"));
   }
-  if (grpc::Status valid = CheckWatchRequest(*request); !valid.ok()) {
-    return new ErrorWriteReactor<v1::JobEvent>(valid);
-  }
-  absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request->job_id());
-  if (!hub.ok()) return new ErrorWriteReactor<v1::JobEvent>(ToGrpcStatus(hub.status()));
-  return new WatchReactor(*std::move(hub), *request);
+  if (grpc::Status valid = CheckWatchRequest(request); !valid.ok()) return new Error(valid);
+  absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request.job_id());
+  if (!hub.ok()) return new Error(ToGrpcStatus(hub.status()));
+  return new WatchReactor(*std::move(hub), request);
 }
 
 grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(

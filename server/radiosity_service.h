@@ -13,7 +13,9 @@
 
 namespace radflux {
 
-class RadiosityService final : public v1::Radiosity::CallbackService {
+// WatchJob is a raw method: its reactor writes events serialized once for all watchers.
+class RadiosityService final
+    : public v1::Radiosity::WithRawCallbackMethod_WatchJob<v1::Radiosity::CallbackService> {
  public:
   // `token` empty = no authentication.
   RadiosityService(JobManager& manager, WorkQueue& work, std::string token)
@@ -24,8 +26,9 @@ class RadiosityService final : public v1::Radiosity::CallbackService {
   grpc::ServerUnaryReactor* SubmitJob(grpc::CallbackServerContext* context,
                                       const v1::SubmitJobRequest* request,
                                       v1::Job* response) override;
-  grpc::ServerWriteReactor<v1::JobEvent>* WatchJob(grpc::CallbackServerContext* context,
-                                                   const v1::WatchJobRequest* request) override;
+  // A serialized v1::WatchJobRequest in, serialized v1::JobEvents out.
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* WatchJob(grpc::CallbackServerContext* context,
+                                                       const grpc::ByteBuffer* request) override;
   grpc::ServerWriteReactor<v1::ResultChunk>* GetResult(
       grpc::CallbackServerContext* context, const v1::GetResultRequest* request) override;
   grpc::ServerUnaryReactor* CancelJob(grpc::CallbackServerContext* context,

@@ -22,15 +22,26 @@ bool IsTerminal(v1::JobState state) {
   return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
          state == v1::JOB_STATE_CANCELLED;
 }
+
+// A slice of `part` without a copy: the slice holds a reference until gRPC has sent it.
+grpc::Slice SharedSlice(const EventWire& part) {
+  auto* owner = new EventWire(part);
+  return grpc::Slice(
+      const_cast<char*>((*owner)->data()), (*owner)->size(),
+      [](void* p) { delete static_cast<EventWire*>(p); }, owner);
+}
 }  // namespace
 
 bool WatchReactor::NextMessage() {
-  if (hub_->NextEvent(sent_sequence_, &message_)) {
+  HubEvent event;
+  if (hub_->NextEvent(sent_sequence_, &event)) {
     // The newest unsent snapshot goes out just before the job's final event, never after
     // it: the final event stays the last thing a watcher sees.
-    if (IsTerminal(message_.state()) && NextSnapshot()) return true;
-    sent_sequence_ = message_.sequence();
-    terminal_sent_ = terminal_sent_ || IsTerminal(message_.state());
+    if (IsTerminal(event.state) && NextSnapshot()) return true;
+    sent_sequence_ = event.sequence;
+    terminal_sent_ = terminal_sent_ || IsTerminal(event.state);
+    grpc::Slice slice = SharedSlice(event.wire);
+    message_ = grpc::ByteBuffer(&slice, 1);
     return true;
   }
   return !terminal_sent_ && NextSnapshot();
@@ -41,14 +52,18 @@ bool WatchReactor::NextSnapshot() {
   SnapshotData snapshot;
   if (every <= 0 || !hub_->NewestSnapshot(next_snapshot_iteration_, &snapshot)) return false;
   next_snapshot_iteration_ = (snapshot.iteration / every + 1) * every;
-  message_.Clear();
-  message_.set_sequence(sent_sequence_);
-  message_.set_job_id(request_.job_id());
-  message_.set_state(v1::JOB_STATE_RUNNING);
-  message_.set_phase(v1::PHASE_SOLVE);
+  // This watcher's header, then the shared snapshot field: protobuf parses two encodings
+  // one after the other as one message with the fields of both.
+  v1::JobEvent header;
+  header.set_sequence(sent_sequence_);
+  header.set_job_id(request_.job_id());
+  header.set_state(v1::JOB_STATE_RUNNING);
+  header.set_phase(v1::PHASE_SOLVE);
   const std::vector<int> bands(request_.bands().begin(), request_.bands().end());
-  *message_.mutable_snapshot() =
-      *hub_->EncodedSnapshot(snapshot, bands, request_.snapshot_format());
+  const grpc::Slice parts[] = {
+      grpc::Slice(header.SerializeAsString()),
+      SharedSlice(hub_->EncodedSnapshot(snapshot, bands, request_.snapshot_format()))};
+  message_ = grpc::ByteBuffer(parts, 2);
   return true;
 }
 

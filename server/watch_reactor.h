@@ -2,6 +2,8 @@
 // watcher's resume point, interleaved with the newest snapshot at the watcher's cadence;
 // at most one write in flight, Finish exactly once (OK after the terminal event, or
 // CANCELLED when the client goes away). Never blocks the job: it reads the hub when ready.
+// It writes pre-serialized events (a raw method, see RadiosityService): every watcher sends
+// the bytes the hub serialized once, not a copy of its own.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -14,7 +16,7 @@
 
 namespace radflux {
 
-class WatchReactor final : public grpc::ServerWriteReactor<v1::JobEvent> {
+class WatchReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
  public:
   WatchReactor(std::shared_ptr<JobHub> hub, const v1::WatchJobRequest& request);
 
@@ -45,7 +47,7 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::JobEvent> {
   bool in_flight_ = false;
   bool finished_ = false;
   bool cancelled_ = false;
-  v1::JobEvent message_;
+  grpc::ByteBuffer message_;  // a serialized v1::JobEvent
 };
 
 }  // namespace radflux
