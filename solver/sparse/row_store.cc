@@ -94,11 +94,13 @@ absl::Status RowStore::ForEach(const RowsFn& fn) const {
 
 absl::Status RowStore::StreamWithReadAhead(const RowsFn& fn) const {
   struct Slot {
-    RowBlock block;
+    RowBlock& block;  // a buffer of the store, reused pass after pass
     absl::Status status;
     bool full = false;
   };
-  std::array<Slot, kRowReadAhead> slots;
+  static_assert(kRowReadAhead == 2);
+  std::array<Slot, kRowReadAhead> slots = {Slot{read_buffers_[0], {}, false},
+                                           Slot{read_buffers_[1], {}, false}};
   std::mutex mutex;
   std::condition_variable changed;
   bool stop = false;

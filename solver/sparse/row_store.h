@@ -5,6 +5,7 @@
 // overlaps the caller's work on the previous chunk. Exactly the rows appended come back.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -77,6 +78,10 @@ class RowStore {
   std::vector<Chunk> chunks_;
   RowBlock open_;  // the chunk being filled
   mutable RowReadStats read_stats_;
+  // The read-ahead buffers, kept across passes: a pass allocates nothing once the first
+  // has sized them (fresh buffers per pass, filled on a fresh reader thread, each landed
+  // in a new malloc arena and the server's RSS grew by the spilled bytes pass after pass).
+  mutable std::array<RowBlock, kRowReadAhead> read_buffers_;
 };
 
 // The rows of a system, in memory (`matrix`) or in a store: calls fn on consecutive
