@@ -190,8 +190,8 @@ int main(int argc, char** argv) {
   app.add_option(
          "--checkpoint-seconds", flags.manager.checkpoint_seconds,
          "at most one checkpoint of row blocks and one of the solver state per job per this "
-         "many seconds (0 = after every row block / iteration); a kill -9 loses at most this "
-         "much work")
+         "many seconds (0 = after every row block / iteration), and a row checkpoint as soon "
+         "as 16 MiB of row blocks wait; a kill -9 loses at most this much work")
       ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")
