@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "hard_cases.h"
 #include "howell_closed_forms.h"
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "test_scenes.h"
@@ -28,20 +29,13 @@ Scene ClosedCube() {
   return SceneFromObj(obj);
 }
 
-FormFactorOptions Options(FormFactorMethod m) {
-  FormFactorOptions o;
-  o.method = m;
-  o.rays = 1024;
-  o.hemicube_res = 64;
-  o.samples = 16;
-  o.cutoff = 0;
-  return o;
-}
+// k = 1024 rays, r = 64, s = 16, no cut-off: the knobs the hard cases use too.
+FormFactorOptions Options(FormFactorMethod m) { return testing::HardOptions(m); }
 
 TEST(FormFactorInvariants, ClosedCubeRowsSumToOne) {
   RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
-  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
-                 FormFactorMethod::kAnalytic}) {
+  for (auto m :
+       {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube, FormFactorMethod::kAnalytic}) {
     const CsrMatrix f = fixture.Rows(Options(m));
     double worst = 0;
     for (uint32_t i = 0; i < f.rows; ++i) worst = std::max(worst, std::abs(f.RowSum(i) - 1));
@@ -61,8 +55,8 @@ TEST(FormFactorInvariants, ReciprocityBetweenFacesOfTheCube) {
   RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
   const double adjacent = testing::PerpendicularRectangles(1, 1, 1);
   const double opposite = testing::ParallelRectangles(1, 1, 1);
-  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
-                 FormFactorMethod::kAnalytic}) {
+  for (auto m :
+       {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube, FormFactorMethod::kAnalytic}) {
     const CsrMatrix f = fixture.Rows(Options(m));
     // Equal areas: A_i F_ij = A_j F_ji reduces to F_ij = F_ji for whole faces.
     const double bx = fixture.SurfaceFormFactor(f, "bottom", "x0");
@@ -89,8 +83,8 @@ TEST(FormFactorInvariants, HalfPlaneOccluderHalvesTheFormFactor) {
   obj += ObjQuad("wall", "white", {{0, -1, .5}, {1, -1, .5}, {1, 1, .5}, {0, 1, .5}}, next);
   RowFixture fixture(SceneFromObj(obj), MeshOptions{0, 0.125});
   const double open = testing::ParallelRectangles(1, 1, 1);
-  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
-                 FormFactorMethod::kAnalytic}) {
+  for (auto m :
+       {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube, FormFactorMethod::kAnalytic}) {
     const CsrMatrix f = fixture.Rows(Options(m));
     EXPECT_NEAR(fixture.SurfaceFormFactor(f, "a", "b"), open / 2, 0.006) << MethodName(m);
   }
@@ -100,8 +94,8 @@ TEST(FormFactorInvariants, RowsAreBitIdenticalOnOneAndTwoThreads) {
   auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
   ASSERT_TRUE(scene.ok());
   RowFixture fixture(*scene, MeshOptions{600, 0});
-  for (auto m : {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube,
-                 FormFactorMethod::kAnalytic}) {
+  for (auto m :
+       {FormFactorMethod::kMonteCarlo, FormFactorMethod::kHemicube, FormFactorMethod::kAnalytic}) {
     FormFactorOptions o = Options(m);
     o.rays = 64;
     o.hemicube_res = 8;
@@ -133,10 +127,11 @@ TEST(FormFactorInvariants, CornellBoxRowSumsAndSparsity) {
     max_sum = std::max(max_sum, f.RowSum(i));
     mean += f.RowSum(i) / f.rows;
   }
-  std::printf("cornell box: %u patches, nnz %zu (%.1f per row), %zu bytes, row sums [%.4f, %.4f] "
-              "mean %.4f, dropped %.2e\n",
-              f.rows, f.nnz(), double(f.nnz()) / f.rows, f.Bytes(), min_sum, max_sum, mean,
-              result->stats.dropped_sum);
+  std::printf(
+      "cornell box: %u patches, nnz %zu (%.1f per row), %zu bytes, row sums [%.4f, %.4f] "
+      "mean %.4f, dropped %.2e\n",
+      f.rows, f.nnz(), double(f.nnz()) / f.rows, f.Bytes(), min_sum, max_sum, mean,
+      result->stats.dropped_sum);
   // The box is open at the front: rows sum to less than one. A row can exceed one only by
   // noise: monte_carlo hits plus the analytic emitter columns (s = 4 shadow rays each).
   EXPECT_LE(max_sum, 1.0 + 0.01);
@@ -171,7 +166,8 @@ TEST(FormFactorInvariants, CutoffDropsSmallEntriesAndReportsTheirSum) {
   ASSERT_TRUE(all.ok() && cut.ok());
   EXPECT_LT(cut->matrix.nnz(), all->matrix.nnz());
   double lost = 0;
-  for (uint32_t i = 0; i < all->matrix.rows; ++i) lost += all->matrix.RowSum(i) - cut->matrix.RowSum(i);
+  for (uint32_t i = 0; i < all->matrix.rows; ++i)
+    lost += all->matrix.RowSum(i) - cut->matrix.RowSum(i);
   EXPECT_NEAR(lost, cut->stats.dropped_sum, 1e-4);
   EXPECT_GT(cut->stats.dropped_sum, 0);
   for (float v : cut->matrix.value) EXPECT_GE(v, 1e-3f);
