@@ -10,18 +10,22 @@
 // kernel-weighted mean over those 256 stratified points; I, one bounce of final gather: RAYS
 // (default 1,024) cosine-distributed rays into FINE's solution (its B minus emission where they
 // hit). So the reference has no mesh of its own: only I, smooth, depends on FINE. Points on
-// emitters and buried points (every gather ray hits a back face: the floor under a block) are
-// left out.
+// emitters and hidden points (most gather rays hit a back face: the floor under a block, the
+// ceiling above a lamp hung just below it) are left out.
 //
-//   field_error compare OUT.points RUN.ply RUN.csv
+//   field_error compare OUT.points RUN.ply RUN.csv [ERRORS.csv]
 // looks each point up in the run's mesh (a short ray along the normal) and prints one line of
 // JSON: rms / l1 = area-weighted RMS / mean of |B_run - B_ref| (B = r+g+b) over the mean of
 // B_ref, with B constant per patch (what the solver computed); rms_smooth / l1_smooth: the
-// same with B interpolated from the PLY's per-vertex values (what the picture shows).
+// same with B interpolated from the PLY's per-vertex values (what the picture shows);
+// rms2_share: each object's share of rms^2. ERRORS.csv, if given, gets every point (x, y, z,
+// object, reference B, run's B) for an error map.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -46,7 +50,8 @@ struct LitMesh {
   PatchMesh mesh;
   std::vector<Rgb> vertex_b;
   std::vector<Rgb> patch_b;
-  std::vector<uint32_t> face;  // source face per patch
+  std::vector<uint32_t> face;       // source face per patch
+  std::vector<std::string> object;  // object name per patch
   std::unique_ptr<radflux::EmbreeRayCaster> caster;
 };
 
@@ -106,6 +111,7 @@ bool Load(const std::string& ply, const std::string& csv, LitMesh& lit) {
   for (const radflux::PatchValue& v : *values) {
     lit.patch_b.push_back(v.radiosity);
     lit.face.push_back(v.face);
+    lit.object.push_back(v.object);
   }
   auto caster = radflux::EmbreeRayCaster::Create(lit.mesh);
   if (!caster.ok()) return Fail(std::string(caster.status().message()));
@@ -117,10 +123,11 @@ double Sum(const Rgb& b) { return b[0] + b[1] + b[2]; }
 
 // B = r+g+b at x on `lit`, constant and interpolated; false when no front face lies under x.
 bool Lookup(const LitMesh& lit, const Vec3& x, const Vec3& n, double delta, double& constant,
-            double& smooth) {
+            double& smooth, uint32_t* patch_out = nullptr) {
   const Hit hit = lit.caster->Intersect({x + n * delta, -n, 0, 2 * delta});
   if (hit.patch == radflux::kNoPatch || Dot(hit.normal, n) <= 0) return false;
   const radflux::Patch& patch = lit.mesh.patches[hit.patch];
+  if (patch_out) *patch_out = hit.patch;
   constant = Sum(lit.patch_b[hit.patch]);
   // Barycentric weights in the fan triangle (v0, vk, vk+1) that holds x.
   const auto& p = lit.mesh.positions;
@@ -251,7 +258,7 @@ int Reference(int argc, char** argv) {
         const Rgb& e = scene->materials[scene->faces[fine.face[hit.patch]].material].emission;
         for (int b = 0; b < 3; ++b) gathered[b] += fine.patch_b[hit.patch][b] - e[b];
       }
-      if (back == rays) {
+      if (2 * back > rays) {  // mostly under something: hidden from view
         ++buried;
         continue;
       }
@@ -282,7 +289,7 @@ int Reference(int argc, char** argv) {
   return 0;
 }
 
-int Compare(char** argv) {
+int Compare(int argc, char** argv) {
   std::ifstream in(argv[2]);
   if (!in) return Fail(std::string("cannot open ") + argv[2]), 1;
   LitMesh run;
@@ -305,12 +312,23 @@ int Compare(char** argv) {
   const double delta = 1e-5 * Length(hi - lo);
   double weight = 0, sum_ref = 0, err2 = 0, err1 = 0, err2s = 0, err1s = 0;
   size_t missed = 0;
+  std::map<std::string, std::array<double, 2>> by_object;
+  std::FILE* errors = argc == 6 ? std::fopen(argv[5], "w") : nullptr;
+  if (errors)
+    std::fprintf(errors, "x,y,z,object,reference,run\n");  // weight, weighted squared error
   for (const RefPoint& r : points) {
     double constant = 0, smooth = 0;
-    if (!Lookup(run, r.x, r.n, delta, constant, smooth)) {
+    uint32_t patch = 0;
+    if (!Lookup(run, r.x, r.n, delta, constant, smooth, &patch)) {
       ++missed;
       continue;
     }
+    if (errors)
+      std::fprintf(errors, "%g,%g,%g,%s,%g,%g\n", r.x.x, r.x.y, r.x.z, run.object[patch].c_str(),
+                   r.b, constant);
+    auto& o = by_object[run.object[patch]];
+    o[0] += r.weight;
+    o[1] += r.weight * (constant - r.b) * (constant - r.b);
     weight += r.weight;
     sum_ref += r.weight * r.b;
     err2 += r.weight * (constant - r.b) * (constant - r.b);
@@ -318,12 +336,21 @@ int Compare(char** argv) {
     err2s += r.weight * (smooth - r.b) * (smooth - r.b);
     err1s += r.weight * std::abs(smooth - r.b);
   }
+  if (errors) std::fclose(errors);
   const double mean = sum_ref / weight;
   std::printf(
       "{\"points\": %zu, \"missed\": %zu, \"rms\": %.5g, \"l1\": %.5g, \"rms_smooth\": %.5g, "
-      "\"l1_smooth\": %.5g, \"run_patches\": %zu}\n",
+      "\"l1_smooth\": %.5g, \"run_patches\": %zu",
       points.size(), missed, std::sqrt(err2 / weight) / mean, err1 / weight / mean,
       std::sqrt(err2s / weight) / mean, err1s / weight / mean, run.mesh.size());
+  // Each object's share of the squared error (they add up to rms^2).
+  std::printf(", \"rms2_share\": {");
+  const char* sep = "";
+  for (const auto& [name, o] : by_object) {
+    std::printf("%s\"%s\": %.3f", sep, name.c_str(), o[1] / err2);
+    sep = ", ";
+  }
+  std::printf("}}\n");
   return 0;
 }
 
@@ -332,10 +359,10 @@ int Compare(char** argv) {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "reference" && argc >= 6 && argc <= 8) return Reference(argc, argv);
-  if (mode == "compare" && argc == 5) return Compare(argv);
+  if (mode == "compare" && (argc == 5 || argc == 6)) return Compare(argc, argv);
   std::fprintf(
       stderr,
       "usage: field_error reference SCENE.obj FINE.ply FINE.csv OUT.points [POINTS] [RAYS]\n"
-      "       field_error compare OUT.points RUN.ply RUN.csv\n");
+      "       field_error compare OUT.points RUN.ply RUN.csv [ERRORS.csv]\n");
   return 2;
 }

@@ -29,11 +29,13 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
   app.add_option("--link-epsilon", f.link_epsilon,
                  "hierarchical: refine links with rho*B*F*A above this fraction of emitted power")
       ->capture_default_str();
-  app.add_option("--adaptive-passes", f.adaptive_passes,
-                 "adaptive meshing: refinement passes after the first solve (analytic rows)")
+  app.add_option(
+         "--adaptive-passes", f.adaptive_passes,
+         "adaptive meshing: refinement passes after the first solve (rows by --form-factors)")
       ->capture_default_str();
   app.add_option("--adaptive-threshold", f.adaptive_threshold,
-                 "adaptive meshing: split where neighbours' B differ by more than this fraction")
+                 "adaptive meshing: split where neighbours' B differ by more than this fraction of "
+                 "the mean B")
       ->capture_default_str();
   app.add_option("--seed", f.seed, "job seed; samples are seeded per patch from it")
       ->capture_default_str();

@@ -7,6 +7,7 @@
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/analytic_pair.h"
+#include "solver/formfactor/row_builder.h"
 #include "solver/formfactor/row_context.h"
 #include "solver/mesh/patch_attributes.h"
 #include "solver/raytrace/embree_ray_caster.h"
@@ -74,12 +75,26 @@ std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, c
       }
     }
   }
+  // Jumps of reflected light (B - E: an emitter's own E is flat), measured against the
+  // scene's mean: a 20% step in a dark corner moves little light, on the lit floor a lot.
+  std::vector<double> reflected(n);
+  double b_area = 0, area = 0;
+  for (size_t i = 0; i < n; ++i) {
+    Rgb r = b[i];
+    for (int k = 0; k < kBands; ++k) r[k] -= pass.attributes.emission[i][k];
+    reflected[i] = MaxComponent(r);
+    b_area += pass.attributes.area[i] * reflected[i];
+    area += pass.attributes.area[i];
+  }
+  const double jump = options.threshold * (area > 0 ? b_area / area : 0);
+  // Emitters are not split (unless threshold 0 asks for everything): their own E dominates
+  // what they show, and every emitter leaf is a column that each row computes analytically.
   for (const auto& list : around) {
     for (uint32_t x : list) {
+      if (pass.context.emitter[x] && options.threshold > 0) continue;
       for (uint32_t y : list) {
-        const double bx = MaxComponent(b[x]), by = MaxComponent(b[y]);
-        if (std::abs(bx - by) > options.threshold * std::max(bx, by) ||
-            (options.threshold == 0 && x != y)) {
+        const double bx = reflected[x], by = reflected[y];
+        if (std::abs(bx - by) > jump || (options.threshold == 0 && x != y)) {
           split[x] = 1;
         }
       }
@@ -88,12 +103,13 @@ std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, c
   // Shadow boundaries: rays from the leaf to each emitting face, some blocked and some not.
   std::vector<uint32_t> emitters;
   for (uint32_t r : tree.roots) {
-    if (scene.materials[scene.faces[tree.nodes[r].face].material].IsEmitter()) emitters.push_back(r);
+    if (scene.materials[scene.faces[tree.nodes[r].face].material].IsEmitter())
+      emitters.push_back(r);
   }
   std::vector<uint64_t> block_rays((n + 63) / 64, 0);
   ParallelFor(static_cast<int64_t>(n), 64, threads, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
-      if (split[i] || !pass.context.needs_row[i]) continue;
+      if (split[i] || !pass.context.needs_row[i] || pass.context.emitter[i]) continue;
       const Element& e = tree.nodes[leaves[i]];
       const int s = options.visibility_rays;
       for (uint32_t r : emitters) {
@@ -104,8 +120,8 @@ std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, c
         for (int m = 0; m < s; ++m) {
           const Point2 u = MultiJitteredSample(m, s, pattern);
           const Vec3 x = SampleElementPoint(e, u) + e.normal * pass.context.ray_epsilon;
-          const Vec3 y = SampleElementPoint(light, {u.y, u.x}) +
-                         light.normal * pass.context.ray_epsilon;
+          const Vec3 y =
+              SampleElementPoint(light, {u.y, u.x}) + light.normal * pass.context.ray_epsilon;
           if (Dot(y - x, e.normal) <= 0 || Dot(x - y, light.normal) <= 0) continue;
           ++block_rays[begin / 64];
           (pass.context.caster->Occluded({x, y - x, 0, 1 - 1e-6}) ? blocked : open)++;
@@ -117,6 +133,60 @@ std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, c
   for (uint64_t r : block_rays) rays += r;
   return split;
 }
+
+// Where a pass's rows come from: analytic pairs computed entry by entry from sample points
+// fixed per element (so an unchanged row's entries can be patched when a column splits), or
+// any other method's RowBuilder, whose rows are rebuilt whole.
+class RowSource {
+ public:
+  RowSource(const RowContext& context, const FormFactorOptions& ff, const ElementTree& tree,
+            const std::vector<uint32_t>& leaves)
+      : context_(context), ff_(ff), tree_(tree), leaves_(leaves) {
+    if (!PerEntry()) {
+      builder_ = MakeRowBuilder(context, ff);
+      const int threads = ff.threads > 0 ? ff.threads : DefaultThreadCount();
+      scratch_.assign(static_cast<size_t>(threads), RowAccumulator(context.mesh->size()));
+    }
+  }
+  bool PerEntry() const { return ff_.method == FormFactorMethod::kAnalytic; }
+
+  // Row i in full; counts the entries computed and the rays cast.
+  void FullRow(uint32_t i, Row& row, uint64_t& entries, uint64_t& rays) const {
+    if (PerEntry()) {
+      const std::vector<Vec3> points = Points(i);
+      for (uint32_t j = 0; j < context_.mesh->size(); ++j) Entry(i, points, j, row, entries, rays);
+      return;
+    }
+    RowAccumulator& acc = scratch_[static_cast<size_t>(ThreadIndex())];
+    rays += builder_->BuildRow(i, acc);
+    RowBlock block;
+    acc.Flush(ff_.cutoff, block);
+    entries += block.col.size();
+    for (size_t k = 0; k < block.col.size(); ++k) row.push_back({block.col[k], block.value[k]});
+  }
+
+  // Row i's sample points for Entry (seeded by its element, so they survive renumbering).
+  std::vector<Vec3> Points(uint32_t i) const {
+    return LeafPoints(tree_, leaves_[i], ff_.samples, ff_.seed);
+  }
+
+  // F_ij by analytic pairs from row i's Points (PerEntry only), appended when above the cut-off.
+  void Entry(uint32_t i, const std::vector<Vec3>& points, uint32_t j, Row& row, uint64_t& entries,
+             uint64_t& rays) const {
+    if (!PatchesCanExchange(*context_.mesh, i, j)) return;
+    ++entries;
+    const double f = AnalyticPairFormFactor(context_, i, points, j, ff_.seed, rays);
+    if (f > 0 && f >= ff_.cutoff) row.push_back({j, static_cast<float>(f)});
+  }
+
+ private:
+  const RowContext& context_;
+  const FormFactorOptions& ff_;
+  const ElementTree& tree_;
+  const std::vector<uint32_t>& leaves_;
+  std::unique_ptr<RowBuilder> builder_;
+  mutable std::vector<RowAccumulator> scratch_;  // one per thread
+};
 
 }  // namespace
 
@@ -152,32 +222,45 @@ absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptio
       for (uint32_t o = 0; o < was_split.size(); ++o)
         if (!was_split[o]) old_row[new_of_old[o]] = o;
     }
+    // Ray-hit builders need a caster on this pass's leaves (hits name the patch); analytic
+    // pairs only cast shadow rays, which the root mesh answers as well.
+    std::unique_ptr<EmbreeRayCaster> leaf_caster;
+    if (ff.method != FormFactorMethod::kAnalytic) {
+      absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> c = EmbreeRayCaster::Create(pass.mesh);
+      if (!c.ok()) return c.status();
+      leaf_caster = *std::move(c);
+      pass.context = MakeRowContext(pass.mesh, pass.attributes, *leaf_caster);
+    }
     std::vector<Row> next(n);
     std::vector<uint8_t> recomputed(n, 0);
     std::vector<uint64_t> entries(n, 0), row_rays(n, 0);
+    const RowSource source(pass.context, ff, tree, leaves);
     ParallelFor(n, 16, ff.threads, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         if (!pass.context.needs_row[i]) continue;
-        const std::vector<Vec3> points = LeafPoints(tree, leaves[i], ff.samples, ff.seed);
-        auto add = [&](uint32_t j) {
-          if (!PatchesCanExchange(pass.mesh, static_cast<uint32_t>(i), j)) return;
-          ++entries[i];
-          const double f = AnalyticPairFormFactor(pass.context, static_cast<uint32_t>(i), points,
-                                                  j, ff.seed, row_rays[i]);
-          if (f > 0 && f >= ff.cutoff) next[i].push_back({j, static_cast<float>(f)});
-        };
+        const uint32_t row = static_cast<uint32_t>(i);
         if (old_row[i] < 0) {  // a new patch (or the first pass): the whole row
           recomputed[i] = 1;
-          for (uint32_t j = 0; j < n; ++j) add(j);
+          source.FullRow(row, next[i], entries[i], row_rays[i]);
           continue;
         }
-        for (const auto& [j_old, f] : rows[old_row[i]]) {
+        const Row& old = rows[old_row[i]];
+        const bool points_at_split = std::any_of(
+            old.begin(), old.end(), [&](const auto& entry) { return was_split[entry.first]; });
+        if (points_at_split && !source.PerEntry()) {  // ray-hit rows cannot be patched
+          recomputed[i] = 1;
+          source.FullRow(row, next[i], entries[i], row_rays[i]);
+          continue;
+        }
+        const std::vector<Vec3> points = points_at_split ? source.Points(row) : std::vector<Vec3>{};
+        for (const auto& [j_old, f] : old) {
           if (!was_split[j_old]) {
             next[i].push_back({new_of_old[j_old], f});
             continue;
           }
           recomputed[i] = 1;
-          for (uint32_t c = 0; c < 4; ++c) add(new_of_old[j_old] + c);
+          for (uint32_t c = 0; c < 4; ++c)
+            source.Entry(row, points, new_of_old[j_old] + c, next[i], entries[i], row_rays[i]);
         }
       }
     });
@@ -224,8 +307,8 @@ absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptio
     int64_t budget = options.max_patches - static_cast<int64_t>(n);
     size_t splits = 0;
     for (uint32_t i = 0; i < n; ++i) {
-      if (split[i] && (tree.nodes[leaves[i]].depth >= static_cast<uint32_t>(options.max_depth) ||
-                       budget < 3)) {
+      if (split[i] &&
+          (tree.nodes[leaves[i]].depth >= static_cast<uint32_t>(options.max_depth) || budget < 3)) {
         split[i] = 0;
       }
       if (split[i]) {

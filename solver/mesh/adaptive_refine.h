@@ -1,9 +1,12 @@
-// Adaptive meshing: solve on a coarse uniform mesh, then split the patches whose radiosity
-// differs from a same-face neighbour's by more than `threshold` (relative), or across which
-// an emitter's visibility changes (of the shadow rays from the patch to an emitting face some
-// are blocked and some not); recompute only the rows of new patches and the entries of other
-// rows that point at them (analytic form factors, sample points fixed per element so an
-// unchanged row keeps its points), and re-solve warm-started from the previous answer.
+// Adaptive meshing: solve on a coarse uniform mesh, then split the patches whose reflected
+// radiosity (B - E) differs from a same-face neighbour's by more than `threshold` times the
+// scene's area-mean reflected radiosity, or across which an emitter's visibility changes (of
+// the shadow rays from the patch to an emitting face some are blocked and some not); emitters
+// themselves are not split. Recompute only the rows of new patches and the rows that point
+// at split ones, and re-solve warm-started from the previous answer. Rows come from the
+// job's method: analytic rows are patched entry by entry (sample points fixed per element,
+// so an unchanged row keeps its points); monte_carlo / hemicube rows, whose rays name the
+// patch they hit, are rebuilt whole on the new leaves.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +24,7 @@ namespace radflux {
 
 struct AdaptiveOptions {
   int passes = 0;            // refinement passes after the first solve (0: adaptive off)
-  double threshold = 0.1;    // split where |B_i - B_j| > threshold * max(B_i, B_j); 0 splits all
+  double threshold = 0.1;    // split where |B_i - B_j| > threshold * mean B; 0 splits all
   int64_t max_patches = 200000;  // patch budget
   int max_depth = 6;         // splits below one initial patch
   int visibility_rays = 8;   // shadow rays per patch per emitting face
@@ -49,8 +52,7 @@ struct AdaptiveResult {
   uint64_t rays = 0;
 };
 
-// `mesh` gives the initial uniform mesh; form_factors.samples / seed / threads are used
-// (always the analytic estimator, whatever the method).
+// `mesh` gives the initial uniform mesh; form_factors gives the rows' method and knobs.
 absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptions& mesh,
                                              const FormFactorOptions& form_factors,
                                              const SolverOptions& solver,
