@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "solver/scene/scene.h"
+#include "solver/solve/energy_balance.h"
 #include "solver/solve/solver.h"
 
 namespace radflux {
@@ -72,12 +74,18 @@ struct JobTimings {
 
 struct JobResult {
   std::unique_ptr<PreparedJob> job;
-  CsrMatrix form_factors;               // the rows, unless they are in row_store
+  CsrMatrix form_factors;               // the rows, unless they are in row_store; an
+                                        // adaptive job's are per leaf, not per patch
+                                        // (see solved_balance)
   std::unique_ptr<RowStore> row_store;  // options.spill.memory_limit > 0: the rows (some
                                         // may be on disk); form_factors is then empty
   RowBlockStats row_stats;
   SolveResult solve;
   JobTimings timings;
+  // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
+  // by one or more patches): the energy balance of the system that was solved. The report
+  // uses it instead of System(), which pairs per-patch attributes with the rows.
+  std::optional<EnergyBalance> solved_balance;
 
   // The system the rows and patches form, wherever the rows are.
   RadiositySystem System() const;

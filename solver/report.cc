@@ -54,7 +54,8 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
   nlohmann::json spill = nullptr;
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
   const absl::StatusOr<EnergyBalance> balance =
-      StreamEnergyBalance(result.System(), result.solve.radiosity);
+      result.solved_balance ? *result.solved_balance
+                            : StreamEnergyBalance(result.System(), result.solve.radiosity);
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
   return {

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "solver/formfactor/row_context.h"
+#include "solver/solve/energy_balance.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
@@ -92,32 +93,20 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
         "{:.3f}s, change in B {:.3e}",
         k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds, p.change_in_b);
   }
-  // Expand leaf rows to the display patches.
-  const AdaptiveResult& a = *solved;
+  // The rows stay per leaf (a leaf is shown by one or more patches of the conforming mesh;
+  // expanding rows to those patches multiplied the entries ~20x); the balance is the leaf
+  // system's.
+  AdaptiveResult& a = *solved;
   const PatchMesh& display = a.mesh;
-  std::vector<uint32_t> first(a.leaves.size() + 1, 0);
-  for (uint32_t p = 0; p < display.size(); ++p) first[a.patch_leaf[p] + 1] = p + 1;
-  for (size_t l = 1; l < first.size(); ++l) first[l] = std::max(first[l], first[l - 1]);
-  CsrMatrix f;
-  f.rows = f.cols = static_cast<uint32_t>(display.size());
-  for (uint32_t p = 0; p < display.size(); ++p) {
-    const uint32_t leaf = a.patch_leaf[p];
-    const auto cols = a.form_factors.RowCols(leaf);
-    const auto vals = a.form_factors.RowValues(leaf);
-    for (size_t k = 0; k < cols.size(); ++k) {
-      const double leaf_area = a.tree.nodes[a.leaves[cols[k]]].area;
-      for (uint32_t q = first[cols[k]]; q < first[cols[k] + 1]; ++q) {
-        f.col.push_back(q);
-        f.value.push_back(static_cast<float>(vals[k] * display.patches[q].area / leaf_area));
-      }
-    }
-    f.row_begin.push_back(f.col.size());
-  }
+  const PatchAttributes leaf_attributes = ComputePatchAttributes(scene, a.leaf_mesh);
+  const EnergyBalance balance =
+      ComputeEnergyBalance({&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity);
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareFromMesh(std::move(scene), display);
   if (!job.ok()) return job.status();
   result.job = *std::move(job);
-  result.form_factors = std::move(f);
+  result.form_factors = std::move(a.form_factors);
+  result.solved_balance = balance;
   result.row_stats.rays = a.rays;
   result.solve = a.solve;
   result.solve.radiosity.resize(display.size());

@@ -17,6 +17,7 @@ namespace {
 
 constexpr uint64_t kLeafPointStream = 21;
 constexpr uint64_t kShadowStream = 22;
+constexpr uint64_t kContactStream = 23;
 using Row = std::vector<std::pair<uint32_t, float>>;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
@@ -57,7 +58,8 @@ struct Pass {
   RowContext context;
 };
 
-// Which leaves to split: radiosity jumps to same-face neighbours, or shadow boundaries.
+// Which leaves to split: radiosity jumps to same-face neighbours, shadow boundaries, or
+// contact lines.
 std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, const Pass& pass,
                                   const std::vector<Rgb>& b, const AdaptiveOptions& options,
                                   uint64_t seed, int threads, uint64_t& rays) {
@@ -128,6 +130,11 @@ std::vector<uint8_t> ChooseSplits(const Scene& scene, const ElementTree& tree, c
         }
         if (blocked > 0 && open > 0) split[i] = 1;
       }
+      if (!split[i] && StraddlesContact(e, *pass.context.caster, options.visibility_rays,
+                                        PatternSeed(seed ^ leaves[i], 0, kContactStream),
+                                        pass.context.ray_epsilon, block_rays[begin / 64])) {
+        split[i] = 1;
+      }
     }
   });
   for (uint64_t r : block_rays) rays += r;
@@ -189,6 +196,20 @@ class RowSource {
 };
 
 }  // namespace
+
+bool StraddlesContact(const Element& e, const RayCaster& caster, int rays, uint32_t pattern,
+                      double epsilon, uint64_t& cast) {
+  const Frame frame = Frame::FromNormal(e.normal);
+  int buried = 0;
+  for (int m = 0; m < rays; ++m) {
+    const Point2 u = MultiJitteredSample(m, rays, pattern);
+    const Vec3 d = frame.ToWorld(SampleCosineHemisphere({u.y, u.x}));
+    const Hit hit = caster.Intersect({SampleElementPoint(e, u) + e.normal * epsilon, d});
+    ++cast;
+    buried += hit.patch != kNoPatch && Dot(hit.normal, d) > 0;
+  }
+  return buried > 0 && buried < rays;
+}
 
 absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptions& mesh_options,
                                              const FormFactorOptions& ff,

@@ -13,6 +13,7 @@
 #include "hierarchical_test_scenes.h"
 #include "howell_closed_forms.h"
 #include "solver/hierarchical/hierarchical.h"
+#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -100,6 +101,45 @@ TEST(AdaptiveRefine, FurnaceExactThroughIncrementalRows) {
   double worst = 0;
   for (const Rgb& b : r.leaf_radiosity) worst = std::max(worst, std::abs(b[0] / exact - 1));
   EXPECT_LT(worst, 1e-6);
+}
+
+// A box standing on a floor: a floor element that crosses the box's footprint straddles a
+// contact line (some probe rays start under the box and hit its inside first); elements
+// fully outside or fully under it do not.
+TEST(AdaptiveRefine, ContactLinesAreFound) {
+  int next = 1;
+  std::string obj =
+      testing::ObjQuad("floor", "white", {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, next);
+  const double h = 0.25;
+  obj += testing::ObjQuad("box", "white", {{h, -h, 0}, {h, h, 0}, {h, h, 0.5}, {h, -h, 0.5}}, next);
+  obj += testing::ObjQuad("box", "white", {{-h, -h, 0}, {-h, -h, 0.5}, {-h, h, 0.5}, {-h, h, 0}},
+                          next);
+  obj += testing::ObjQuad("box", "white", {{h, h, 0}, {-h, h, 0}, {-h, h, 0.5}, {h, h, 0.5}}, next);
+  obj += testing::ObjQuad("box", "white", {{-h, -h, 0}, {h, -h, 0}, {h, -h, 0.5}, {-h, -h, 0.5}},
+                          next);
+  obj += testing::ObjQuad("box", "white", {{-h, -h, 0.5}, {h, -h, 0.5}, {h, h, 0.5}, {-h, h, 0.5}},
+                          next);
+  obj += testing::ObjQuad("lamp", "lamp", {{-.5, -.5, 3}, {-.5, .5, 3}, {.5, .5, 3}, {.5, -.5, 3}},
+                          next);
+  const Scene scene = testing::SceneFromObj(obj, testing::kPlateMtl);
+  MeshOptions options;
+  options.target_patches = 50;
+  const PatchMesh mesh = *SubdivideScene(scene, options);
+  const auto caster = *EmbreeRayCaster::Create(mesh);
+  auto floor_element = [](double x0, double x1, double y0, double y1) {
+    Element e;
+    e.corners = {Vec3{x0, y0, 0}, Vec3{x1, y0, 0}, Vec3{x1, y1, 0}, Vec3{x0, y1, 0}};
+    e.normal = {0, 0, 1};
+    e.area = (x1 - x0) * (y1 - y0);
+    return e;
+  };
+  uint64_t rays = 0;
+  const double eps = 1e-6;
+  EXPECT_TRUE(StraddlesContact(floor_element(-0.5, 0, -0.1, 0.1), *caster, 16, 7, eps, rays));
+  EXPECT_TRUE(StraddlesContact(floor_element(0.1, 0.4, 0.1, 0.4), *caster, 16, 7, eps, rays));
+  EXPECT_FALSE(StraddlesContact(floor_element(-0.9, -0.6, -0.1, 0.1), *caster, 16, 7, eps, rays));
+  EXPECT_FALSE(StraddlesContact(floor_element(-0.2, 0.2, -0.2, 0.2), *caster, 16, 7, eps, rays));
+  EXPECT_EQ(rays, 64u);
 }
 
 // No vertex of the mesh lies strictly inside an edge of a patch of the same face.

@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Speed against error of uniform, adaptive and hierarchical meshes (issue 7).
+
+    OMP_WAIT_POLICY=passive bench/issue7_sweep.py BUILD OUTDIR {cornell,hall} [--only NAME...]
+
+BUILD is a build directory with client/radflux and bench/field_error. Each run is
+`radflux solve SCENE FLAGS` timed by /usr/bin/time (wall, CPU = user + sys, peak RSS). Its
+error is measured by field_error against a reference that has no mesh of its own (exact
+direct light plus one bounce of final gather into a fine uniform solve; see
+bench/field_error.cc): rms / l1 of B with each patch constant (what was solved), rms_smooth
+with per-vertex interpolation (what the picture shows). Also the older object-mean error
+(RMS over objects of the relative error of each object's area-weighted mean B) against the
+fine solve. Prints a Markdown table; every run's files stay in OUTDIR.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENES = {
+    "cornell": os.path.join(HERE, "..", "scenes", "cornell_box.obj"),
+    "hall": os.path.join(HERE, "..", "scenes", "large", "hall.obj"),
+}
+# The fine uniform solve the reference gathers from: its discretisation only enters the
+# reference through one bounce of indirect light.
+FINE = {
+    "cornell": ["--patches", "60000", "--rays", "1024"],
+    "hall": ["--patches", "50000", "--rays", "256"],
+}
+RUNS = {
+    "cornell": [("uniform_%d" % n, ["--patches", str(n)]) for n in (1000, 4000, 8000, 16000, 32000, 64000)]
+    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (1000, 4000)]
+    + [("adaptive_t%s_p%d" % (t, p), ["--patches", "1000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
+       for t in ("0.1", "0.2") for p in (2, 3, 4)]
+    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4", "1e-5")],
+    "hall": [("uniform_%d" % n, ["--patches", str(n)]) for n in (5000, 12500, 25000, 50000, 100000)]
+    + [("adaptive_t%s_p%d" % (t, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
+       for t in ("0.1", "0.2") for p in (2, 3, 4)]
+    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4")],
+}
+
+
+def solve(build, scene, out, name, flags):
+    """Runs one solve; returns (wall s, cpu s, peak MB, its log)."""
+    base = os.path.join(out, name)
+    timing = base + ".time"
+    cmd = ["/usr/bin/time", "-f", "%e %U %S %M", "-o", timing, os.path.join(build, "client", "radflux"),
+           "solve", scene, *flags, "--patch-values", base + ".csv", "--out", base + ".ply",
+           "--render", base + ".png"]
+    log = subprocess.run(cmd, capture_output=True, text=True)
+    if log.returncode != 0:
+        sys.exit(f"{name}: radflux failed:\n{log.stderr}")
+    wall, user, system, rss = open(timing).read().split()[-4:]
+    return float(wall), float(user) + float(system), int(rss) / 1024, log.stderr
+
+
+def object_means(path):
+    s, a = {}, {}
+    for r in csv.DictReader(open(path)):
+        o, ar = r["object"], float(r["area"])
+        s[o] = s.get(o, 0) + ar * (float(r["r"]) + float(r["g"]) + float(r["b"]))
+        a[o] = a.get(o, 0) + ar
+    return {o: s[o] / a[o] for o in s}
+
+
+def object_mean_error(run, ref):
+    run, ref = object_means(run), object_means(ref)
+    e = [(run[o] / ref[o] - 1) ** 2 for o in ref if not o.startswith("light") and ref[o] > 0]
+    return math.sqrt(sum(e) / len(e))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("build")
+    ap.add_argument("out")
+    ap.add_argument("scene", choices=sorted(SCENES))
+    ap.add_argument("--only", nargs="*", help="run only these names")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    scene = SCENES[args.scene]
+    field_error = os.path.join(args.build, "bench", "field_error")
+    points = os.path.join(args.out, "reference.points")
+    fine = os.path.join(args.out, "fine")
+    if not os.path.exists(points):
+        solve(args.build, scene, args.out, "fine", FINE[args.scene])
+        subprocess.run([field_error, "reference", scene, fine + ".ply", fine + ".csv", points], check=True,
+                       stdout=subprocess.DEVNULL)
+    print("| run | flags | patches | wall s | CPU s | peak MB | field rms | field l1 | rms smooth "
+          "| object-mean error |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for name, flags in RUNS[args.scene]:
+        if args.only and name not in args.only:
+            continue
+        wall, cpu, mb, _ = solve(args.build, scene, args.out, name, flags)
+        base = os.path.join(args.out, name)
+        e = json.loads(subprocess.run([field_error, "compare", points, base + ".ply", base + ".csv"],
+                                      check=True, capture_output=True, text=True).stdout)
+        print(f"| {name} | `{' '.join(flags)}` | {e['run_patches']} | {wall:.2f} | {cpu:.2f} | {mb:.0f} | "
+              f"{e['rms']:.4f} | {e['l1']:.4f} | {e['rms_smooth']:.4f} | "
+              f"{object_mean_error(base + '.csv', fine + '.csv'):.2e} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
