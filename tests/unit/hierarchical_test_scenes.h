@@ -2,6 +2,7 @@
 // one plate emits (rho 0) and the other reflects, so the receiver's mean B is rho * E * F.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,60 @@ inline Scene FurnaceCube() {
       "usemtl white\n"
       "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n",
       "newmtl white\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+}
+
+// The quad with corners v (counter-clockwise from the front) as an n x n grid of OBJ faces.
+inline std::string TessellatedQuad(const std::string& object, const std::string& material,
+                                   const std::vector<Vec3>& v, int n, int& next) {
+  auto at = [&](double u, double w) {
+    return v[0] * ((1 - u) * (1 - w)) + v[1] * (u * (1 - w)) + v[2] * (u * w) + v[3] * ((1 - u) * w);
+  };
+  std::string obj;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double u0 = double(i) / n, u1 = double(i + 1) / n;
+      const double w0 = double(j) / n, w1 = double(j + 1) / n;
+      obj += ObjQuad(object, material, {at(u0, w0), at(u1, w0), at(u1, w1), at(u0, w1)}, next);
+    }
+  }
+  return obj;
+}
+
+// The six faces of the box [lo, hi] (inward: seen from inside) as OBJ quads.
+inline std::string ObjBox(const std::string& object, const std::string& material, Vec3 lo,
+                          Vec3 hi, bool inward, int& next) {
+  const double x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
+  std::vector<std::vector<Vec3>> faces = {{{x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0}},
+                                          {{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}},
+                                          {{x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}},
+                                          {{x1, y1, z0}, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}},
+                                          {{x0, y1, z0}, {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}},
+                                          {{x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}}};
+  std::string obj;
+  for (auto& f : faces) {
+    if (inward) std::reverse(f.begin(), f.end());
+    obj += ObjQuad(object, material, f, next);
+  }
+  return obj;
+}
+
+// The many-faces scene of the clustering tests (bench/cube_grid_scene.py writes the same as
+// OBJ): a 4 x 4 x 2 room ("room", rho 0.5, faces inward), a 1 x 1 lamp under the ceiling's
+// centre ("light", E = pi), and an n x n grid of closed floating cubes ("cubes", rho 0.5)
+// over [0.5, 3.5]^2, each 1.5 / n on a side, from z = 0.25: 6 n^2 + 7 faces.
+inline Scene CubeGridRoom(int n) {
+  int next = 1;
+  std::string obj = ObjBox("room", "white", {0, 0, 0}, {4, 4, 2}, /*inward=*/true, next);
+  obj += ObjQuad("light", "lamp",
+                 {{1.5, 1.5, 1.99}, {1.5, 2.5, 1.99}, {2.5, 2.5, 1.99}, {2.5, 1.5, 1.99}}, next);
+  const double cell = 3.0 / n, side = 0.5 * cell;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Vec3 lo{0.5 + (i + 0.25) * cell, 0.5 + (j + 0.25) * cell, 0.25};
+      obj += ObjBox("cubes", "white", lo, lo + Vec3{side, side, side}, /*inward=*/false, next);
+    }
+  }
+  return SceneFromObj(obj, kPlateMtl);
 }
 
 // Area-weighted mean of band 0 of `values` over the patches of scene object `object`.
