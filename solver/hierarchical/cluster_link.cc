@@ -99,9 +99,9 @@ double PointTransfer(double k, const Vec3& x, const Vec3& n, const Vec3& center)
   return k * std::max(0.0, Dot(n, d)) / (r2 * std::sqrt(r2));
 }
 
-bool EstimateClusterLink(const ElementTree& tree, std::span<const float> exposure,
-                         const LinkEnd& p, const LinkEnd& q, const LinkSampling& sampling,
-                         const RayCaster& caster, LinkEstimate& estimate, uint64_t& rays) {
+bool EstimateClusterLink(const ElementTree& tree, std::span<const float> exposure, const LinkEnd& p,
+                         const LinkEnd& q, const LinkSampling& sampling, const RayCaster& caster,
+                         LinkEstimate& estimate, uint64_t& rays) {
   const bool p_cluster = IsCluster(p.id);
   if (!p_cluster && !Exchanges(tree, tree.nodes[p.id], FacesOf(q))) return false;
   if (!IsCluster(q.id) && !Exchanges(tree, tree.nodes[q.id], FacesOf(p))) return false;

@@ -17,11 +17,11 @@ namespace radflux {
 
 // One end of a link as the cluster estimates see it.
 struct LinkEnd {
-  uint32_t id = 0;                   // node id (element or kClusterBit | cluster)
-  Vec3 center;                       // element centroid or cluster center
-  double radius = 0;                 // bounding sphere about `center`, scene units
-  double area = 0;                   // total area, scene units^2
-  std::span<const uint32_t> faces;   // a cluster's faces (root elements); empty for an element
+  uint32_t id = 0;                  // node id (element or kClusterBit | cluster)
+  Vec3 center;                      // element centroid or cluster center
+  double radius = 0;                // bounding sphere about `center`, scene units
+  double area = 0;                  // total area, scene units^2
+  std::span<const uint32_t> faces;  // a cluster's faces (root elements); empty for an element
 };
 
 // Bound on the form factor from any point of p to q, ignoring visibility and cosines:
@@ -40,8 +40,8 @@ double PointTransfer(double k, const Vec3& x, const Vec3& n, const Vec3& center)
 // picked by projected exposed area toward each other (1 when no picked pair faces). spread is
 // ClusterFormFactorBound. Returns false when an element and a cluster cannot exchange light
 // (no face of the cluster and the element each in front of the other).
-bool EstimateClusterLink(const ElementTree& tree, std::span<const float> exposure,
-                         const LinkEnd& p, const LinkEnd& q, const LinkSampling& sampling,
-                         const RayCaster& caster, LinkEstimate& estimate, uint64_t& rays);
+bool EstimateClusterLink(const ElementTree& tree, std::span<const float> exposure, const LinkEnd& p,
+                         const LinkEnd& q, const LinkSampling& sampling, const RayCaster& caster,
+                         LinkEstimate& estimate, uint64_t& rays);
 
 }  // namespace radflux

@@ -20,12 +20,12 @@ inline bool IsCluster(uint32_t node) { return (node & kClusterBit) != 0; }
 inline uint32_t ClusterIndex(uint32_t node) { return node & ~kClusterBit; }
 
 struct Cluster {
-  uint32_t begin = 0, end = 0;          // its faces: order[begin, end), at least two
-  std::array<uint32_t, 2> children{};   // node ids (clusters or root elements)
-  uint32_t parent = kNoElement;         // cluster index; kNoElement for the top
-  Vec3 center;                          // area-weighted centroid of its faces
-  double radius = 0;                    // bounding sphere about `center`, scene units
-  double area = 0;                      // total area of its faces, scene units^2
+  uint32_t begin = 0, end = 0;         // its faces: order[begin, end), at least two
+  std::array<uint32_t, 2> children{};  // node ids (clusters or root elements)
+  uint32_t parent = kNoElement;        // cluster index; kNoElement for the top
+  Vec3 center;                         // area-weighted centroid of its faces
+  double radius = 0;                   // bounding sphere about `center`, scene units
+  double area = 0;                     // total area of its faces, scene units^2
 };
 
 struct ClusterTree {

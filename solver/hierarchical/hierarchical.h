@@ -61,7 +61,8 @@ struct LinkSet {
   size_t Slots() const { return begin.size() - 1; }
   // The node id gathering at slot s.
   uint32_t Receiver(size_t s) const {
-    return s < elements ? static_cast<uint32_t>(s) : kClusterBit | static_cast<uint32_t>(s - elements);
+    return s < elements ? static_cast<uint32_t>(s)
+                        : kClusterBit | static_cast<uint32_t>(s - elements);
   }
   size_t Bytes() const {
     return begin.size() * sizeof(uint64_t) + source.size() * (sizeof(uint32_t) + 2 * sizeof(float));

@@ -58,8 +58,8 @@ absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& opti
       "{} links ({:.2f} MB links, {:.2f} MB elements) from {} initial links; {} passes, {} "
       "refine rounds, {} rays; refine {:.3f}s gather {:.3f}s",
       st.roots, st.clusters, st.elements, st.leaves, st.patches, st.links, st.link_bytes / 1e6,
-      st.element_bytes / 1e6, st.initial_links, st.passes, st.refine_rounds, st.rays, st.refine_seconds,
-      st.solve_seconds);
+      st.element_bytes / 1e6, st.initial_links, st.passes, st.refine_rounds, st.rays,
+      st.refine_seconds, st.solve_seconds);
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job =
       PrepareFromMesh(std::move(scene), std::move(solved->mesh));

@@ -57,6 +57,38 @@ TEST(HierarchicalClusters, LinksPerLeafGrowFarSlowerThanFaces) {
   EXPECT_LT(per_leaf[2] / per_leaf[1], per_leaf[1] / per_leaf[0]);  // and the growth slows
 }
 
+// No link joins two nodes that share a face (so none joins a cluster to its own descendant,
+// nor an element to a cluster holding it): every link's ends cover disjoint ranges of the
+// cluster order (ClusterTree::Build of the same faces gives the solver's clusters).
+TEST(HierarchicalClusters, NoLinkJoinsOverlappingNodes) {
+  const Scene scene = testing::CubeGridRoom(4);
+  const HierarchicalResult r = Solved(scene, 1e-4, 4);
+  const ClusterTree clusters = ClusterTree::Build(r.tree);
+  std::vector<uint32_t> position(clusters.order.size());
+  for (uint32_t k = 0; k < clusters.order.size(); ++k) position[clusters.order[k]] = k;
+  auto range = [&](uint32_t node) -> std::pair<uint32_t, uint32_t> {
+    if (IsCluster(node)) {
+      const Cluster& c = clusters.clusters[ClusterIndex(node)];
+      return {c.begin, c.end};
+    }
+    while (r.tree.nodes[node].parent != kNoElement) node = r.tree.nodes[node].parent;
+    return {position[node], position[node] + 1};
+  };
+  size_t with_cluster = 0;
+  for (size_t s = 0; s < r.links.Slots(); ++s) {
+    const uint32_t p = r.links.Receiver(s);
+    for (uint64_t k = r.links.begin[s]; k < r.links.begin[s + 1]; ++k) {
+      const uint32_t q = r.links.source[k];
+      const auto [pb, pe] = range(p);
+      const auto [qb, qe] = range(q);
+      EXPECT_TRUE(pe <= qb || qe <= pb) << p << " <- " << q;
+      with_cluster += IsCluster(p) || IsCluster(q);
+    }
+  }
+  std::printf("%zu links, %zu with a cluster end\n", r.links.size(), with_cluster);
+  EXPECT_GT(with_cluster, 0u);
+}
+
 // Object means of the cube room (n = 4) with clusters against a uniform analytic solve on
 // about 2000 patches, and against the hierarchical solve without clusters.
 TEST(HierarchicalClusters, CubeRoomAgreesWithUniformAnalyticSolve) {
@@ -142,10 +174,10 @@ TEST(HierarchicalClusters, TessellatedFurnaceCube) {
   const HierarchicalResult off = Solved(scene, 1e-3, 16, /*clusters=*/false);
   const auto [rms_on, mean_on] = RelativeError(on, exact);
   const auto [rms_off, mean_off] = RelativeError(off, exact);
-  std::printf("tessellated furnace: clusters on rms %.2e mean %.2e (%zu clusters, %zu links); "
-              "off rms %.2e mean %.2e (%zu links)\n",
-              rms_on, mean_on, on.stats.clusters, on.stats.links, rms_off, mean_off,
-              off.stats.links);
+  std::printf(
+      "tessellated furnace: clusters on rms %.2e mean %.2e (%zu clusters, %zu links); "
+      "off rms %.2e mean %.2e (%zu links)\n",
+      rms_on, mean_on, on.stats.clusters, on.stats.links, rms_off, mean_off, off.stats.links);
   EXPECT_EQ(on.stats.clusters, 95u);
   EXPECT_LT(rms_on, 1.1 * rms_off);
   EXPECT_LT(std::abs(mean_on), 0.003);

@@ -46,7 +46,8 @@ inline Scene FurnaceCube() {
 inline std::string TessellatedQuad(const std::string& object, const std::string& material,
                                    const std::vector<Vec3>& v, int n, int& next) {
   auto at = [&](double u, double w) {
-    return v[0] * ((1 - u) * (1 - w)) + v[1] * (u * (1 - w)) + v[2] * (u * w) + v[3] * ((1 - u) * w);
+    return v[0] * ((1 - u) * (1 - w)) + v[1] * (u * (1 - w)) + v[2] * (u * w) +
+           v[3] * ((1 - u) * w);
   };
   std::string obj;
   for (int i = 0; i < n; ++i) {
@@ -60,8 +61,8 @@ inline std::string TessellatedQuad(const std::string& object, const std::string&
 }
 
 // The six faces of the box [lo, hi] (inward: seen from inside) as OBJ quads.
-inline std::string ObjBox(const std::string& object, const std::string& material, Vec3 lo,
-                          Vec3 hi, bool inward, int& next) {
+inline std::string ObjBox(const std::string& object, const std::string& material, Vec3 lo, Vec3 hi,
+                          bool inward, int& next) {
   const double x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
   std::vector<std::vector<Vec3>> faces = {{{x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0}},
                                           {{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}},
@@ -97,8 +98,8 @@ inline Scene CubeGridRoom(int n) {
 }
 
 // Area-weighted mean of band 0 of `values` over the patches of scene object `object`.
-inline double ObjectMean(const Scene& scene, const PatchMesh& mesh,
-                         const std::vector<Rgb>& values, const std::string& object) {
+inline double ObjectMean(const Scene& scene, const PatchMesh& mesh, const std::vector<Rgb>& values,
+                         const std::string& object) {
   double sum = 0, area = 0;
   for (uint32_t p = 0; p < mesh.size(); ++p) {
     if (scene.objects[scene.faces[mesh.patches[p].face].object] != object) continue;
