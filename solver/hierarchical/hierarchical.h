@@ -13,8 +13,9 @@
 // may cross p; for a link with a cluster end, the bound ClusterFormFactorBound) and range_q
 // how much B varies over q's leaves (rho_p A_p of a cluster: the sum over its faces). Between
 // elements the receiver is split when the first term dominates, else the source, down to
-// min_area_fraction of the total area; a link with a cluster end splits its larger end (by
-// bounding sphere; clusters always split, so such links end on faces when they must), and is
+// min_area_fraction of the total area; a link with a cluster end splits the larger of two
+// clusters (by bounding sphere), or the cluster when the other end is an element (clusters
+// always split, so such links end on faces when they must), and is
 // refined whatever its error while its bound is above 0.3 (its estimate sees the faces from
 // afar, which needs a small solid angle; before the first solve most B are still zero).
 // Links between elements use EstimateElementLink, links with a cluster end

@@ -90,9 +90,11 @@ struct LinkError {
 
 // The decision for link k (p <- q) over threshold or not: a cluster's link with itself is
 // always split into its children's links; a link with a cluster end (refined also while
-// near, kFarFieldBound) splits its larger end; a
-// link between elements the receiver when the receiver part dominates, else the source,
-// whichever can still be split.
+// near, kFarFieldBound) splits the larger of two clusters (bounding sphere), or the cluster
+// when the other end is an element (opening the cluster leads to links between elements,
+// where EstimateElementLink's spread takes over; splitting the element instead would
+// multiply the links of every cluster it sees); a link between elements splits the receiver
+// when the receiver part dominates, else the source, whichever can still be split.
 Decision Decide(const Context& c, const ElementTree& tree, const LinkSet& links,
                 const NodeState& state, uint32_t p, uint64_t k) {
   const uint32_t q = links.source[k];
@@ -105,9 +107,12 @@ Decision Decide(const Context& c, const ElementTree& tree, const LinkSet& links,
   const bool near = cluster_end && links.spread[k] > kFarFieldBound;
   if (!near && !(error.Total() > c.threshold)) return kKeep;
   const bool can_p = c.CanSplit(tree, p), can_q = c.CanSplit(tree, q);
-  const bool receiver = cluster_end
-                            ? can_p && (!can_q || c.End(tree, p).radius >= c.End(tree, q).radius)
-                            : can_p && (error.receiver >= error.source || !can_q);
+  bool receiver = can_p && (error.receiver >= error.source || !can_q);
+  if (IsCluster(p) && IsCluster(q)) {
+    receiver = c.End(tree, p).radius >= c.End(tree, q).radius;
+  } else if (cluster_end) {
+    receiver = IsCluster(p);
+  }
   if (receiver) return kSplitReceiver;
   return can_q ? kSplitSource : kKeep;
 }
