@@ -17,21 +17,9 @@
 namespace radflux {
 namespace {
 
+using testing::GatheredFormFactor;
 using testing::ObjectMean;
-
-HierarchicalResult Solved(const Scene& scene, double epsilon, int samples, bool clusters = true) {
-  HierarchicalOptions options;
-  options.enabled = true;
-  options.link_epsilon = epsilon;
-  options.samples = samples;
-  options.clusters = clusters;
-  SolverOptions solver;
-  solver.tolerance = 1e-9;
-  solver.max_iterations = 500;
-  absl::StatusOr<HierarchicalResult> result = SolveHierarchical(scene, options, solver);
-  EXPECT_TRUE(result.ok()) << result.status();
-  return result.ok() ? *std::move(result) : HierarchicalResult{};
-}
+using testing::SolvedHierarchical;
 
 // Links per leaf at n = 4, 8, 16 (103, 391, 1543 faces): one initial link and faces - 1
 // clusters at every size; links per leaf grow at most like faces^0.5 from the smallest to the
@@ -41,7 +29,7 @@ TEST(HierarchicalClusters, LinksPerLeafGrowFarSlowerThanFaces) {
   std::vector<double> faces, per_leaf;
   for (int n : {4, 8, 16}) {
     const Scene scene = testing::CubeGridRoom(n);
-    const HierarchicalResult r = Solved(scene, 1e-4, 4);
+    const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 4);
     std::printf("n=%d: %zu faces, %zu clusters, %zu initial links, %zu links, %zu leaves\n", n,
                 r.stats.roots, r.stats.clusters, r.stats.initial_links, r.stats.links,
                 r.stats.leaves);
@@ -61,7 +49,7 @@ TEST(HierarchicalClusters, LinksPerLeafGrowFarSlowerThanFaces) {
 // cluster order (ClusterTree::Build of the same faces gives the solver's clusters).
 TEST(HierarchicalClusters, NoLinkJoinsOverlappingNodes) {
   const Scene scene = testing::CubeGridRoom(4);
-  const HierarchicalResult r = Solved(scene, 1e-4, 4);
+  const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 4);
   const ClusterTree clusters = ClusterTree::Build(r.tree);
   std::vector<uint32_t> position(clusters.order.size());
   for (uint32_t k = 0; k < clusters.order.size(); ++k) position[clusters.order[k]] = k;
@@ -98,8 +86,8 @@ TEST(HierarchicalClusters, CubeRoomAgreesWithUniformAnalyticSolve) {
   job.solver.tolerance = 1e-7;
   absl::StatusOr<JobResult> uniform = RunJob(scene, job);
   ASSERT_TRUE(uniform.ok()) << uniform.status();
-  const HierarchicalResult on = Solved(scene, 1e-4, 4, /*clusters=*/true);
-  const HierarchicalResult off = Solved(scene, 1e-4, 4, /*clusters=*/false);
+  const HierarchicalResult on = SolvedHierarchical(scene, 1e-4, 4, /*clusters=*/true);
+  const HierarchicalResult off = SolvedHierarchical(scene, 1e-4, 4, /*clusters=*/false);
   for (const char* object : {"room", "cubes"}) {
     const double ref = ObjectMean(scene, uniform->job->mesh, uniform->solve.radiosity, object);
     const double with = ObjectMean(scene, on.mesh, on.solve.radiosity, object);
@@ -119,8 +107,8 @@ TEST(HierarchicalClusters, TessellatedPlatesMeetClosedForms) {
     obj += testing::TessellatedQuad(
         "b", "lamp", {{-.5, -.5, d}, {-.5, .5, d}, {.5, .5, d}, {.5, -.5, d}}, 8, next);
     const Scene scene = testing::SceneFromObj(obj, testing::kPlateMtl);
-    const HierarchicalResult r = Solved(scene, 1e-4, 16);
-    const double f = ObjectMean(scene, r.mesh, r.solve.radiosity, "a") / (0.5 * std::numbers::pi);
+    const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 16);
+    const double f = GatheredFormFactor(scene, r);
     const double exact = testing::ParallelRectangles(1, 1, d);
     std::printf("tessellated parallel d=%g: exact %.6f clustered %.6f (%zu clusters, %zu links)\n",
                 d, exact, f, r.stats.clusters, r.stats.links);
@@ -133,24 +121,12 @@ TEST(HierarchicalClusters, TessellatedPlatesMeetClosedForms) {
   obj += testing::TessellatedQuad("b", "lamp", {{0, 0, 0}, {0, 1.3, 0}, {0, 1.3, 0.7}, {0, 0, 0.7}},
                                   8, next);
   const Scene scene = testing::SceneFromObj(obj, testing::kPlateMtl);
-  const HierarchicalResult r = Solved(scene, 1e-4, 16);
-  const double f = ObjectMean(scene, r.mesh, r.solve.radiosity, "a") / (0.5 * std::numbers::pi);
+  const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 16);
+  const double f = GatheredFormFactor(scene, r);
   const double exact = testing::PerpendicularRectangles(1, 0.7, 1.3);
   std::printf("tessellated perpendicular: exact %.6f clustered %.6f (%zu links)\n", exact, f,
               r.stats.links);
   EXPECT_NEAR(f, exact, 0.004);
-}
-
-// Area-weighted RMS and mean over the leaves of B / exact - 1 (band 0).
-std::pair<double, double> RelativeError(const HierarchicalResult& r, double exact) {
-  double sq = 0, area = 0, mean = 0;
-  for (size_t i = 0; i < r.leaves.size(); ++i) {
-    const double e = r.leaf_radiosity[i][0] / exact - 1, a = r.tree.nodes[r.leaves[i]].area;
-    sq += a * e * e;
-    mean += a * e;
-    area += a;
-  }
-  return {std::sqrt(sq / area), mean / area};
 }
 
 // The furnace cube with each side as 4 x 4 faces: B = E / (1 - rho) = 2 pi. Its mean meets
@@ -169,10 +145,10 @@ TEST(HierarchicalClusters, TessellatedFurnaceCube) {
   }
   const Scene scene = testing::SceneFromObj(obj, "newmtl hot\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
   const double exact = std::numbers::pi / (1 - 0.5);
-  const HierarchicalResult on = Solved(scene, 1e-3, 16, /*clusters=*/true);
-  const HierarchicalResult off = Solved(scene, 1e-3, 16, /*clusters=*/false);
-  const auto [rms_on, mean_on] = RelativeError(on, exact);
-  const auto [rms_off, mean_off] = RelativeError(off, exact);
+  const HierarchicalResult on = SolvedHierarchical(scene, 1e-3, 16, /*clusters=*/true);
+  const HierarchicalResult off = SolvedHierarchical(scene, 1e-3, 16, /*clusters=*/false);
+  const auto [rms_on, mean_on] = testing::LeafRelativeError(on, exact);
+  const auto [rms_off, mean_off] = testing::LeafRelativeError(off, exact);
   std::printf(
       "tessellated furnace: clusters on rms %.2e mean %.2e (%zu clusters, %zu links); "
       "off rms %.2e mean %.2e (%zu links)\n",

@@ -3,9 +3,13 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "solver/hierarchical/hierarchical.h"
 #include "solver/mesh/patch_mesh.h"
 #include "test_scenes.h"
 
@@ -107,6 +111,41 @@ inline double ObjectMean(const Scene& scene, const PatchMesh& mesh, const std::v
     area += mesh.patches[p].area;
   }
   return sum / area;
+}
+
+// In the two-plate scenes: F from the receiver "a" to the emitter "b", read back from the
+// gathered radiosity (rho * E * F with rho 0.5, E = pi).
+inline double GatheredFormFactor(const Scene& scene, const HierarchicalResult& r) {
+  return ObjectMean(scene, r.mesh, r.solve.radiosity, "a") / (0.5 * std::numbers::pi);
+}
+
+// A hierarchical solve to tolerance 1e-9 (at most 500 sweeps) at the given link epsilon and
+// samples per element.
+inline HierarchicalResult SolvedHierarchical(const Scene& scene, double epsilon, int samples,
+                                             bool clusters = true) {
+  HierarchicalOptions options;
+  options.enabled = true;
+  options.link_epsilon = epsilon;
+  options.samples = samples;
+  options.clusters = clusters;
+  SolverOptions solver;
+  solver.tolerance = 1e-9;
+  solver.max_iterations = 500;
+  absl::StatusOr<HierarchicalResult> result = SolveHierarchical(scene, options, solver);
+  EXPECT_TRUE(result.ok()) << result.status();
+  return result.ok() ? *std::move(result) : HierarchicalResult{};
+}
+
+// Area-weighted RMS and mean over the leaves of B / exact - 1 (band 0).
+inline std::pair<double, double> LeafRelativeError(const HierarchicalResult& r, double exact) {
+  double sq = 0, area = 0, mean = 0;
+  for (size_t i = 0; i < r.leaves.size(); ++i) {
+    const double e = r.leaf_radiosity[i][0] / exact - 1, a = r.tree.nodes[r.leaves[i]].area;
+    sq += a * e * e;
+    mean += a * e;
+    area += a;
+  }
+  return {std::sqrt(sq / area), mean / area};
 }
 
 }  // namespace radflux::testing
