@@ -29,6 +29,10 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
   app.add_option("--link-epsilon", f.link_epsilon,
                  "hierarchical: refine links with rho*B*F*A above this fraction of emitted power")
       ->capture_default_str();
+  app.add_option("--clusters", f.clusters,
+                 "hierarchical: clusters above the faces (off: every pair of faces starts linked)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option(
          "--adaptive-passes", f.adaptive_passes,
          "adaptive meshing: refinement passes after the first solve (rows by --form-factors)")
@@ -55,6 +59,7 @@ absl::StatusOr<JobOptions> ToJobOptions(const JobFlags& f) {
   o.form_factors.seed = f.seed;
   o.hierarchical.enabled = f.solver == "hierarchical";
   o.hierarchical.link_epsilon = f.link_epsilon;
+  o.hierarchical.clusters = f.clusters == "on";
   o.adaptive.passes = f.adaptive_passes;
   o.adaptive.threshold = f.adaptive_threshold;
   o.solver.method = o.hierarchical.enabled ? SolverMethod::kJacobi : *ParseSolver(f.solver);

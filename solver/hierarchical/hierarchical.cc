@@ -8,8 +8,8 @@
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/row_builder.h"
-#include "solver/hierarchical/exposure.h"
-#include "solver/hierarchical/link_estimate.h"
+#include "solver/hierarchical/hierarchical_state.h"
+#include "solver/hierarchical/link_refine.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
 
@@ -18,197 +18,6 @@ namespace {
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-struct NewLink {
-  uint32_t receiver, source;
-  float ff = 0, spread = 0;
-};
-
-// Everything the refinement and the gather need besides the tree and the links.
-struct Context {
-  const Scene* scene = nullptr;
-  const HierarchicalOptions* options = nullptr;
-  const RayCaster* caster = nullptr;
-  const PatchMesh* roots = nullptr;  // the mesh `caster` was built on
-  LinkSampling sampling;
-  double min_area = 0;
-  double threshold = 0;  // link_epsilon * emitted power
-  int threads = 0;
-  const Material& MaterialOf(const Element& e) const {
-    return scene->materials[scene->faces[e.face].material];
-  }
-};
-
-// Per element: radiosity of its exposed part (what links carry), W/m^2 per band; the range
-// of MaxComponent of that over its exposed leaves; its exposed fraction (ExposedFraction).
-struct NodeState {
-  std::vector<Rgb> b;
-  std::vector<float> range;
-  std::vector<float> exposure;
-};
-
-constexpr int kExposureSamples = 32;
-constexpr uint64_t kExposureStream = 14;
-
-// State for nodes [first, tree size): their exposure, and their parent's radiosity to start
-// from (roots: their emission).
-void AddNodes(const Context& c, const ElementTree& tree, size_t first, NodeState& state) {
-  const size_t n = tree.nodes.size();
-  state.b.resize(n);
-  state.range.resize(n, 0);
-  state.exposure.resize(n, 1);
-  for (size_t k = first; k < n; ++k) {
-    const Element& e = tree.nodes[k];
-    state.b[k] = e.parent == kNoElement ? c.MaterialOf(e).emission : state.b[e.parent];
-  }
-  ParallelFor(static_cast<int64_t>(n - first), 64, c.threads, [&](int64_t b, int64_t e) {
-    for (int64_t k = b; k < e; ++k) {
-      const size_t node = first + static_cast<size_t>(k);
-      state.exposure[node] = static_cast<float>(ExposedFraction(
-          tree.nodes[node], *c.roots, *c.caster, kExposureSamples,
-          PatternSeed(c.options->seed, node, kExposureStream), c.sampling.ray_epsilon));
-    }
-  });
-}
-
-// F_pq with its spread for a pending pair; false when p and q cannot exchange.
-bool LinkFormFactor(const Context& c, const ElementTree& tree, uint32_t p, uint32_t q,
-                    NewLink& link, uint64_t& rays) {
-  LinkEstimate estimate;
-  if (!EstimateElementLink(tree.nodes[p], tree.nodes[q], p, q, c.sampling, *c.caster, estimate,
-                           rays)) {
-    return false;
-  }
-  link = {p, q, estimate.ff, estimate.spread};
-  return true;
-}
-
-// Computes the form factors of `pending` (receiver, source) pairs in parallel; drops pairs
-// that cannot exchange. Deterministic: each pair's samples depend only on (seed, p, q).
-std::vector<NewLink> ComputeLinks(const Context& c, const ElementTree& tree,
-                                  const std::vector<std::pair<uint32_t, uint32_t>>& pending,
-                                  uint64_t& rays) {
-  std::vector<NewLink> links(pending.size());
-  std::vector<uint8_t> ok(pending.size(), 0);
-  std::vector<uint64_t> block_rays((pending.size() + 255) / 256, 0);
-  ParallelFor(static_cast<int64_t>(pending.size()), 256, c.threads, [&](int64_t b, int64_t e) {
-    uint64_t r = 0;
-    for (int64_t k = b; k < e; ++k) {
-      ok[k] = LinkFormFactor(c, tree, pending[k].first, pending[k].second, links[k], r);
-    }
-    block_rays[b / 256] = r;
-  });
-  for (uint64_t r : block_rays) rays += r;
-  std::vector<NewLink> kept;
-  for (size_t k = 0; k < links.size(); ++k)
-    if (ok[k]) kept.push_back(links[k]);
-  return kept;
-}
-
-// Links grouped by receiver, keeping the given order within a receiver.
-LinkSet Assemble(const std::vector<NewLink>& links, size_t nodes) {
-  LinkSet set;
-  set.begin.assign(nodes + 1, 0);
-  for (const NewLink& l : links) ++set.begin[l.receiver + 1];
-  for (size_t p = 0; p < nodes; ++p) set.begin[p + 1] += set.begin[p];
-  std::vector<uint64_t> next(set.begin.begin(), set.begin.end() - 1);
-  set.source.resize(links.size());
-  set.ff.resize(links.size());
-  set.spread.resize(links.size());
-  for (const NewLink& l : links) {
-    const uint64_t k = next[l.receiver]++;
-    set.source[k] = l.source;
-    set.ff[k] = l.ff;
-    set.spread[k] = l.spread;
-  }
-  return set;
-}
-
-bool NeedsLight(const Context& c, const Element& e) {
-  return MaxComponent(c.MaterialOf(e).reflectance) > 0;
-}
-
-LinkSet InitialLinks(const Context& c, const ElementTree& tree, uint64_t& rays) {
-  std::vector<std::pair<uint32_t, uint32_t>> pending;
-  for (uint32_t p : tree.roots) {
-    if (!NeedsLight(c, tree.nodes[p])) continue;
-    for (uint32_t q : tree.roots)
-      if (q != p) pending.push_back({p, q});
-  }
-  return Assemble(ComputeLinks(c, tree, pending, rays), tree.nodes.size());
-}
-
-enum Decision : uint8_t { kKeep = 0, kSplitReceiver = 1, kSplitSource = 2 };
-
-// The error of link p <- q in power: the receiver part (q's radiosity times how much F_pq
-// varies over p, which p's single value misses) plus the source part (F_pq times how much B
-// varies over q's leaves, which q's mean misses); both times rho_p A_p.
-struct LinkError {
-  double receiver = 0, source = 0;
-  double Total() const { return receiver + source; }
-};
-
-// One refinement round: every link over threshold splits one side (one level): the receiver
-// when the receiver part dominates, else the source, whichever can still be split.
-// Returns true when any link was refined.
-bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, NodeState& state,
-                 uint64_t& rays) {
-  const size_t nodes = tree.nodes.size();
-  std::vector<uint8_t> decision(links.size(), kKeep);
-  ParallelFor(static_cast<int64_t>(nodes), 256, c.threads, [&](int64_t begin, int64_t end) {
-    for (int64_t p = begin; p < end; ++p) {
-      const Element& ep = tree.nodes[p];
-      const double rho_a = MaxComponent(c.MaterialOf(ep).reflectance) * ep.area;
-      for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-        const uint32_t q = links.source[k];
-        const LinkError error{rho_a * MaxComponent(state.b[q]) * links.spread[k],
-                              rho_a * links.ff[k] * state.range[q]};
-        if (!(error.Total() > c.threshold)) continue;
-        const bool can_p = ep.area / 4 >= c.min_area;
-        const bool can_q = tree.nodes[q].area / 4 >= c.min_area;
-        if (can_p && (error.receiver >= error.source || !can_q)) {
-          decision[k] = kSplitReceiver;
-        } else if (can_q) {
-          decision[k] = kSplitSource;
-        }
-      }
-    }
-  });
-  bool any = false;
-  for (size_t p = 0; p < nodes; ++p) {
-    for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-      if (decision[k] == kKeep) continue;
-      any = true;
-      const uint32_t n = decision[k] == kSplitReceiver ? static_cast<uint32_t>(p) : links.source[k];
-      if (tree.nodes[n].IsLeaf()) tree.Split(n);
-    }
-  }
-  if (!any) return false;
-  AddNodes(c, tree, nodes, state);
-  std::vector<NewLink> kept;
-  std::vector<std::pair<uint32_t, uint32_t>> pending;
-  for (size_t p = 0; p < nodes; ++p) {
-    for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-      const uint32_t q = links.source[k];
-      if (decision[k] == kKeep) {
-        kept.push_back({static_cast<uint32_t>(p), q, links.ff[k], links.spread[k]});
-      } else if (decision[k] == kSplitReceiver) {
-        const uint32_t first = tree.nodes[p].first_child;
-        for (uint32_t ch = first; ch < first + 4; ++ch) pending.push_back({ch, q});
-      } else {
-        const uint32_t first = tree.nodes[q].first_child;
-        for (uint32_t ch = first; ch < first + 4; ++ch)
-          pending.push_back({static_cast<uint32_t>(p), ch});
-      }
-    }
-  }
-  std::vector<NewLink> fresh = ComputeLinks(c, tree, pending, rays);
-  kept.insert(kept.end(), fresh.begin(), fresh.end());
-  std::stable_sort(kept.begin(), kept.end(),
-                   [](const NewLink& x, const NewLink& y) { return x.receiver < y.receiver; });
-  links = Assemble(kept, tree.nodes.size());
-  return true;
 }
 
 // Push-pull below `p`: `down` is the exposed radiosity gathered by p's ancestors (with rho).
@@ -258,31 +67,64 @@ Rgb LeafRadiosity(const NodeState& state, uint32_t l) {
   return b;
 }
 
-// One gathering sweep (Jacobi over links, then push-pull); returns the area-weighted
-// relative change of B over the leaves, max over bands.
-double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& links,
-                   const std::vector<uint32_t>& leaves, const Rgb& e_norm, NodeState& state) {
-  const size_t nodes = tree.nodes.size();
-  std::vector<Rgb> gathered(nodes, Rgb{});
-  ParallelFor(static_cast<int64_t>(nodes), 256, c.threads, [&](int64_t begin, int64_t end) {
-    for (int64_t p = begin; p < end; ++p) {
+// Adds to each face's gathered radiosity what the clusters holding it gather: per link into
+// such a cluster, the face's own PointTransfer toward the source (zero when it faces away)
+// times the source's B, times its exposed fraction (gathered is per face area).
+void GatherThroughClusters(const Context& c, const ElementTree& tree, const LinkSet& links,
+                           const NodeState& state, std::vector<Rgb>& gathered) {
+  if (c.clusters.clusters.empty()) return;
+  ParallelFor(static_cast<int64_t>(tree.roots.size()), 64, c.threads, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      const uint32_t r = tree.roots[i];
+      const Element& face = tree.nodes[r];
       Rgb g{};
-      for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
-        const Rgb& bq = state.b[links.source[k]];
-        for (int band = 0; band < kBands; ++band) g[band] += links.ff[k] * bq[band];
+      for (uint32_t a = c.clusters.face_cluster[r]; a != kNoElement;
+           a = c.clusters.clusters[a].parent) {
+        const size_t slot = links.elements + a;
+        for (uint64_t k = links.begin[slot]; k < links.begin[slot + 1]; ++k) {
+          const uint32_t q = links.source[k];
+          const double t =
+              PointTransfer(links.ff[k], face.centroid, face.normal, c.Center(tree, q));
+          for (int band = 0; band < kBands; ++band) g[band] += t * state.B(q)[band];
+        }
       }
-      gathered[p] = g;
+      for (int band = 0; band < kBands; ++band) gathered[r][band] += g[band] * state.exposure[r];
     }
   });
+}
+
+// One gathering sweep (Jacobi over links, then push-pull, then the clusters' pull); returns
+// the area-weighted relative change of B over the leaves, max over bands.
+double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& links,
+                   const std::vector<uint32_t>& leaves, const Rgb& e_norm, NodeState& state) {
+  std::vector<Rgb> gathered(tree.nodes.size(), Rgb{});
+  ParallelFor(static_cast<int64_t>(links.elements), 256, c.threads,
+              [&](int64_t begin, int64_t end) {
+                for (int64_t p = begin; p < end; ++p) {
+                  Rgb g{};
+                  for (uint64_t k = links.begin[p]; k < links.begin[p + 1]; ++k) {
+                    const Rgb& bq = state.B(links.source[k]);
+                    for (int band = 0; band < kBands; ++band) g[band] += links.ff[k] * bq[band];
+                  }
+                  gathered[p] = g;
+                }
+              });
+  GatherThroughClusters(c, tree, links, state, gathered);
   std::vector<Rgb> old(leaves.size());
   for (size_t i = 0; i < leaves.size(); ++i) old[i] = LeafRadiosity(state, leaves[i]);
+  std::vector<Pulled> faces(tree.roots.size());
   ParallelFor(static_cast<int64_t>(tree.roots.size()), 16, c.threads,
               [&](int64_t begin, int64_t end) {
                 for (int64_t r = begin; r < end; ++r) {
                   double lo = 0, hi = 0;
-                  PushPull(c, tree, gathered, tree.roots[r], Rgb{}, state, lo, hi);
+                  const uint32_t root = tree.roots[r];
+                  const double exposed = PushPull(c, tree, gathered, root, Rgb{}, state, lo, hi);
+                  faces[root] = FacePulled(state.b[root], exposed);
+                  faces[root].lo = lo;
+                  faces[root].hi = hi;
                 }
               });
+  PullClusters(c, faces, state);
   Rgb diff{};
   for (size_t i = 0; i < leaves.size(); ++i) {
     const double a = tree.nodes[leaves[i]].area;
@@ -335,13 +177,24 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   for (double& v : e_norm) v = std::sqrt(v);
   c.min_area = options.min_area_fraction * total_area;
   c.threshold = options.link_epsilon * power;
+  if (options.clusters) c.clusters = ClusterTree::Build(tree);
+  for (const Cluster& cl : c.clusters.clusters) {
+    double rho_a = 0;
+    for (uint32_t k = cl.begin; k < cl.end; ++k) rho_a += c.RhoArea(tree, c.clusters.order[k]);
+    c.cluster_rho_area.push_back(rho_a);
+  }
 
   HierarchicalStats& stats = result.stats;
   auto start = std::chrono::steady_clock::now();
-  LinkSet links = InitialLinks(c, tree, stats.rays);
-  stats.refine_seconds += Seconds(start);
   NodeState state;
   AddNodes(c, tree, 0, state);
+  std::vector<Pulled> faces;
+  for (uint32_t r : tree.roots)
+    faces.push_back(FacePulled(state.b[r], tree.nodes[r].area * state.exposure[r]));
+  PullClusters(c, faces, state);
+  LinkSet links = InitialLinks(c, tree, state, stats.rays);
+  stats.initial_links = links.size();
+  stats.refine_seconds += Seconds(start);
 
   SolveResult& solve = result.solve;
   std::vector<uint32_t> leaves;
@@ -398,6 +251,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   solve.bands_solved = grey ? 1 : kBands;
 
   stats.roots = tree.roots.size();
+  stats.clusters = c.clusters.clusters.size();
   stats.elements = tree.nodes.size();
   stats.leaves = result.leaves.size();
   stats.links = links.size();

@@ -55,12 +55,12 @@ absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& opti
   const double seconds = Seconds(start);
   const HierarchicalStats& st = solved->stats;
   spdlog::warn(
-      "hierarchical: {} roots, {} elements, {} leaves -> {} conforming patches; {} links "
-      "({:.2f} MB links, {:.2f} MB elements); {} passes, {} refine rounds, {} rays; "
-      "refine {:.3f}s gather {:.3f}s",
-      st.roots, st.elements, st.leaves, st.patches, st.links, st.link_bytes / 1e6,
-      st.element_bytes / 1e6, st.passes, st.refine_rounds, st.rays, st.refine_seconds,
-      st.solve_seconds);
+      "hierarchical: {} roots, {} clusters, {} elements, {} leaves -> {} conforming patches; "
+      "{} links ({:.2f} MB links, {:.2f} MB elements) from {} initial links; {} passes, {} "
+      "refine rounds, {} rays; refine {:.3f}s gather {:.3f}s",
+      st.roots, st.clusters, st.elements, st.leaves, st.patches, st.links, st.link_bytes / 1e6,
+      st.element_bytes / 1e6, st.initial_links, st.passes, st.refine_rounds, st.rays,
+      st.refine_seconds, st.solve_seconds);
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job =
       PrepareFromMesh(std::move(scene), std::move(solved->mesh));

@@ -16,14 +16,6 @@ constexpr uint64_t kValueStream = 13;
 constexpr int kNearFactor = 16;
 constexpr double kCornerInset = 1e-3;  // corners are pulled this far toward the centroid
 
-bool AnyCornerInFront(const Element& of, const Element& plane) {
-  const double scale = std::sqrt(plane.area);
-  for (int k = 0; k < of.CornerCount(); ++k) {
-    if (Dot(of.corners[k] - plane.centroid, plane.normal) > 1e-9 * scale) return true;
-  }
-  return false;
-}
-
 // A convex polygon (at most 5 vertices after one clip) with its fan triangle areas.
 struct FrontPolygon {
   std::array<Vec3, 5> v;
@@ -63,6 +55,14 @@ double PointFormFactor(const Vec3& x, const Element& p, const Element& q,
 }
 
 }  // namespace
+
+bool AnyCornerInFront(const Element& of, const Element& plane) {
+  const double scale = std::sqrt(plane.area);
+  for (int k = 0; k < of.CornerCount(); ++k) {
+    if (Dot(of.corners[k] - plane.centroid, plane.normal) > 1e-9 * scale) return true;
+  }
+  return false;
+}
 
 bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint32_t q_id,
                          const LinkSampling& sampling, const RayCaster& caster,

@@ -21,6 +21,10 @@ struct LinkEstimate {
   float spread = 0;  // max - min of the point form factor F(x, q) over x in p (bound)
 };
 
+// True when some corner of `of` lies in front of the plane of `plane` (beyond a tolerance of
+// 1e-9 times its size).
+bool AnyCornerInFront(const Element& of, const Element& plane);
+
 // Estimates F_pq from p's sample points: exact Lambert point-to-polygon F to the part of q in
 // front of p (zero at points behind q's plane), averaged, times the fraction of the kernel
 // cos cos / r^2 that is unblocked. Each point casts two shadow rays to points uniform on that

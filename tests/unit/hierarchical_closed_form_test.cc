@@ -14,31 +14,14 @@
 namespace radflux {
 namespace {
 
-using testing::ObjectMean;
-
-HierarchicalResult Solved(const Scene& scene, double epsilon, int samples) {
-  HierarchicalOptions options;
-  options.enabled = true;
-  options.link_epsilon = epsilon;
-  options.samples = samples;
-  SolverOptions solver;
-  solver.tolerance = 1e-9;
-  solver.max_iterations = 500;
-  absl::StatusOr<HierarchicalResult> result = SolveHierarchical(scene, options, solver);
-  EXPECT_TRUE(result.ok()) << result.status();
-  return result.ok() ? *std::move(result) : HierarchicalResult{};
-}
-
-// F from the receiver "a" to the emitter "b", read back from the gathered radiosity.
-double GatheredFormFactor(const Scene& scene, const HierarchicalResult& r) {
-  return ObjectMean(scene, r.mesh, r.solve.radiosity, "a") / (0.5 * std::numbers::pi);
-}
+using testing::GatheredFormFactor;
+using testing::SolvedHierarchical;
 
 TEST(HierarchicalClosedForm, ParallelSquaresWithinAnalyticTolerance) {
   for (double d : {0.5, 1.0, 2.0}) {
     const Scene scene = testing::EmittingParallelSquares(d);
     const double exact = testing::ParallelRectangles(1, 1, d);
-    const HierarchicalResult r = Solved(scene, 1e-4, 16);
+    const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 16);
     const double f = GatheredFormFactor(scene, r);
     std::printf("parallel d=%g exact %.6f hierarchical %.6f (%zu leaves, %zu links)\n", d, exact, f,
                 r.stats.leaves, r.stats.links);
@@ -50,7 +33,7 @@ TEST(HierarchicalClosedForm, ParallelSquaresWithinAnalyticTolerance) {
 TEST(HierarchicalClosedForm, PerpendicularPlatesWithinAnalyticTolerance) {
   const Scene scene = testing::EmittingPerpendicularPlates(1, 0.7, 1.3);
   const double exact = testing::PerpendicularRectangles(1, 0.7, 1.3);
-  const HierarchicalResult r = Solved(scene, 1e-4, 16);
+  const HierarchicalResult r = SolvedHierarchical(scene, 1e-4, 16);
   const double f = GatheredFormFactor(scene, r);
   std::printf("perpendicular exact %.6f hierarchical %.6f (%zu leaves, %zu links)\n", exact, f,
               r.stats.leaves, r.stats.links);
@@ -66,18 +49,12 @@ TEST(HierarchicalClosedForm, PerpendicularPlatesWithinAnalyticTolerance) {
 TEST(HierarchicalClosedForm, FurnaceCubeWithinStatedTolerance) {
   const Scene scene = testing::FurnaceCube();
   const double exact = std::numbers::pi / (1 - 0.5);
-  const HierarchicalResult r = Solved(scene, 1e-3, 16);
-  double sq = 0, area = 0, mean = 0;
-  for (size_t i = 0; i < r.leaves.size(); ++i) {
-    const double e = r.leaf_radiosity[i][0] / exact - 1, a = r.tree.nodes[r.leaves[i]].area;
-    sq += a * e * e;
-    mean += a * e;
-    area += a;
-  }
-  std::printf("furnace: rms %.2e mean %.2e (%zu leaves, %zu links)\n", std::sqrt(sq / area),
-              mean / area, r.stats.leaves, r.stats.links);
-  EXPECT_LT(std::sqrt(sq / area), 0.025);
-  EXPECT_LT(std::abs(mean / area), 0.003);
+  const HierarchicalResult r = SolvedHierarchical(scene, 1e-3, 16);
+  const auto [rms, mean] = testing::LeafRelativeError(r, exact);
+  std::printf("furnace: rms %.2e mean %.2e (%zu leaves, %zu links)\n", rms, mean, r.stats.leaves,
+              r.stats.links);
+  EXPECT_LT(rms, 0.025);
+  EXPECT_LT(std::abs(mean), 0.003);
 }
 
 }  // namespace
