@@ -40,7 +40,7 @@ RUNS = {
     "hall": [("uniform_%d" % n, ["--patches", str(n)]) for n in (5000, 12500, 25000, 50000, 100000)]
     + [("adaptive_t%s_p%d" % (t, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
        for t in ("0.1", "0.2") for p in (2, 3, 4)]
-    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4")],
+    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4", "1e-5")],
 }
 
 
