@@ -35,12 +35,17 @@ double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) 
   return cx > 0 && cy > 0 ? cx * cy / (r2 * r2) : 0;
 }
 
-// A shadow ray between two surface points, each lifted off its surface by the epsilon.
-Ray ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
-              const Vec3& ny) {
+// A shadow ray between two surface points, each lifted off its surface by the epsilon;
+// t in (0, 1 - 1e-6) along target - origin.
+StreamRay ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
+                    const Vec3& ny) {
   const Vec3 origin = x + nx * context.ray_epsilon;
   const Vec3 target = y + ny * context.ray_epsilon;
-  return {origin, target - origin, 0, 1 - 1e-6};
+  StreamRay ray;
+  ray.SetOrigin(origin);
+  ray.SetDirection(target - origin);
+  ray.t_far = static_cast<float>(1 - 1e-6);
+  return ray;
 }
 
 bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
@@ -62,7 +67,8 @@ struct PairPlan {
 // Sets up F_ij (see AnalyticPairFormFactor): its unoccluded mean and its shadow rays,
 // appended to `rays` with their kernel weights in `kernels`.
 PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>& points,
-                  uint32_t j, uint64_t seed, std::vector<Ray>& rays, std::vector<double>& kernels) {
+                  uint32_t j, uint64_t seed, std::vector<StreamRay>& rays,
+                  std::vector<double>& kernels) {
   const PatchMesh& mesh = *context.mesh;
   const Patch& pi = mesh.patches[i];
   const Patch& pj = mesh.patches[j];
@@ -114,12 +120,12 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
 // F_ij of a planned pair once its rays are traced: the unoccluded mean times the
 // kernel-weighted visible fraction.
 double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
-                  const std::vector<uint8_t>& occluded) {
+                  const std::vector<StreamRay>& rays) {
   if (plan.unoccluded <= 0) return 0;
   double weight = 0, visible = 0;
   for (size_t r = plan.first_ray; r < plan.first_ray + plan.ray_count; ++r) {
     weight += kernels[r];
-    if (!occluded[r]) visible += kernels[r];
+    if (!rays[r].Occluded()) visible += kernels[r];
   }
   return plan.unoccluded * (visible / weight);
 }
@@ -142,13 +148,12 @@ std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, ui
 double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays) {
-  std::vector<Ray> batch;
+  std::vector<StreamRay> batch;
   std::vector<double> kernels;
   const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels);
-  std::vector<uint8_t> occluded(batch.size());
-  context.caster->OccludedBatch(batch, occluded);
+  context.caster->OccludedStream(batch);
   rays += batch.size();
-  return FinishPair(plan, kernels, occluded);
+  return FinishPair(plan, kernels, batch);
 }
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
@@ -165,9 +170,8 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
   // Per-thread scratch reused row to row: every pair of the row is planned first, then
   // all their shadow rays are traced as one stream.
   thread_local std::vector<PairPlan> plans;
-  thread_local std::vector<Ray> rays;
+  thread_local std::vector<StreamRay> rays;
   thread_local std::vector<double> kernels;
-  thread_local std::vector<uint8_t> occluded;
   plans.clear();
   rays.clear();
   kernels.clear();
@@ -175,9 +179,8 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
     if (!PatchesCanExchange(mesh, i, j)) continue;
     plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels));
   }
-  occluded.resize(rays.size());
-  context.caster->OccludedBatch(rays, occluded);
-  for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, occluded));
+  context.caster->OccludedStream(rays);
+  for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
   return rays.size();
 }
 
