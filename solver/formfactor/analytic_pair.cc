@@ -83,6 +83,9 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const size_t s = points.size();
   const PatchPointSampler sample_target(mesh, j);
+  thread_local std::vector<Point2> targets;  // per-thread scratch: pattern on [0,1)^2
+  targets.resize(s);
+  MultiJitteredSamples(pattern, targets);
   double f = 0, unoccluded = 0;
   for (size_t m = 0; m < s; ++m) {
     // A point behind j's plane sees only j's back: no exchange from there (this matters
@@ -93,8 +96,7 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
       f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
     }
     unoccluded += f;
-    const Vec3 target = sample_target(
-        MultiJitteredSample(static_cast<uint32_t>(m), static_cast<uint32_t>(s), pattern));
+    const Vec3 target = sample_target(targets[m]);
     const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
     if (kernel <= 0) continue;
     rays.push_back(ShadowRay(context, points[m], pi.normal, target, pj.normal));
@@ -138,10 +140,11 @@ bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j) {
 }
 
 std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed) {
+  std::vector<Point2> u(static_cast<size_t>(s));
+  MultiJitteredSamples(PatternSeed(seed, i, kPointStream), u);
   std::vector<Vec3> points;
-  const uint32_t pattern = PatternSeed(seed, i, kPointStream);
   const PatchPointSampler sample_point(mesh, i);
-  for (int m = 0; m < s; ++m) points.push_back(sample_point(MultiJitteredSample(m, s, pattern)));
+  for (const Point2& v : u) points.push_back(sample_point(v));
   return points;
 }
 
