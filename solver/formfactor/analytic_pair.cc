@@ -1,5 +1,6 @@
 #include "solver/formfactor/analytic_pair.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -65,10 +66,11 @@ struct PairPlan {
 };
 
 // Sets up F_ij (see AnalyticPairFormFactor): its unoccluded mean and its shadow rays,
-// appended to `rays` with their kernel weights in `kernels`.
+// appended to `rays` with their kernel weights in `kernels`. The contour integrals of an
+// unclipped j come from `contours` when given (begun on this row and these points).
 PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>& points,
                   uint32_t j, uint64_t seed, std::vector<StreamRay>& rays,
-                  std::vector<double>& kernels) {
+                  std::vector<double>& kernels, ContourCache* contours) {
   const PatchMesh& mesh = *context.mesh;
   const Patch& pi = mesh.patches[i];
   const Patch& pj = mesh.patches[j];
@@ -80,6 +82,10 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
   SmallPolygon polygon;
   polygon.size = ClipPolygonToHalfSpace(whole.View(), pi.centroid, pi.normal, polygon.vertex);
   if (polygon.size < 3) return plan;
+  const bool unclipped = polygon.size == whole.size &&
+                         std::equal(whole.vertex.begin(), whole.vertex.begin() + whole.size,
+                                    polygon.vertex.begin());
+  ContourCache* shared = unclipped ? contours : nullptr;
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const size_t s = points.size();
   const PatchPointSampler sample_target(mesh, j);
@@ -93,7 +99,8 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
     if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
     // Repeated points (hemicube: s copies of the centroid) share one contour integral.
     if (m == 0 || !(points[m] == points[m - 1])) {
-      f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
+      f = shared ? shared->FormFactor(j, m)
+                 : UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
     }
     unoccluded += f;
     const Vec3 target = sample_target(targets[m]);
@@ -153,7 +160,7 @@ double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               uint64_t& rays) {
   std::vector<StreamRay> batch;
   std::vector<double> kernels;
-  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels);
+  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels, nullptr);
   context.caster->OccludedStream(batch);
   rays += batch.size();
   return FinishPair(plan, kernels, batch);
@@ -168,7 +175,7 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, const std::vector<Vec3>& points,
-                            uint64_t seed, RowAccumulator& row) {
+                            uint64_t seed, RowAccumulator& row, ContourCache* contours) {
   const PatchMesh& mesh = *context.mesh;
   // Per-thread scratch reused row to row: every pair of the row is planned first, then
   // all their shadow rays are traced as one stream.
@@ -180,7 +187,7 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
   kernels.clear();
   for (uint32_t j : columns) {
     if (!PatchesCanExchange(mesh, i, j)) continue;
-    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels));
+    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels, contours));
   }
   context.caster->OccludedStream(rays);
   for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
