@@ -177,21 +177,29 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, const std::vector<Vec3>& points,
                             uint64_t seed, RowAccumulator& row, ContourCache* contours) {
   const PatchMesh& mesh = *context.mesh;
-  // Per-thread scratch reused row to row: every pair of the row is planned first, then
-  // all their shadow rays are traced as one stream.
+  // Per-thread scratch reused row to row: pairs are planned until their shadow rays make
+  // a stream of kStreamRays, which is traced and finished before the next pairs are planned
+  // (a whole analytic row's rays would not stay in cache between planning and finishing).
+  constexpr size_t kStreamRays = 512;
   thread_local std::vector<PairPlan> plans;
   thread_local std::vector<StreamRay> rays;
   thread_local std::vector<double> kernels;
-  plans.clear();
-  rays.clear();
-  kernels.clear();
+  uint64_t traced = 0;
+  auto trace_planned = [&] {
+    context.caster->OccludedStream(rays);
+    for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
+    traced += rays.size();
+    plans.clear();
+    rays.clear();
+    kernels.clear();
+  };
   for (uint32_t j : columns) {
     if (!PatchesCanExchange(mesh, i, j)) continue;
     plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels, contours));
+    if (rays.size() >= kStreamRays) trace_planned();
   }
-  context.caster->OccludedStream(rays);
-  for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
-  return rays.size();
+  trace_planned();
+  return traced;
 }
 
 std::vector<uint32_t> EmitterPatches(const RowContext& context) {
