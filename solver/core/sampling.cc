@@ -117,7 +117,8 @@ void MultiJitteredSamples(uint32_t p, std::span<Point2> out) {
   for (uint32_t k = 0; k < g.cols; ++k) stratum_y[k] = PermuteIndex(k, g.cols, p * kStratumY);
   for (uint32_t i = 0; i < n; ++i) {
     out[i] = PlaceSample(
-        g, i, p, [&](uint32_t k) { return stratum_x[k]; }, [&](uint32_t k) { return stratum_y[k]; });
+        g, i, p, [&](uint32_t k) { return stratum_x[k]; },
+        [&](uint32_t k) { return stratum_y[k]; });
   }
 }
 

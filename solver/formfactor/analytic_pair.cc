@@ -82,9 +82,9 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
   SmallPolygon polygon;
   polygon.size = ClipPolygonToHalfSpace(whole.View(), pi.centroid, pi.normal, polygon.vertex);
   if (polygon.size < 3) return plan;
-  const bool unclipped = polygon.size == whole.size &&
-                         std::equal(whole.vertex.begin(), whole.vertex.begin() + whole.size,
-                                    polygon.vertex.begin());
+  const bool unclipped =
+      polygon.size == whole.size &&
+      std::equal(whole.vertex.begin(), whole.vertex.begin() + whole.size, polygon.vertex.begin());
   ContourCache* shared = unclipped ? contours : nullptr;
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const size_t s = points.size();

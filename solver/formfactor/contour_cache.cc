@@ -17,7 +17,8 @@ PatchEdges::PatchEdges(const PatchMesh& mesh) : id_(4 * mesh.size(), 0) {
     for (int k = 0; k < count; ++k) {
       const uint32_t a = patch.v[static_cast<size_t>(k)];
       const uint32_t b = patch.v[static_cast<size_t>((k + 1) % count)];
-      ends.emplace_back(std::min(a, b), std::max(a, b), (4 * p + static_cast<uint32_t>(k)) << 1 | (a > b));
+      ends.emplace_back(std::min(a, b), std::max(a, b),
+                        (4 * p + static_cast<uint32_t>(k)) << 1 | (a > b));
     }
   }
   std::sort(ends.begin(), ends.end());

@@ -61,7 +61,8 @@ class RowAccumulator {
     touched_.clear();
     for (size_t w = 0; w < marked_.size(); ++w) {
       for (uint64_t bits = marked_[w]; bits != 0; bits &= bits - 1) {
-        touched_.push_back(static_cast<uint32_t>(64 * w + static_cast<size_t>(std::countr_zero(bits))));
+        touched_.push_back(
+            static_cast<uint32_t>(64 * w + static_cast<size_t>(std::countr_zero(bits))));
       }
       marked_[w] = 0;
     }

@@ -113,7 +113,8 @@ TEST(HardLight, RoomLitThroughASmallOpening) {
       o.seed = static_cast<uint64_t>(seed);
       const CsrMatrix f = fixture.Rows(o);
       ASSERT_TRUE(testing::AllFinite(f)) << Name(m);
-      const SolveResult r = SolveOrDie(f, fixture.attributes, SolverMethod::kConjugateGradient, 1e-12, 1000);
+      const SolveResult r =
+          SolveOrDie(f, fixture.attributes, SolverMethod::kConjugateGradient, 1e-12, 1000);
       double in = 0, absorbed = 0, out = 0;
       for (uint32_t i = 0; i < n; ++i) {
         if (i == sky) continue;
@@ -132,9 +133,10 @@ TEST(HardLight, RoomLitThroughASmallOpening) {
     const SeedStats s = OverSeeds(errors);
     const double bias = m == FormFactorMethod::kHemicube ? 0.01 : 0.005;
     const double tolerance = 3 * kSpread / std::sqrt(double{kOpeningSeeds}) + bias;
-    std::printf("opening room %-12s: entering vs closed form %.5e W over %d seeds: mean %+.2e "
-                "(bound %.2e), spread %.2e\n",
-                Name(m).c_str(), exact_in, kOpeningSeeds, s.mean, tolerance, s.spread);
+    std::printf(
+        "opening room %-12s: entering vs closed form %.5e W over %d seeds: mean %+.2e "
+        "(bound %.2e), spread %.2e\n",
+        Name(m).c_str(), exact_in, kOpeningSeeds, s.mean, tolerance, s.spread);
     EXPECT_LT(std::abs(s.mean), tolerance) << Name(m);
     EXPECT_LT(s.spread, 1.6 * kSpread) << Name(m);  // a chi-square spread far beyond chance
   }
