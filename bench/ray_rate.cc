@@ -45,6 +45,12 @@ class RecordingCaster final : public RayCaster {
     }
     inner_.IntersectStream(rays);
   }
+  void OccludedStream(std::span<StreamRay> rays) const override {
+    for (const StreamRay& r : rays) {
+      Record({{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.t_near, r.t_far}, true);
+    }
+    inner_.OccludedStream(rays);
+  }
   std::vector<std::pair<Ray, bool>> recorded;  // (ray, occlusion query)
 
  private:

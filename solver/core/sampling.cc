@@ -1,10 +1,29 @@
 #include "solver/core/sampling.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 
 namespace radflux {
+namespace {
+
+bool IsPowerOfTwo(uint32_t l) { return (l & (l - 1)) == 0; }
+
+// i % l and i / l with a mask and a shift when l is a power of two (the common sample
+// counts: 1, 4, 16, 64, ...), where the hardware division is most of the cost.
+uint32_t Mod(uint32_t i, uint32_t l) { return IsPowerOfTwo(l) ? i & (l - 1) : i % l; }
+uint32_t Div(uint32_t i, uint32_t l) { return IsPowerOfTwo(l) ? i >> std::countr_zero(l) : i / l; }
+
+// x / l, bit for bit: a multiplication by the exact 2^-k when l = 2^k.
+double DivideBy(double x, uint32_t l) {
+  if (!IsPowerOfTwo(l)) return x / l;
+  return x * std::bit_cast<double>(uint64_t{1023u - std::countr_zero(l)} << 52);
+}
+
+}  // namespace
 
 uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
+  if (l == 1) return 0;  // the only index (a single sample, or one stratum per axis)
   uint32_t w = l - 1;
   w |= w >> 1;
   w |= w >> 2;
@@ -31,7 +50,7 @@ uint32_t PermuteIndex(uint32_t i, uint32_t l, uint32_t p) {
     i &= w;
     i ^= i >> 5;
   } while (i >= l);
-  return (i + p) % l;
+  return Mod(i + p, l);
 }
 
 double RandomFloat(uint32_t i, uint32_t p) {
@@ -48,17 +67,59 @@ double RandomFloat(uint32_t i, uint32_t p) {
   return i * (1.0 / 4294967808.0);
 }
 
-Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p) {
-  const uint32_t m = std::max<uint32_t>(1, static_cast<uint32_t>(std::sqrt(double(n))));
-  const uint32_t cols = (n + m - 1) / m;  // m * cols >= n cells; take n of them
-  const uint32_t cells = m * cols;
-  const uint32_t s = PermuteIndex(i, cells, p * 0x51633e2d);
-  const uint32_t sx = PermuteIndex(s % m, m, p * 0xa511e9b3);
-  const uint32_t sy = PermuteIndex(s / m, cols, p * 0x63d83595);
+namespace {
+
+constexpr uint32_t kStratumX = 0xa511e9b3, kStratumY = 0x63d83595;
+
+// The strata of n multi-jittered samples: m x cols >= n cells, of which n are taken.
+struct Strata {
+  explicit Strata(uint32_t n)
+      : m(std::max<uint32_t>(1, static_cast<uint32_t>(std::sqrt(double(n))))),
+        cols(Div(n + m - 1, m)),
+        cells(m * cols) {}
+  uint32_t m, cols, cells;
+};
+
+// Sample i of pattern p, given the permutations within the strata: stratum_x(k) =
+// PermuteIndex(k, m, p * kStratumX) for k < m, stratum_y(k) = PermuteIndex(k, cols, ...).
+template <class StratumX, class StratumY>
+Point2 PlaceSample(const Strata& g, uint32_t i, uint32_t p, StratumX stratum_x,
+                   StratumY stratum_y) {
+  const uint32_t s = PermuteIndex(i, g.cells, p * 0x51633e2d);
+  const uint32_t s_mod_m = Mod(s, g.m), s_div_m = Div(s, g.m);
+  const uint32_t sx = stratum_x(s_mod_m);
+  const uint32_t sy = stratum_y(s_div_m);
   const double jx = RandomFloat(s, p * 0xa399d265);
   const double jy = RandomFloat(s, p * 0x711ad6a5);
-  return {std::min((s % m + (sy + jx) / cols) / m, 0x1.fffffffffffffp-1),
-          std::min((s / m + (sx + jy) / m) / cols, 0x1.fffffffffffffp-1)};
+  return {std::min(DivideBy(s_mod_m + DivideBy(sy + jx, g.cols), g.m), 0x1.fffffffffffffp-1),
+          std::min(DivideBy(s_div_m + DivideBy(sx + jy, g.m), g.cols), 0x1.fffffffffffffp-1)};
+}
+
+}  // namespace
+
+Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p) {
+  const Strata g(n);
+  return PlaceSample(
+      g, i, p, [&](uint32_t k) { return PermuteIndex(k, g.m, p * kStratumX); },
+      [&](uint32_t k) { return PermuteIndex(k, g.cols, p * kStratumY); });
+}
+
+void MultiJitteredSamples(uint32_t p, std::span<Point2> out) {
+  const uint32_t n = static_cast<uint32_t>(out.size());
+  const Strata g(n);
+  constexpr uint32_t kMaxStrata = 64;
+  if (g.cols > kMaxStrata) {  // n > 4,000 or so: one sample at a time
+    for (uint32_t i = 0; i < n; ++i) out[i] = MultiJitteredSample(i, n, p);
+    return;
+  }
+  std::array<uint32_t, kMaxStrata> stratum_x, stratum_y;
+  for (uint32_t k = 0; k < g.m; ++k) stratum_x[k] = PermuteIndex(k, g.m, p * kStratumX);
+  for (uint32_t k = 0; k < g.cols; ++k) stratum_y[k] = PermuteIndex(k, g.cols, p * kStratumY);
+  for (uint32_t i = 0; i < n; ++i) {
+    out[i] = PlaceSample(
+        g, i, p, [&](uint32_t k) { return stratum_x[k]; },
+        [&](uint32_t k) { return stratum_y[k]; });
+  }
 }
 
 namespace {

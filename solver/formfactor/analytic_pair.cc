@@ -1,5 +1,6 @@
 #include "solver/formfactor/analytic_pair.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -35,12 +36,17 @@ double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) 
   return cx > 0 && cy > 0 ? cx * cy / (r2 * r2) : 0;
 }
 
-// A shadow ray between two surface points, each lifted off its surface by the epsilon.
-Ray ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
-              const Vec3& ny) {
+// A shadow ray between two surface points, each lifted off its surface by the epsilon;
+// t in (0, 1 - 1e-6) along target - origin.
+StreamRay ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
+                    const Vec3& ny) {
   const Vec3 origin = x + nx * context.ray_epsilon;
   const Vec3 target = y + ny * context.ray_epsilon;
-  return {origin, target - origin, 0, 1 - 1e-6};
+  StreamRay ray;
+  ray.SetOrigin(origin);
+  ray.SetDirection(target - origin);
+  ray.t_far = static_cast<float>(1 - 1e-6);
+  return ray;
 }
 
 bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
@@ -60,9 +66,11 @@ struct PairPlan {
 };
 
 // Sets up F_ij (see AnalyticPairFormFactor): its unoccluded mean and its shadow rays,
-// appended to `rays` with their kernel weights in `kernels`.
+// appended to `rays` with their kernel weights in `kernels`. The contour integrals of an
+// unclipped j come from `contours` when given (begun on this row and these points).
 PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>& points,
-                  uint32_t j, uint64_t seed, std::vector<Ray>& rays, std::vector<double>& kernels) {
+                  uint32_t j, uint64_t seed, std::vector<StreamRay>& rays,
+                  std::vector<double>& kernels, ContourCache* contours) {
   const PatchMesh& mesh = *context.mesh;
   const Patch& pi = mesh.patches[i];
   const Patch& pj = mesh.patches[j];
@@ -74,9 +82,16 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
   SmallPolygon polygon;
   polygon.size = ClipPolygonToHalfSpace(whole.View(), pi.centroid, pi.normal, polygon.vertex);
   if (polygon.size < 3) return plan;
+  const bool unclipped =
+      polygon.size == whole.size &&
+      std::equal(whole.vertex.begin(), whole.vertex.begin() + whole.size, polygon.vertex.begin());
+  ContourCache* shared = unclipped ? contours : nullptr;
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const size_t s = points.size();
   const PatchPointSampler sample_target(mesh, j);
+  thread_local std::vector<Point2> targets;  // per-thread scratch: pattern on [0,1)^2
+  targets.resize(s);
+  MultiJitteredSamples(pattern, targets);
   double f = 0, unoccluded = 0;
   for (size_t m = 0; m < s; ++m) {
     // A point behind j's plane sees only j's back: no exchange from there (this matters
@@ -84,11 +99,11 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
     if (Dot(points[m] - pj.centroid, pj.normal) <= 0) continue;
     // Repeated points (hemicube: s copies of the centroid) share one contour integral.
     if (m == 0 || !(points[m] == points[m - 1])) {
-      f = UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
+      f = shared ? shared->FormFactor(j, m)
+                 : UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
     }
     unoccluded += f;
-    const Vec3 target = sample_target(
-        MultiJitteredSample(static_cast<uint32_t>(m), static_cast<uint32_t>(s), pattern));
+    const Vec3 target = sample_target(targets[m]);
     const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
     if (kernel <= 0) continue;
     rays.push_back(ShadowRay(context, points[m], pi.normal, target, pj.normal));
@@ -114,12 +129,12 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
 // F_ij of a planned pair once its rays are traced: the unoccluded mean times the
 // kernel-weighted visible fraction.
 double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
-                  const std::vector<uint8_t>& occluded) {
+                  const std::vector<StreamRay>& rays) {
   if (plan.unoccluded <= 0) return 0;
   double weight = 0, visible = 0;
   for (size_t r = plan.first_ray; r < plan.first_ray + plan.ray_count; ++r) {
     weight += kernels[r];
-    if (!occluded[r]) visible += kernels[r];
+    if (!rays[r].Occluded()) visible += kernels[r];
   }
   return plan.unoccluded * (visible / weight);
 }
@@ -132,23 +147,23 @@ bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j) {
 }
 
 std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed) {
+  std::vector<Point2> u(static_cast<size_t>(s));
+  MultiJitteredSamples(PatternSeed(seed, i, kPointStream), u);
   std::vector<Vec3> points;
-  const uint32_t pattern = PatternSeed(seed, i, kPointStream);
   const PatchPointSampler sample_point(mesh, i);
-  for (int m = 0; m < s; ++m) points.push_back(sample_point(MultiJitteredSample(m, s, pattern)));
+  for (const Point2& v : u) points.push_back(sample_point(v));
   return points;
 }
 
 double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
                               const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
                               uint64_t& rays) {
-  std::vector<Ray> batch;
+  std::vector<StreamRay> batch;
   std::vector<double> kernels;
-  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels);
-  std::vector<uint8_t> occluded(batch.size());
-  context.caster->OccludedBatch(batch, occluded);
+  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels, nullptr);
+  context.caster->OccludedStream(batch);
   rays += batch.size();
-  return FinishPair(plan, kernels, occluded);
+  return FinishPair(plan, kernels, batch);
 }
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
@@ -160,25 +175,31 @@ uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
 
 uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
                             std::span<const uint32_t> columns, const std::vector<Vec3>& points,
-                            uint64_t seed, RowAccumulator& row) {
+                            uint64_t seed, RowAccumulator& row, ContourCache* contours) {
   const PatchMesh& mesh = *context.mesh;
-  // Per-thread scratch reused row to row: every pair of the row is planned first, then
-  // all their shadow rays are traced as one stream.
+  // Per-thread scratch reused row to row: pairs are planned until their shadow rays make
+  // a stream of kStreamRays, which is traced and finished before the next pairs are planned
+  // (a whole analytic row's rays would not stay in cache between planning and finishing).
+  constexpr size_t kStreamRays = 512;
   thread_local std::vector<PairPlan> plans;
-  thread_local std::vector<Ray> rays;
+  thread_local std::vector<StreamRay> rays;
   thread_local std::vector<double> kernels;
-  thread_local std::vector<uint8_t> occluded;
-  plans.clear();
-  rays.clear();
-  kernels.clear();
+  uint64_t traced = 0;
+  auto trace_planned = [&] {
+    context.caster->OccludedStream(rays);
+    for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
+    traced += rays.size();
+    plans.clear();
+    rays.clear();
+    kernels.clear();
+  };
   for (uint32_t j : columns) {
     if (!PatchesCanExchange(mesh, i, j)) continue;
-    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels));
+    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels, contours));
+    if (rays.size() >= kStreamRays) trace_planned();
   }
-  occluded.resize(rays.size());
-  context.caster->OccludedBatch(rays, occluded);
-  for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, occluded));
-  return rays.size();
+  trace_planned();
+  return traced;
 }
 
 std::vector<uint32_t> EmitterPatches(const RowContext& context) {

@@ -30,15 +30,9 @@ double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
                                          std::span<const Vec3> polygon) {
   double sum = 0;
   for (size_t k = 0; k < polygon.size(); ++k) {
-    const Vec3 a = polygon[k] - x;
-    const Vec3 b = polygon[(k + 1) % polygon.size()] - x;
-    const Vec3 c = Cross(a, b);
-    const double cross_len = Length(c);
-    if (cross_len == 0) continue;  // edge points straight at x: contributes nothing
-    const double gamma = std::atan2(cross_len, Dot(a, b));
-    sum += gamma * Dot(n, c) / cross_len;
+    sum += ContourEdgeTerm(polygon[k] - x, polygon[(k + 1) % polygon.size()] - x, n);
   }
-  return std::clamp(std::abs(sum) / (2 * std::numbers::pi), 0.0, 1.0);
+  return FormFactorFromContourSum(sum);
 }
 
 double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Vec3> polygon) {

@@ -1,8 +1,11 @@
 // RowAccumulator: dense scratch for one row with a list of touched columns, so that
 // clearing costs the row's non-zeros, not n. One per thread.
+// A bitmap of the touched columns gives them in ascending order by a scan of n/64 words
+// when the row is dense enough for that to beat sorting them.
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -12,12 +15,15 @@ namespace radflux {
 
 class RowAccumulator {
  public:
-  explicit RowAccumulator(size_t n) : value_(n, 0.0) {}
+  explicit RowAccumulator(size_t n) : value_(n, 0.0), marked_((n + 63) / 64, 0) {}
 
   // Adds v > 0 to column j (non-positive v is ignored).
   void Add(uint32_t j, double v) {
     if (!(v > 0)) return;
-    if (value_[j] == 0) touched_.push_back(j);
+    if (value_[j] == 0) {
+      touched_.push_back(j);
+      marked_[j / 64] |= uint64_t{1} << (j % 64);
+    }
     value_[j] += v;
   }
 
@@ -28,7 +34,7 @@ class RowAccumulator {
   // Moves the row into `block` (ascending columns, entries >= cutoff) and clears it;
   // returns the sum of the entries the cut-off dropped.
   double Flush(double cutoff, RowBlock& block) {
-    std::sort(touched_.begin(), touched_.end());
+    SortTouched();
     double dropped = 0;
     for (uint32_t j : touched_) {
       const double v = value_[j];
@@ -45,8 +51,26 @@ class RowAccumulator {
   }
 
  private:
+  // Puts touched_ in ascending order and clears marked_.
+  void SortTouched() {
+    if (touched_.size() * 16 < marked_.size()) {  // sparse: sort and clear the marked words
+      std::sort(touched_.begin(), touched_.end());
+      for (uint32_t j : touched_) marked_[j / 64] = 0;
+      return;
+    }
+    touched_.clear();
+    for (size_t w = 0; w < marked_.size(); ++w) {
+      for (uint64_t bits = marked_[w]; bits != 0; bits &= bits - 1) {
+        touched_.push_back(
+            static_cast<uint32_t>(64 * w + static_cast<size_t>(std::countr_zero(bits))));
+      }
+      marked_[w] = 0;
+    }
+  }
+
   std::vector<double> value_;
   std::vector<uint32_t> touched_;
+  std::vector<uint64_t> marked_;  // bit j set when column j is in touched_
 };
 
 }  // namespace radflux

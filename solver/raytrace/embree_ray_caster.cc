@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
-#include <mutex>
-#include <vector>
 
 namespace radflux {
 namespace {
@@ -128,15 +126,12 @@ void EmbreeRayCaster::IntersectStream(std::span<StreamRay> rays) const {
                  static_cast<unsigned>(rays.size()), sizeof(StreamRay));
 }
 
-void EmbreeRayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
-  thread_local std::vector<RTCRay> stream;
-  stream.resize(rays.size());
-  for (size_t k = 0; k < rays.size(); ++k) stream[k] = ToRTCRay(rays[k]);
+void EmbreeRayCaster::OccludedStream(std::span<StreamRay> rays) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcOccluded1M(scene_, &context, stream.data(), static_cast<unsigned>(stream.size()),
-                sizeof(RTCRay));
-  for (size_t k = 0; k < rays.size(); ++k) occluded[k] = stream[k].tfar < 0;
+  // The RTCRay part of each RTCRayHit-shaped StreamRay, at its stride.
+  rtcOccluded1M(scene_, &context, reinterpret_cast<RTCRay*>(rays.data()),
+                static_cast<unsigned>(rays.size()), sizeof(StreamRay));
 }
 
 bool EmbreeRayCaster::Occluded(const Ray& ray) const {

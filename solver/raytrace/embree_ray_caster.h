@@ -24,7 +24,7 @@ class EmbreeRayCaster final : public RayCaster {
   bool Occluded(const Ray& ray) const override;
   // Traced with Embree's stream API (rtcIntersect1M / rtcOccluded1M).
   void IntersectStream(std::span<StreamRay> rays) const override;
-  void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
+  void OccludedStream(std::span<StreamRay> rays) const override;
 
   RTCScene scene() const { return scene_; }
 

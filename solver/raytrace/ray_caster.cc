@@ -1,5 +1,7 @@
 #include "solver/raytrace/ray_caster.h"
 
+#include <limits>
+
 namespace radflux {
 
 void RayCaster::IntersectStream(std::span<StreamRay> rays) const {
@@ -18,8 +20,12 @@ void RayCaster::IntersectStream(std::span<StreamRay> rays) const {
   }
 }
 
-void RayCaster::OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
-  for (size_t k = 0; k < rays.size(); ++k) occluded[k] = Occluded(rays[k]);
+void RayCaster::OccludedStream(std::span<StreamRay> rays) const {
+  for (StreamRay& r : rays) {
+    if (Occluded({{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.t_near, r.t_far})) {
+      r.t_far = -std::numeric_limits<float>::infinity();
+    }
+  }
 }
 
 }  // namespace radflux

@@ -54,6 +54,9 @@ struct alignas(16) StreamRay {
     t_far = std::numeric_limits<float>::infinity();
     geom = inst = kNoPatch;
   }
+  // After OccludedStream: whether some patch lay in (t_near, t_far) (Embree's convention:
+  // an occluded ray's t_far becomes -infinity).
+  bool Occluded() const { return t_far < 0; }
   // The patch whose front side the ray hit; kNoPatch for a miss or a back side.
   uint32_t FrontPatch() const {
     return geom != kNoPatch && dir_x * ng_x + dir_y * ng_y + dir_z * ng_z < 0 ? prim : kNoPatch;
@@ -71,8 +74,9 @@ class RayCaster {
   // Intersect on every ray of the stream, with its hit written into it (t_far becomes the
   // hit distance); an implementation may trace them as a stream. The default loops.
   virtual void IntersectStream(std::span<StreamRay> rays) const;
-  // occluded[k] = Occluded(rays[k]), possibly as a stream.
-  virtual void OccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
+  // Occluded on every ray of the stream, answered in place (StreamRay::Occluded); an
+  // implementation may trace them as a stream. The default loops.
+  virtual void OccludedStream(std::span<StreamRay> rays) const;
 };
 
 }  // namespace radflux

@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "hard_cases.h"
 #include "howell_closed_forms.h"
+#include "solver/formfactor/analytic_pair.h"
+#include "solver/formfactor/contour_cache.h"
+#include "solver/formfactor/polygon_form_factor.h"
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "test_scenes.h"
 
@@ -171,6 +175,30 @@ TEST(FormFactorInvariants, CutoffDropsSmallEntriesAndReportsTheirSum) {
   EXPECT_NEAR(lost, cut->stats.dropped_sum, 1e-4);
   EXPECT_GT(cut->stats.dropped_sum, 0);
   for (float v : cut->matrix.value) EXPECT_GE(v, 1e-3f);
+}
+
+// The shared edge terms give every contour sum bit for bit: adjacent patches' opposite
+// terms are exact negations. Rows from three points on each of a few patches, against every
+// patch of the cube (clipped or not: the two compute the same unclipped sum).
+TEST(FormFactorInvariants, ContourCacheGivesTheDirectContourSumBitForBit) {
+  RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
+  const PatchMesh& mesh = fixture.mesh;
+  const PatchEdges edges(mesh);
+  EXPECT_LT(edges.size(), 4 * mesh.size());  // shared edges are counted once
+  ContourCache cache;
+  for (uint32_t i = 0; i < mesh.size(); i += 7) {
+    const std::vector<Vec3> points = PatchSamplePoints(mesh, i, 3, 5);
+    cache.Begin(mesh, edges, points, mesh.patches[i].normal);
+    for (uint32_t j = 0; j < mesh.size(); ++j) {
+      std::vector<Vec3> polygon;
+      for (int k = 0; k < mesh.patches[j].VertexCount(); ++k) polygon.push_back(mesh.Vertex(j, k));
+      for (size_t m = 0; m < points.size(); ++m) {
+        ASSERT_EQ(cache.FormFactor(j, m),
+                  UnclippedPointToPolygonFormFactor(points[m], mesh.patches[i].normal, polygon))
+            << i << " " << j << " " << m;
+      }
+    }
+  }
 }
 
 TEST(EmbreeRayCaster, AgreesWithBruteForce) {

@@ -1,6 +1,6 @@
 // The ray casters' hit normals and streams: Embree and the brute-force caster agree on the
 // front side of what they hit (the row builders' back-face test uses it), and a stream
-// returns what single rays return.
+// (intersection or occlusion) returns what single rays return.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -71,6 +71,37 @@ TEST(RayCaster, StreamsReturnWhatSingleRaysReturn) {
   }
   EXPECT_GT(front, 500);
   EXPECT_GT(back, 0);  // both outcomes of the back-face test are exercised
+}
+
+// OccludedStream on segments of the same rays, cut at 0.5x and 2x the distance to their
+// first hit (free, blocked), answers as Occluded does for each, in both casters.
+TEST(RayCaster, OccludedStreamsReturnWhatSingleRaysReturn) {
+  RowFixture fixture(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"),
+                     MeshOptions{300, 0});
+  const BruteForceRayCaster brute(fixture.mesh);
+  std::vector<Ray> segments;
+  for (const Ray& ray : CornellRays(200)) {
+    const Hit hit = fixture.caster->Intersect(ray);
+    if (hit.patch == kNoPatch) continue;
+    for (double f : {0.5, 2.0}) segments.push_back({ray.origin, ray.direction, 0, f * hit.t});
+  }
+  for (const RayCaster* caster : {static_cast<const RayCaster*>(fixture.caster.get()),
+                                  static_cast<const RayCaster*>(&brute)}) {
+    std::vector<StreamRay> stream(segments.size());
+    for (size_t k = 0; k < segments.size(); ++k) {
+      stream[k].SetOrigin(segments[k].origin);
+      stream[k].SetDirection(segments[k].direction);
+      stream[k].t_far = static_cast<float>(segments[k].t_far);
+    }
+    caster->OccludedStream(stream);
+    int blocked = 0;
+    for (size_t k = 0; k < segments.size(); ++k) {
+      EXPECT_EQ(stream[k].Occluded(), k % 2 == 1) << "segment " << k;
+      EXPECT_EQ(caster->Occluded(segments[k]), k % 2 == 1) << "segment " << k;
+      blocked += stream[k].Occluded();
+    }
+    EXPECT_GT(blocked, 100);
+  }
 }
 
 }  // namespace
