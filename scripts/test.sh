@@ -5,6 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 jobs=$(nproc)
+# Tests run side by side (-j nproc): OpenMP threads that spin while they wait would take the
+# cores from each other (the 16-seed HardLight test: ~6 s passive, 44 s spinning under load).
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 
 cmake --preset ci >/dev/null
 cmake --build --preset ci -j "$jobs"
