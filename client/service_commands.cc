@@ -246,11 +246,11 @@ bool Terminal(v1::JobState state) {
          state == v1::JOB_STATE_CANCELLED;
 }
 
-// True when a watch stream that ended with `code` before its job's final event may be
+// True when a watch stream that failed with `code` before its job's final event may be
 // reopened: the server went away (restart, network) rather than refused the watch.
 bool StreamMayResume(grpc::StatusCode code) {
-  return code == grpc::StatusCode::OK || code == grpc::StatusCode::UNAVAILABLE ||
-         code == grpc::StatusCode::CANCELLED || code == grpc::StatusCode::UNKNOWN ||
+  return code == grpc::StatusCode::UNAVAILABLE || code == grpc::StatusCode::CANCELLED ||
+         code == grpc::StatusCode::UNKNOWN ||
          code == grpc::StatusCode::INTERNAL || code == grpc::StatusCode::DEADLINE_EXCEEDED;
 }
 
