@@ -59,10 +59,10 @@ class Client {
       credentials = grpc::SslCredentials(grpc::SslCredentialsOptions());
     }
     // A dropped connection is retried within a second (gRPC's default backoff grows to
-    // 120 s), so that a watch resumes soon after a server restart.
+    // 120 s), so that a watch resumes soon after a server restart. (Not the "min" backoff:
+    // gRPC uses it as the timeout of each connection attempt, 20 s by default.)
     grpc::ChannelArguments arguments;
     arguments.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
-    arguments.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, 100);
     arguments.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 1000);
     channel_ = grpc::CreateCustomChannel(c.server, credentials, arguments);
     stub_ = v1::Radiosity::NewStub(channel_);
