@@ -250,8 +250,8 @@ bool Terminal(v1::JobState state) {
 // reopened: the server went away (restart, network) rather than refused the watch.
 bool StreamMayResume(grpc::StatusCode code) {
   return code == grpc::StatusCode::UNAVAILABLE || code == grpc::StatusCode::CANCELLED ||
-         code == grpc::StatusCode::UNKNOWN ||
-         code == grpc::StatusCode::INTERNAL || code == grpc::StatusCode::DEADLINE_EXCEEDED;
+         code == grpc::StatusCode::UNKNOWN || code == grpc::StatusCode::INTERNAL ||
+         code == grpc::StatusCode::DEADLINE_EXCEEDED;
 }
 
 // What a watch of `job_id` has seen so far, across reconnections.
@@ -324,9 +324,8 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
       if (!status.ok()) return Report(status, client.flags());
       break;
     }
-    std::cerr << "radflux: watch of " << job_id << " dropped after event "
-              << progress.last_sequence << " (" << status.error_message()
-              << "); reconnecting\n";
+    std::cerr << "radflux: watch of " << job_id << " dropped after event " << progress.last_sequence
+              << " (" << status.error_message() << "); reconnecting\n";
     if (!client.WaitForConnected(std::chrono::system_clock::now() +
                                  std::chrono::seconds(reconnect_seconds))) {
       return Report(grpc::Status(grpc::StatusCode::UNAVAILABLE,
@@ -472,8 +471,8 @@ constexpr int kReconnectSeconds = 60;
 void AddReconnectFlag(CLI::App& command, int& seconds) {
   command
       .add_option("--reconnect-seconds", seconds,
-                   "when the watch stream drops (server restart), reconnect and resume after "
-                   "the last event seen, waiting up to this long each time (0 = give up)")
+                  "when the watch stream drops (server restart), reconnect and resume after "
+                  "the last event seen, waiting up to this long each time (0 = give up)")
       ->check(CLI::NonNegativeNumber);
 }
 

@@ -135,13 +135,12 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
 }
 
 absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
-  absl::StatusOr<StoredScene> stored = store_.GetScene(request.scene_sha256());
-  if (!stored.ok()) return stored.status();
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = scenes_.Get(request.scene_sha256());
+  if (!loaded.ok()) return loaded.status();
+  const Scene& scene = (*loaded)->scene;
   absl::StatusOr<JobOptions> options = FromProto(request.options());
   if (!options.ok()) return options.status();
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
-  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
-  if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
   const int64_t max_patches = options_.max_patches;
   const auto too_many = [&](double n) {
     return absl::ResourceExhaustedError(absl::StrCat("job would mesh ", static_cast<int64_t>(n),
@@ -152,10 +151,10 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     return too_many(static_cast<double>(options->mesh.target_patches));
   }
   if (max_patches > 0 && options->mesh.max_edge > 0) {
-    const double bound = MaxEdgePatchBound(*scene, options->mesh.max_edge);
+    const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget(*scene, *options, MaxJobMemory(options_)).status();
+  return RowMemoryBudget(scene, *options, MaxJobMemory(options_)).status();
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
@@ -374,6 +373,7 @@ void JobManager::RunOne(const std::string& job_id) {
   }
   RunContext context;
   context.store = &store_;
+  context.scenes = &scenes_;
   context.hub = hub.get();
   context.stop = &running->stop;
   context.cancelled = &running->cancelled;
