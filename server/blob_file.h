@@ -1,7 +1,8 @@
 // Blob files: the job store's on-disk format for row blocks, checkpoints, scenes and
 // results. A blob is zstd-compressed with a header carrying the raw size and the SHA-256
 // of the raw bytes; it is written atomically (temp file, fsync, rename, fsync of the dir),
-// so a reader sees either the whole previous file, the whole new one, or none.
+// so a reader sees either the whole previous file, the whole new one, or none; or, for a
+// file no one reads before a later commit, in place with one fsync (WriteBlobFileInPlace).
 #pragma once
 
 #include <string>
