@@ -75,6 +75,9 @@ watched_job() {
   done
   connected=0
   while ((connected < watchers)); do
+    if grep -q "^radflux: " "$DIR"/w_*.err 2>/dev/null; then
+      echo "a watcher failed:" >&2; grep -h "^radflux: " "$DIR"/w_*.err | sort | uniq -c >&2; exit 1
+    fi
     connected=$( (grep -l "JOB_STATE_QUEUED" "$DIR"/w_*.err 2>/dev/null || true) | wc -l)
     sleep 0.05
   done

@@ -2,6 +2,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -57,7 +58,14 @@ class Client {
                 << " / --tls-key " << c.tls_key << "\n";
       credentials = grpc::SslCredentials(grpc::SslCredentialsOptions());
     }
-    stub_ = v1::Radiosity::NewStub(grpc::CreateChannel(c.server, credentials));
+    // A dropped connection is retried within a second (gRPC's default backoff grows to
+    // 120 s), so that a watch resumes soon after a server restart. (Not the "min" backoff:
+    // gRPC uses it as the timeout of each connection attempt, 20 s by default.)
+    grpc::ChannelArguments arguments;
+    arguments.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
+    arguments.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 1000);
+    channel_ = grpc::CreateCustomChannel(c.server, credentials, arguments);
+    stub_ = v1::Radiosity::NewStub(channel_);
   }
   std::unique_ptr<grpc::ClientContext> Context() const {
     auto context = std::make_unique<grpc::ClientContext>();
@@ -66,9 +74,14 @@ class Client {
   }
   v1::Radiosity::Stub& stub() { return *stub_; }
   const ConnectionFlags& flags() const { return flags_; }
+  // Waits until the channel is connected (reconnecting as needed), at most until `deadline`.
+  bool WaitForConnected(std::chrono::system_clock::time_point deadline) {
+    return channel_->WaitForConnected(deadline);
+  }
 
  private:
   ConnectionFlags flags_;
+  std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::Radiosity::Stub> stub_;
 };
 
@@ -87,20 +100,30 @@ std::string FindMtl(const std::string& obj_path, const std::string& obj) {
   return mtl;
 }
 
-grpc::Status UploadScene(Client& client, const std::string& path, std::string* sha) {
-  std::string obj;
-  if (!ReadFile(path, &obj))
-    return grpc::Status(grpc::StatusCode::NOT_FOUND, "cannot read " + path);
-  const std::string mtl = FindMtl(path, obj);
+// An OBJ scene file as the client sends it: its text, its MTL text and their content address.
+struct SceneFile {
+  std::string name, obj, mtl, sha256;
+};
+
+absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path) {
+  SceneFile scene;
+  if (!ReadFile(path, &scene.obj)) return absl::NotFoundError("cannot read " + path);
+  scene.mtl = FindMtl(path, scene.obj);
+  scene.name = fs::path(path).filename().string();
+  scene.sha256 = SceneContentHash(scene.obj, scene.mtl);
+  return scene;
+}
+
+grpc::Status UploadScene(Client& client, const SceneFile& scene) {
   v1::SceneRef ref;
   auto context = client.Context();
   auto writer = client.stub().UploadScene(context.get(), &ref);
   v1::SceneChunk chunk;
-  chunk.mutable_header()->set_name(fs::path(path).filename().string());
-  chunk.mutable_header()->set_obj_size(obj.size());
-  chunk.mutable_header()->set_mtl_size(mtl.size());
-  chunk.mutable_header()->set_sha256(SceneContentHash(obj, mtl));
-  const std::string data = obj + mtl;
+  chunk.mutable_header()->set_name(scene.name);
+  chunk.mutable_header()->set_obj_size(scene.obj.size());
+  chunk.mutable_header()->set_mtl_size(scene.mtl.size());
+  chunk.mutable_header()->set_sha256(scene.sha256);
+  const std::string data = scene.obj + scene.mtl;
   constexpr size_t kChunk = 1 << 20;
   for (size_t at = 0; at == 0 || at < data.size(); at += kChunk) {
     chunk.set_data(data.substr(at, kChunk));
@@ -108,9 +131,19 @@ grpc::Status UploadScene(Client& client, const std::string& path, std::string* s
     chunk.clear_header();
   }
   writer->WritesDone();
-  grpc::Status status = writer->Finish();
-  *sha = ref.sha256();
-  return status;
+  return writer->Finish();
+}
+
+// Submits `request` for `scene`: by its content address first, so that a scene the server
+// already holds is not sent again (one call instead of two); uploaded, and submitted again,
+// only when the server answers NOT_FOUND.
+grpc::Status SubmitScene(Client& client, const SceneFile& scene, v1::SubmitJobRequest& request,
+                         v1::Job* job) {
+  request.set_scene_sha256(scene.sha256);
+  grpc::Status status = client.stub().SubmitJob(client.Context().get(), request, job);
+  if (status.error_code() != grpc::StatusCode::NOT_FOUND) return status;
+  if (status = UploadScene(client, scene); !status.ok()) return status;
+  return client.stub().SubmitJob(client.Context().get(), request, job);
 }
 
 // A job's scene fetched from the server (GetScene), re-loaded and re-meshed with the job's
@@ -208,12 +241,68 @@ void PrintEvent(const v1::JobEvent& event) {
   std::cerr << "\n";
 }
 
+bool Terminal(v1::JobState state) {
+  return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
+         state == v1::JOB_STATE_CANCELLED;
+}
+
+// True when a watch stream that failed with `code` before its job's final event may be
+// reopened: the server went away (restart, network) rather than refused the watch.
+bool StreamMayResume(grpc::StatusCode code) {
+  return code == grpc::StatusCode::UNAVAILABLE || code == grpc::StatusCode::CANCELLED ||
+         code == grpc::StatusCode::UNKNOWN || code == grpc::StatusCode::INTERNAL ||
+         code == grpc::StatusCode::DEADLINE_EXCEEDED;
+}
+
+// What a watch of `job_id` has seen so far, across reconnections.
+struct WatchProgress {
+  uint64_t last_sequence = 0;  // of the last event (not snapshot) received
+  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
+  std::string message;
+  int64_t snapshots = 0;
+};
+
+// One WatchJob stream from after progress->last_sequence until the job's final event (the
+// stream is then cancelled: the result can be asked for at once, without waiting for the
+// stream's end) or until the stream ends; returns its status.
+grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
+                         const std::string& snapshots_dir, const JobGeometry* geometry,
+                         const OutputArgs& args, WatchProgress* progress) {
+  request.set_after_sequence(progress->last_sequence);
+  auto context = client.Context();
+  auto reader = client.stub().WatchJob(context.get(), request);
+  v1::JobEvent event;
+  while (reader->Read(&event)) {
+    if (event.has_snapshot()) {
+      ++progress->snapshots;
+      if (snapshots_dir.empty()) continue;
+      if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
+          !s.ok()) {
+        std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
+                  << "\n";
+      }
+      continue;
+    }
+    progress->last_sequence = event.sequence();
+    progress->state = event.state();
+    progress->message = event.message();
+    PrintEvent(event);
+    if (Terminal(event.state())) {
+      context->TryCancel();
+      break;
+    }
+  }
+  return reader->Finish();
+}
+
 // Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
 // snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
-// `snapshot_every` iterations (without a directory they are only counted). Returns 0 when
-// the job SUCCEEDED.
+// `snapshot_every` iterations (without a directory they are only counted). When the stream
+// drops after its first event (a server restart), it is reopened after the last event seen,
+// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED.
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
-             const JobGeometry* geometry, const OutputArgs& args, int snapshot_every) {
+             const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
+             int reconnect_seconds) {
   v1::WatchJobRequest request;
   request.set_job_id(job_id);
   request.set_snapshot_every(snapshot_every);
@@ -225,33 +314,29 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
     std::error_code error;
     fs::create_directories(snapshots_dir, error);
   }
-  auto context = client.Context();
-  auto reader = client.stub().WatchJob(context.get(), request);
-  v1::JobEvent event;
-  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
-  std::string message;
-  int64_t snapshots = 0;
-  while (reader->Read(&event)) {
-    if (event.has_snapshot()) {
-      ++snapshots;
-      if (snapshots_dir.empty()) continue;
-      if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
-          !s.ok()) {
-        std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
-                  << "\n";
-      }
-      continue;
+  WatchProgress progress;
+  for (;;) {
+    const grpc::Status status =
+        WatchStream(client, request, snapshots_dir, geometry, args, &progress);
+    if (Terminal(progress.state)) break;
+    if (progress.last_sequence == 0 || reconnect_seconds <= 0 ||
+        !StreamMayResume(status.error_code())) {
+      if (!status.ok()) return Report(status, client.flags());
+      break;
     }
-    state = event.state();
-    message = event.message();
-    PrintEvent(event);
+    std::cerr << "radflux: watch of " << job_id << " dropped after event " << progress.last_sequence
+              << " (" << status.error_message() << "); reconnecting\n";
+    if (!client.WaitForConnected(std::chrono::system_clock::now() +
+                                 std::chrono::seconds(reconnect_seconds))) {
+      return Report(grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                                 absl::StrCat("no answer for ", reconnect_seconds, " s")),
+                    client.flags());
+    }
   }
-  const grpc::Status status = reader->Finish();
-  if (!status.ok()) return Report(status, client.flags());
-  if (request.snapshot_every() > 0) std::cerr << snapshots << " snapshots received\n";
-  if (state != v1::JOB_STATE_SUCCEEDED) {
-    std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(state)
-              << (message.empty() ? "" : ": " + message) << "\n";
+  if (request.snapshot_every() > 0) std::cerr << progress.snapshots << " snapshots received\n";
+  if (progress.state != v1::JOB_STATE_SUCCEEDED) {
+    std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(progress.state)
+              << (progress.message.empty() ? "" : ": " + progress.message) << "\n";
     return 1;
   }
   return 0;
@@ -362,7 +447,7 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
 // `radflux result` does. The geometry that snapshots and outputs need is fetched and
 // meshed before watching, while the server still runs the job.
 int WatchAndWriteResult(Client& client, const std::string& job_id, const std::string& snapshots_dir,
-                        const OutputArgs& args, int snapshot_every) {
+                        const OutputArgs& args, int snapshot_every, int reconnect_seconds) {
   const bool wants_result = WantsGeometry(args.output) || !args.output.report.empty();
   std::optional<JobGeometry> geometry;
   if (!snapshots_dir.empty() || WantsGeometry(args.output)) {
@@ -373,9 +458,22 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
     geometry = *std::move(fetched);
   }
   const JobGeometry* g = geometry ? &*geometry : nullptr;
-  const int watched = WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every);
+  const int watched =
+      WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every, reconnect_seconds);
   if (watched != 0 || !wants_result) return watched;
   return GetResult(client, job_id, args, g);
+}
+
+// How long a watch whose stream dropped waits for the server to answer again, by default.
+constexpr int kReconnectSeconds = 60;
+
+// Adds --reconnect-seconds to a command that watches a job.
+void AddReconnectFlag(CLI::App& command, int& seconds) {
+  command
+      .add_option("--reconnect-seconds", seconds,
+                  "when the watch stream drops (server restart), reconnect and resume after "
+                  "the last event seen, waiting up to this long each time (0 = give up)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 // Adds the connection flags to `command` (and to the top level once), bound to `c`.
@@ -408,6 +506,8 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
                    "watch the job until it ends; then write the output options' files, as "
                    "`radflux result` does");
   submit->add_option("--request-id", *request_id, "idempotency key: a retry returns the same job");
+  auto reconnect_seconds = std::make_shared<int>(kReconnectSeconds);
+  AddReconnectFlag(*submit, *reconnect_seconds);
   AddOutputFlags(*submit, *submit_outputs);
   AddConnectionFlags(*submit, *c);
   submit->callback([=, &exit_code] {
@@ -434,20 +534,20 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
       exit_code = 1;
       return;
     }
+    absl::StatusOr<SceneFile> scene_file = ReadSceneFile(*scene);
+    if (!scene_file.ok()) return void(exit_code = Fail(scene_file.status(), *c));
     Client client(*c);
     v1::SubmitJobRequest request;
-    grpc::Status status = UploadScene(client, *scene, request.mutable_scene_sha256());
-    if (!status.ok()) return void(exit_code = Report(status, *c));
     *request.mutable_options() = ToProto(*options);
     request.set_request_id(*request_id);
     v1::Job job;
-    status = client.stub().SubmitJob(client.Context().get(), request, &job);
+    const grpc::Status status = SubmitScene(client, *scene_file, request, &job);
     if (!status.ok()) return void(exit_code = Report(status, *c));
     std::cerr << "submitted " << job.job_id() << " (scene " << request.scene_sha256().substr(0, 12)
               << ")\n";
     if (*watch) {
       const OutputArgs outputs{*submit_outputs, job_flags->threads};  // render as `solve` does
-      exit_code = WatchAndWriteResult(client, job.job_id(), "", outputs, 0);
+      exit_code = WatchAndWriteResult(client, job.job_id(), "", outputs, 0, *reconnect_seconds);
     }
     std::cout << job.job_id() << std::endl;
   });
@@ -467,13 +567,15 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
       ->check(CLI::NonNegativeNumber);
   AddOutputFlags(*watch_cmd, watch_args->output);
   watch_cmd->add_option("--threads", watch_args->threads, "render threads (0 = all cores)");
+  AddReconnectFlag(*watch_cmd, *reconnect_seconds);
   AddConnectionFlags(*watch_cmd, *c);
   watch_cmd->callback([=, &exit_code] {
     if (absl::Status s = ValidateOutputFlags(watch_args->output); !s.ok()) {
       return void(exit_code = Fail(s, *c));
     }
     Client client(*c);
-    exit_code = WatchAndWriteResult(client, *job_id, *snapshots, *watch_args, *snapshot_every);
+    exit_code = WatchAndWriteResult(client, *job_id, *snapshots, *watch_args, *snapshot_every,
+                                    *reconnect_seconds);
   });
 
   auto* result =

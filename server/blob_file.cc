@@ -36,33 +36,65 @@ bool WriteAll(int fd, std::string_view data) {
   return true;
 }
 
-// fsyncs the directory holding `path`, so the rename itself is durable.
-void SyncParentDir(const std::string& path) {
-  const std::string dir = std::filesystem::path(path).parent_path().string();
-  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) return;
-  ::fsync(fd);
+// fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
+bool SyncPath(const std::string& path) {
+  const int fd = ::open(path.empty() ? "." : path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
   ::close(fd);
+  return ok;
 }
 
-}  // namespace
+std::string ParentDir(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
 
-absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
+// The blob file's bytes: header (magic, raw size, SHA-256 of the raw bytes), then `data`
+// compressed.
+absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
   std::string compressed(ZSTD_compressBound(data.size()), '\0');
   const size_t size =
       ZSTD_compress(compressed.data(), compressed.size(), data.data(), data.size(), kZstdLevel);
   if (ZSTD_isError(size)) return absl::InternalError(ZSTD_getErrorName(size));
   compressed.resize(size);
-  const std::string header =
-      absl::StrCat(std::string(kMagic), data.size(), "\n", Sha256Hex(data), "\n");
+  return absl::StrCat(std::string(kMagic), data.size(), "\n", Sha256Hex(data), "\n", compressed);
+}
+
+}  // namespace
+
+absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
+  absl::StatusOr<std::string> blob = EncodeBlob(data);
+  if (!blob.ok()) return blob.status();
   const std::string temp = path + ".tmp";
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return ErrnoError("cannot create", temp);
-  const bool ok = WriteAll(fd, header) && WriteAll(fd, compressed) && ::fsync(fd) == 0;
+  const bool ok = WriteAll(fd, *blob) && ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) return ErrnoError("cannot write", temp);
   if (::rename(temp.c_str(), path.c_str()) != 0) return ErrnoError("cannot rename", temp);
-  SyncParentDir(path);
+  SyncPath(ParentDir(path));  // the rename itself
+  return absl::OkStatus();
+}
+
+absl::Status CreateDurableFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return ErrnoError("cannot create", path);
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  const std::string dir = ParentDir(path);
+  if (!ok || !SyncPath(dir) || !SyncPath(ParentDir(dir))) return ErrnoError("cannot sync", path);
+  return absl::OkStatus();
+}
+
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data) {
+  absl::StatusOr<std::string> blob = EncodeBlob(data);
+  if (!blob.ok()) return blob.status();
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return ErrnoError("cannot open", path);
+  const bool ok = WriteAll(fd, *blob) && ::ftruncate(fd, static_cast<off_t>(blob->size())) == 0 &&
+                  ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok) return ErrnoError("cannot write", path);
   return absl::OkStatus();
 }
 

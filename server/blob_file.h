@@ -1,7 +1,8 @@
 // Blob files: the job store's on-disk format for row blocks, checkpoints, scenes and
 // results. A blob is zstd-compressed with a header carrying the raw size and the SHA-256
 // of the raw bytes; it is written atomically (temp file, fsync, rename, fsync of the dir),
-// so a reader sees either the whole previous file, the whole new one, or none.
+// so a reader sees either the whole previous file, the whole new one, or none; or, for a
+// file no one reads before a later commit, in place with one fsync (WriteBlobFileInPlace).
 #pragma once
 
 #include <string>
@@ -13,6 +14,17 @@ namespace radflux {
 
 // Compresses `data` and atomically replaces `path` with it.
 absl::Status WriteBlobFile(const std::string& path, std::string_view data);
+
+// Creates `path` if absent (empty; an existing file is left as it is) and makes it and its
+// name durable: fsync of the file, of its directory and of that directory's parent, so a
+// file in a directory created just before survives an OS crash too.
+absl::Status CreateDurableFile(const std::string& path);
+
+// Writes the blob of `data` into the existing file `path` (see CreateDurableFile) with one
+// fsync. Not atomic: until it returns, and after a crash while it runs, the file may hold a
+// partial blob (which ReadBlobFile reports as DATA_LOSS), so it is for files that no one
+// reads before a later, durable commit says they are complete.
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data);
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);

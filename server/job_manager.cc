@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 
 #include "absl/strings/str_cat.h"
 #include "server/job_runner.h"
@@ -134,13 +135,12 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
 }
 
 absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
-  absl::StatusOr<StoredScene> stored = store_.GetScene(request.scene_sha256());
-  if (!stored.ok()) return stored.status();
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = scenes_.Get(request.scene_sha256());
+  if (!loaded.ok()) return loaded.status();
+  const Scene& scene = (*loaded)->scene;
   absl::StatusOr<JobOptions> options = FromProto(request.options());
   if (!options.ok()) return options.status();
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
-  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
-  if (!scene.ok()) return absl::InvalidArgumentError(std::string(scene.status().message()));
   const int64_t max_patches = options_.max_patches;
   const auto too_many = [&](double n) {
     return absl::ResourceExhaustedError(absl::StrCat("job would mesh ", static_cast<int64_t>(n),
@@ -151,10 +151,10 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     return too_many(static_cast<double>(options->mesh.target_patches));
   }
   if (max_patches > 0 && options->mesh.max_edge > 0) {
-    const double bound = MaxEdgePatchBound(*scene, options->mesh.max_edge);
+    const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget(*scene, *options, MaxJobMemory(options_)).status();
+  return RowMemoryBudget(scene, *options, MaxJobMemory(options_)).status();
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
@@ -373,6 +373,7 @@ void JobManager::RunOne(const std::string& job_id) {
   }
   RunContext context;
   context.store = &store_;
+  context.scenes = &scenes_;
   context.hub = hub.get();
   context.stop = &running->stop;
   context.cancelled = &running->cancelled;
@@ -387,7 +388,16 @@ void JobManager::RunOne(const std::string& job_id) {
     if (patches > 0) job.set_patches(patches);
     Transition(job, v1::JOB_STATE_RUNNING, phase, "");
   };
+  // The result file and its names are made durable while the job runs, so that storing the
+  // result at the end takes one fsync instead of three (JobStore::PrepareResult).
+  std::future<absl::Status> prepare =
+      std::async(std::launch::async, [&] { return store_.PrepareResult(job_id); });
   absl::StatusOr<std::string> result = RunStoredJob(job, context);
+  const absl::Status prepared = prepare.get();
+  if (!prepared.ok()) {
+    spdlog::warn("job {}: {} (the result is stored atomically instead)", job_id,
+                 std::string(prepared.message()));
+  }
   bool cancelled;
   {
     std::lock_guard lock(mu_);
@@ -396,7 +406,7 @@ void JobManager::RunOne(const std::string& job_id) {
   // Work files go before the terminal transition: whoever sees the end sees them gone.
   if (result.ok()) {
     const auto put_start = std::chrono::steady_clock::now();
-    absl::Status put = store_.PutResult(job_id, *result);
+    absl::Status put = store_.PutResult(job_id, *result, prepared.ok());
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
     spdlog::debug("job {}: ms result stored {:.1f}, work files removed {:.1f}", job_id,

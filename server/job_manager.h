@@ -19,6 +19,7 @@
 #include "radflux/v1/radiosity.pb.h"
 #include "server/job_hub.h"
 #include "server/job_store.h"
+#include "server/scene_cache.h"
 
 namespace radflux {
 
@@ -94,6 +95,7 @@ class JobManager {
   void RetireHubLocked(const std::string& job_id);
 
   JobStore& store_;
+  SceneCache scenes_{store_};  // shared by the limits check and the jobs' start
   const ManagerOptions options_;
   std::mutex mu_;
   std::condition_variable cv_;

@@ -13,7 +13,6 @@
 #include "server/row_budget.h"
 #include "server/row_farm.h"
 #include "server/row_sink.h"
-#include "server/stored_scene.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "solver/report.h"
@@ -226,19 +225,18 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 
 absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c) {
   const auto start = Clock::now();
-  absl::StatusOr<StoredScene> stored = c.store->GetScene(job.scene_sha256());
-  if (!stored.ok()) return stored.status();
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = c.scenes->Get(job.scene_sha256());
+  if (!loaded.ok()) return loaded.status();
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   options->form_factors.threads = c.threads;
-  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
-  if (!scene.ok()) return scene.status();
-  absl::StatusOr<uint64_t> row_budget = RowMemoryBudget(*scene, *options, c.max_memory);
+  Scene scene = (*loaded)->scene;  // PrepareJob takes its own copy
+  absl::StatusOr<uint64_t> row_budget = RowMemoryBudget(scene, *options, c.max_memory);
   if (!row_budget.ok()) return row_budget.status();
   options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
-  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
+  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(std::move(scene), *options);
   if (!prepared.ok()) return prepared.status();
   const PreparedJob& p = **prepared;
   const int64_t n = static_cast<int64_t>(p.mesh.size());
@@ -279,7 +277,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   result.timings.rows = rows->seconds;
   result.timings.solve = SecondsSince(solve_start);
   const auto encode_start = Clock::now();
-  const std::string report = MakeJobReport(result, *options, stored->name).dump(2);
+  const std::string report = MakeJobReport(result, *options, (*loaded)->name).dump(2);
   std::string encoded =
       EncodeResultChunks(MakeResultChunks(result.job->mesh, result.solve, report));
   spdlog::debug(

@@ -17,6 +17,7 @@
 #include "radflux/v1/job.pb.h"
 #include "server/job_hub.h"
 #include "server/job_store.h"
+#include "server/scene_cache.h"
 
 namespace radflux {
 
@@ -24,6 +25,7 @@ class RowFarm;
 
 struct RunContext {
   JobStore* store = nullptr;
+  SceneCache* scenes = nullptr;                  // the job's scene comes from here
   JobHub* hub = nullptr;                         // receives progress events and snapshots
   const std::atomic<bool>* stop = nullptr;       // cancel or shutdown: stop at the next safe point
   const std::atomic<bool>* cancelled = nullptr;  // set (before stop) when stopping for a cancel

@@ -307,8 +307,17 @@ absl::StatusOr<SolverCheckpoint> JobStore::GetCheckpoint(const std::string& job_
   return DecodeCheckpoint(*bytes);
 }
 
-absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes) {
-  return WriteBlobFile((fs::path(JobDir(job_id)) / "result.rfb").string(), bytes);
+absl::Status JobStore::PrepareResult(const std::string& job_id) {
+  std::error_code ec;
+  fs::create_directories(JobDir(job_id), ec);
+  if (ec) return absl::InternalError(absl::StrCat("cannot create ", JobDir(job_id)));
+  return CreateDurableFile((fs::path(JobDir(job_id)) / "result.rfb").string());
+}
+
+absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes,
+                                 bool prepared) {
+  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
+  return prepared ? WriteBlobFileInPlace(path, bytes) : WriteBlobFile(path, bytes);
 }
 
 absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
@@ -318,7 +327,8 @@ absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
 void JobStore::RemoveWorkFiles(const std::string& job_id) {
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(JobDir(job_id), ec)) {
-    if (entry.path().filename() != "result.rfb") fs::remove(entry.path(), ec);
+    const bool result = entry.path().filename() == "result.rfb" && entry.file_size(ec) > 0;
+    if (!result) fs::remove(entry.path(), ec);
   }
 }
 

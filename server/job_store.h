@@ -84,10 +84,18 @@ class JobStore {
                        std::vector<absl::Status>* unreadable);
   absl::Status PutCheckpoint(const std::string& job_id, const SolverCheckpoint& checkpoint);
   absl::StatusOr<SolverCheckpoint> GetCheckpoint(const std::string& job_id);
-  // The serialized result stream of a finished job (see result_codec.h).
-  absl::Status PutResult(const std::string& job_id, const std::string& bytes);
+  // Creates the job's directory and an empty result file in it, and makes both durable
+  // (fsync of the file, the directory and jobs/), so that PutResult needs one fsync. For
+  // when the job starts, off its critical path.
+  absl::Status PrepareResult(const std::string& job_id);
+  // The serialized result stream of a finished job (see result_codec.h), durable when this
+  // returns. `prepared`: PrepareResult succeeded for the job; then the result is written
+  // into that file (one fsync; the job is not SUCCEEDED yet, so no one reads it meanwhile),
+  // else atomically (temp file, rename: three fsyncs).
+  absl::Status PutResult(const std::string& job_id, const std::string& bytes, bool prepared);
   absl::StatusOr<std::string> GetResult(const std::string& job_id);
-  // Deletes the row blocks and checkpoint of a job (after it finished or was cancelled).
+  // Deletes the row blocks, checkpoint and other work files of a job (after it finished or
+  // was cancelled); a written result is kept, an empty one from PrepareResult is not.
   void RemoveWorkFiles(const std::string& job_id);
   // The directory of a job's work files (removed with them: a file left in it goes too).
   std::string JobDir(const std::string& job_id) const;

@@ -1,0 +1,46 @@
+# RADFLUX_STATIC_GRPC: links abseil, protobuf and gRPC from their static archives (Debian
+# ships them beside the shared ones) instead of ~60 shared objects. A client process start
+# (`radflux-service list`) then takes 5 ms of CPU instead of 13: most of the difference was
+# the dynamic loader resolving gRPC's and abseil's symbols in each other (bench/RESULTS.md,
+# "Service overhead (issue 4)"). Every target of the build switches together, and only when
+# every one of these libraries has its archive, so no process ever holds two copies of
+# abseil. OpenSSL, zlib, c-ares and re2 stay shared (C libraries with few symbols).
+option(RADFLUX_STATIC_GRPC "Link abseil, protobuf and gRPC statically" ON)
+
+# Points every imported (non-interface) target of this directory whose library is one of
+# abseil's, protobuf's or gRPC's at the static archive of the same name, if all of them
+# have one (else changes nothing and says why).
+function(radflux_use_static_grpc_archives)
+  get_directory_property(targets IMPORTED_TARGETS)
+  set(changes "")
+  foreach(target IN LISTS targets)
+    get_target_property(type ${target} TYPE)
+    if(type STREQUAL "INTERFACE_LIBRARY" OR type STREQUAL "EXECUTABLE")
+      continue()
+    endif()
+    foreach(property IMPORTED_LOCATION IMPORTED_LOCATION_NONE IMPORTED_LOCATION_RELEASE)
+      get_target_property(location ${target} ${property})
+      if(NOT location MATCHES "/lib((absl|grpc|gpr|upb|address_sorting|protobuf)[a-z0-9_+-]*)\\.so")
+        continue()
+      endif()
+      get_filename_component(dir "${location}" DIRECTORY)
+      set(archive "${dir}/lib${CMAKE_MATCH_1}.a")
+      if(NOT EXISTS "${archive}")
+        message(STATUS "RADFLUX_STATIC_GRPC: no ${archive}; linking the shared objects")
+        return()
+      endif()
+      list(APPEND changes "${target}|${property}|${archive}")
+    endforeach()
+  endforeach()
+  foreach(change IN LISTS changes)
+    string(REPLACE "|" ";" parts "${change}")
+    list(GET parts 0 target)
+    list(GET parts 1 property)
+    list(GET parts 2 archive)
+    set_target_properties(${target} PROPERTIES ${property} "${archive}")
+  endforeach()
+endfunction()
+
+if(RADFLUX_STATIC_GRPC)
+  radflux_use_static_grpc_archives()
+endif()

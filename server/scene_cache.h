@@ -1,0 +1,42 @@
+// SceneCache: the solver Scenes of the most recently used stored scenes, by content
+// address. A stored scene never changes under its address, so a cached Scene is the one
+// LoadStoredScene would return now; SubmitJob's limits check and the job's start then read,
+// verify and parse a scene once instead of twice per job, and not at all for a scene the
+// server solved just before (warm state that `radflux solve` pays in every process).
+// Holds at most `capacity` scenes. Thread-safe.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include "absl/status/statusor.h"
+#include "server/job_store.h"
+#include "solver/scene/scene.h"
+
+namespace radflux {
+
+// A stored scene as loaded: its upload name and its solver Scene.
+struct LoadedScene {
+  std::string name;
+  Scene scene;
+};
+
+class SceneCache {
+ public:
+  explicit SceneCache(JobStore& store, size_t capacity = 2) : store_(store), capacity_(capacity) {}
+
+  // The scene stored under `sha256`, as LoadStoredScene returns it (not validated): NOT_FOUND
+  // when no scene has that address, INVALID_ARGUMENT when it does not load.
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> Get(const std::string& sha256);
+
+ private:
+  JobStore& store_;
+  const size_t capacity_;
+  std::mutex mu_;                                                                  // guards recent_
+  std::deque<std::pair<std::string, std::shared_ptr<const LoadedScene>>> recent_;  // newest first
+};
+
+}  // namespace radflux
