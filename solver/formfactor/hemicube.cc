@@ -54,6 +54,7 @@ class HemicubeBuilder final : public RowBuilder {
       : context_(context),
         cells_(MakeHemicubeCells(options.hemicube_res)),
         emitters_(EmitterPatches(context)),
+        pairs_(context),
         samples_(options.samples),
         seed_(options.seed) {}
 
@@ -81,7 +82,7 @@ class HemicubeBuilder final : public RowBuilder {
     // A hemicube is a point method: emitter columns from the centroid too (exact point form
     // factor, s shadow rays to stratified points on the emitter), so rows stay consistent.
     const std::vector<Vec3> centroid(static_cast<size_t>(samples_), patch.centroid);
-    return cells_.size() + AddAnalyticColumns(context_, i, emitters_, centroid, seed_, row);
+    return cells_.size() + pairs_.AddColumns(i, emitters_, centroid, seed_, row);
   }
 
  private:
@@ -89,6 +90,7 @@ class HemicubeBuilder final : public RowBuilder {
   const RowContext& context_;
   std::vector<Cell> cells_;
   std::vector<uint32_t> emitters_;
+  AnalyticPairs pairs_;  // the emitter columns
   int samples_;
   uint64_t seed_;
 };

@@ -22,7 +22,7 @@ class MonteCarloBuilder final : public RowBuilder {
   // random offsets (Cranley-Patterson rotation), which keeps them stratified and
   // makes the estimate unbiased at a few additions per ray.
   MonteCarloBuilder(const RowContext& context, const FormFactorOptions& options)
-      : context_(context), options_(options) {
+      : context_(context), options_(options), pairs_(context) {
     const uint32_t k = static_cast<uint32_t>(options.rays);
     for (uint32_t r = 0; r < k; ++r) {
       positions_.push_back(MultiJitteredSample(r, k, kPositionPattern));
@@ -57,13 +57,13 @@ class MonteCarloBuilder final : public RowBuilder {
       if (j != kNoPatch && !context_.emitter[j]) row.Add(j, weight);
     }
     if (emitters_.empty()) return stream.size();
-    return stream.size() +
-           AddAnalyticColumns(context_, i, emitters_, options_.samples, options_.seed, row);
+    return stream.size() + pairs_.AddColumns(i, emitters_, options_.samples, options_.seed, row);
   }
 
  private:
   const RowContext& context_;
   FormFactorOptions options_;
+  AnalyticPairs pairs_;  // the emitter columns
   std::vector<Point2> positions_, directions_;
   std::vector<uint32_t> emitters_;
 };
