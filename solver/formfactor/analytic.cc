@@ -32,7 +32,7 @@ class AnalyticBuilder final : public RowBuilder {
       return pairs_.AddColumns(i, columns_, points, options_.seed, row);
     }
     thread_local ContourCache contours;  // per-thread scratch, begun row by row
-    contours.Begin(mesh, edges_, points, mesh.patches[i].normal);
+    contours.Begin(pairs_.Patches(), edges_, points, mesh.patches[i].normal);
     return pairs_.AddColumns(i, columns_, points, options_.seed, row, &contours);
   }
 

@@ -55,8 +55,8 @@ Facing FacePlane(const PairPatch& of, const PairPatch& plane) {
   Facing f;
   for (size_t k = 0; k < 4; ++k) {
     f.distance[k] = Dot(of.corner[k] - plane.centroid, plane.normal);
-    f.any_front = f.any_front || f.distance[k] > plane.front_margin;
-    f.all_front = f.all_front && f.distance[k] >= 0;
+    f.any_front |= f.distance[k] > plane.front_margin;  // no branches: | and &, not || and &&
+    f.all_front &= f.distance[k] >= 0;
   }
   return f;
 }
@@ -75,6 +75,7 @@ struct PairBatch {
   std::vector<StreamRay> rays;
   std::vector<double> kernels;
   std::vector<Point2> targets;  // one pair's target pattern on [0,1)^2
+  SmallPolygon clipped;         // one pair's target clipped to the receiver's plane
 };
 
 // Sets up F_ij (see AnalyticPairs::FormFactor) for a pair that can exchange light, with
@@ -94,8 +95,8 @@ PairPlan PlanPair(const RowContext& context, const PairPatches& patches, uint32_
   // All points of i share i's plane, so clip j against it once (when it is not whole
   // in front of it).
   std::span<const Vec3> polygon(pj.corner.data(), pj.corners);
-  SmallPolygon clipped;
   if (!facing.all_front) {
+    SmallPolygon& clipped = batch.clipped;
     clipped.size = ClipPolygonToHalfSpace(
         polygon, std::span<const double>(facing.distance.data(), pj.corners), clipped.vertex);
     if (clipped.size < 3) return plan;

@@ -49,6 +49,9 @@ class AnalyticPairs {
                       const std::vector<Vec3>& points, uint64_t seed, RowAccumulator& row,
                       ContourCache* contours = nullptr) const;
 
+  // The per-patch data the pairs read (for a ContourCache of the same mesh).
+  const PairPatches& Patches() const { return patches_; }
+
  private:
   const RowContext& context_;
   PairPatches patches_;
