@@ -13,8 +13,8 @@ namespace radflux {
 
 // One patch as a receiver or target of analytic pairs.
 struct PairPatch {
-  std::array<Vec3, 4>
-      corner;               // the patch's vertices in order; corner[3] == corner[2] for a triangle
+  // The patch's vertices in order; corner[3] == corner[2] for a triangle.
+  std::array<Vec3, 4> corner;
   Vec3 centroid;            // as Patch::centroid
   Vec3 normal;              // as Patch::normal (unit, front side)
   double front_margin = 0;  // 1e-9 sqrt(area): a point further than this along the normal

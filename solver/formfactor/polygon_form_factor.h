@@ -25,9 +25,9 @@ std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Ve
 inline constexpr size_t kMaxClipVertices = 8;
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
                               std::span<Vec3> out);
-// The same for any polygon, given each vertex's
-// distance[k] = Dot(polygon[k] - origin, n); returns the vertex count. Allocates nothing:
-// the form-factor builders clip once per patch pair, with the distances they already have.
+// The same for any polygon, given each vertex's distance[k] = Dot(polygon[k] - origin, n);
+// returns the vertex count. Allocates nothing: the form-factor builders clip once per patch
+// pair, with the distances they already have.
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, std::span<const double> distance,
                               std::span<Vec3> out);
 
