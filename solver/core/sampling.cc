@@ -70,6 +70,7 @@ double RandomFloat(uint32_t i, uint32_t p) {
 namespace {
 
 constexpr uint32_t kStratumX = 0xa511e9b3, kStratumY = 0x63d83595;
+constexpr uint32_t kJitterX = 0xa399d265, kJitterY = 0x711ad6a5;
 
 // The strata of n multi-jittered samples: m x cols >= n cells, of which n are taken.
 struct Strata {
@@ -89,8 +90,8 @@ Point2 PlaceSample(const Strata& g, uint32_t i, uint32_t p, StratumX stratum_x,
   const uint32_t s_mod_m = Mod(s, g.m), s_div_m = Div(s, g.m);
   const uint32_t sx = stratum_x(s_mod_m);
   const uint32_t sy = stratum_y(s_div_m);
-  const double jx = RandomFloat(s, p * 0xa399d265);
-  const double jy = RandomFloat(s, p * 0x711ad6a5);
+  const double jx = RandomFloat(s, p * kJitterX);
+  const double jy = RandomFloat(s, p * kJitterY);
   return {std::min(DivideBy(s_mod_m + DivideBy(sy + jx, g.cols), g.m), 0x1.fffffffffffffp-1),
           std::min(DivideBy(s_div_m + DivideBy(sx + jy, g.m), g.cols), 0x1.fffffffffffffp-1)};
 }
@@ -106,6 +107,10 @@ Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p) {
 
 void MultiJitteredSamples(uint32_t p, std::span<Point2> out) {
   const uint32_t n = static_cast<uint32_t>(out.size());
+  if (n == 1) {  // one stratum, index 0: PlaceSample's divisions by 1 leave the jitter alone
+    out[0] = {RandomFloat(0, p * kJitterX), RandomFloat(0, p * kJitterY)};
+    return;
+  }
   const Strata g(n);
   constexpr uint32_t kMaxStrata = 64;
   if (g.cols > kMaxStrata) {  // n > 4,000 or so: one sample at a time

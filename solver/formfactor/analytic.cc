@@ -16,6 +16,7 @@ class AnalyticBuilder final : public RowBuilder {
   AnalyticBuilder(const RowContext& context, const FormFactorOptions& options)
       : context_(context),
         options_(options),
+        pairs_(context),
         columns_(context.mesh->size()),
         edges_(*context.mesh) {
     std::iota(columns_.begin(), columns_.end(), 0u);
@@ -28,16 +29,17 @@ class AnalyticBuilder final : public RowBuilder {
     // kMaxCachedTerms (32 MiB) the terms are computed per patch instead.
     constexpr size_t kMaxCachedTerms = size_t{1} << 21;
     if (edges_.size() * points.size() > kMaxCachedTerms) {
-      return AddAnalyticColumns(context_, i, columns_, points, options_.seed, row);
+      return pairs_.AddColumns(i, columns_, points, options_.seed, row);
     }
     thread_local ContourCache contours;  // per-thread scratch, begun row by row
-    contours.Begin(mesh, edges_, points, mesh.patches[i].normal);
-    return AddAnalyticColumns(context_, i, columns_, points, options_.seed, row, &contours);
+    contours.Begin(pairs_.Patches(), edges_, points, mesh.patches[i].normal);
+    return pairs_.AddColumns(i, columns_, points, options_.seed, row, &contours);
   }
 
  private:
   const RowContext& context_;
   FormFactorOptions options_;
+  AnalyticPairs pairs_;
   std::vector<uint32_t> columns_;  // every patch
   PatchEdges edges_;
 };

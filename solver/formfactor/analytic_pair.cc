@@ -21,13 +21,6 @@ struct SmallPolygon {
   std::span<const Vec3> View() const { return {vertex.data(), size}; }
 };
 
-SmallPolygon PatchPolygon(const PatchMesh& mesh, uint32_t p) {
-  SmallPolygon polygon;
-  polygon.size = static_cast<size_t>(mesh.patches[p].VertexCount());
-  for (size_t k = 0; k < polygon.size; ++k) polygon.vertex[k] = mesh.Vertex(p, static_cast<int>(k));
-  return polygon;
-}
-
 // cos(theta_x) cos(theta_y) / r^2 of the pair (x, y): the form-factor kernel up to pi,
 // 0 when either point is behind the other's plane.
 double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
@@ -49,12 +42,23 @@ StreamRay ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, co
   return ray;
 }
 
-bool AnyVertexInFront(const PatchMesh& mesh, uint32_t of, const Patch& plane) {
-  const double scale = std::sqrt(plane.area);
-  for (int k = 0; k < mesh.patches[of].VertexCount(); ++k) {
-    if (Dot(mesh.Vertex(of, k) - plane.centroid, plane.normal) > 1e-9 * scale) return true;
+// Patch `of` against the plane of patch `plane`: its corners' distances along the plane's
+// normal from its centroid, whether some corner is in front by more than the plane's
+// margin, and whether none is behind (so that clipping would keep `of` whole). Four
+// corners always: a triangle's fourth repeats its third, which changes neither answer.
+struct Facing {
+  std::array<double, 4> distance;
+  bool any_front = false, all_front = true;
+};
+
+Facing FacePlane(const PairPatch& of, const PairPatch& plane) {
+  Facing f;
+  for (size_t k = 0; k < 4; ++k) {
+    f.distance[k] = Dot(of.corner[k] - plane.centroid, plane.normal);
+    f.any_front |= f.distance[k] > plane.front_margin;  // no branches: | and &, not || and &&
+    f.all_front &= f.distance[k] >= 0;
   }
-  return false;
+  return f;
 }
 
 // One pair's estimate before its shadow rays are traced: the mean exact unoccluded form
@@ -65,32 +69,44 @@ struct PairPlan {
   size_t first_ray = 0, ray_count = 0;
 };
 
-// Sets up F_ij (see AnalyticPairFormFactor): its unoccluded mean and its shadow rays,
-// appended to `rays` with their kernel weights in `kernels`. The contour integrals of an
-// unclipped j come from `contours` when given (begun on this row and these points).
-PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>& points,
-                  uint32_t j, uint64_t seed, std::vector<StreamRay>& rays,
-                  std::vector<double>& kernels, ContourCache* contours) {
-  const PatchMesh& mesh = *context.mesh;
-  const Patch& pi = mesh.patches[i];
-  const Patch& pj = mesh.patches[j];
+// Scratch of one thread's pairs: their plans, shadow rays and the rays' kernel weights.
+struct PairBatch {
+  std::vector<PairPlan> plans;
+  std::vector<StreamRay> rays;
+  std::vector<double> kernels;
+  std::vector<Point2> targets;  // one pair's target pattern on [0,1)^2
+  SmallPolygon clipped;         // one pair's target clipped to the receiver's plane
+};
+
+// Sets up F_ij (see AnalyticPairs::FormFactor) for a pair that can exchange light, with
+// j's corners `facing` i's plane: its unoccluded mean and its shadow rays, appended to
+// `batch` with their kernel weights. The contour integrals of an unclipped j come from
+// `contours` when given (begun on this row and these points).
+PairPlan PlanPair(const RowContext& context, const PairPatches& patches, uint32_t i,
+                  const std::vector<Vec3>& points, uint32_t j, const Facing& facing, uint64_t seed,
+                  PairBatch& batch, ContourCache* contours) {
+  const PairPatch& pi = patches[i];
+  const PairPatch& pj = patches[j];
+  std::vector<StreamRay>& rays = batch.rays;
+  std::vector<double>& kernels = batch.kernels;
   PairPlan plan;
   plan.j = j;
   plan.first_ray = rays.size();
-  // All points of i share i's plane, so clip j against it once.
-  const SmallPolygon whole = PatchPolygon(mesh, j);
-  SmallPolygon polygon;
-  polygon.size = ClipPolygonToHalfSpace(whole.View(), pi.centroid, pi.normal, polygon.vertex);
-  if (polygon.size < 3) return plan;
-  const bool unclipped =
-      polygon.size == whole.size &&
-      std::equal(whole.vertex.begin(), whole.vertex.begin() + whole.size, polygon.vertex.begin());
-  ContourCache* shared = unclipped ? contours : nullptr;
+  // All points of i share i's plane, so clip j against it once (when it is not whole
+  // in front of it).
+  std::span<const Vec3> polygon(pj.corner.data(), pj.corners);
+  if (!facing.all_front) {
+    SmallPolygon& clipped = batch.clipped;
+    clipped.size = ClipPolygonToHalfSpace(
+        polygon, std::span<const double>(facing.distance.data(), pj.corners), clipped.vertex);
+    if (clipped.size < 3) return plan;
+    polygon = clipped.View();
+  }
+  ContourCache* shared = facing.all_front ? contours : nullptr;
   const uint32_t pattern = PatternSeed(seed ^ (uint64_t{i} << 32), j, kTargetStream);
   const size_t s = points.size();
-  const PatchPointSampler sample_target(mesh, j);
-  thread_local std::vector<Point2> targets;  // per-thread scratch: pattern on [0,1)^2
-  targets.resize(s);
+  const PatchPointSampler& sample_target = patches.Sampler(j);
+  std::span<Point2> targets(batch.targets.data(), s);
   MultiJitteredSamples(pattern, targets);
   double f = 0, unoccluded = 0;
   for (size_t m = 0; m < s; ++m) {
@@ -100,7 +116,7 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
     // Repeated points (hemicube: s copies of the centroid) share one contour integral.
     if (m == 0 || !(points[m] == points[m - 1])) {
       f = shared ? shared->FormFactor(j, m)
-                 : UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon.View());
+                 : UnclippedPointToPolygonFormFactor(points[m], pi.normal, polygon);
     }
     unoccluded += f;
     const Vec3 target = sample_target(targets[m]);
@@ -118,7 +134,7 @@ PairPlan PlanPair(const RowContext& context, uint32_t i, const std::vector<Vec3>
   if (rays.size() == plan.first_ray) {
     // Every sampled target lay behind i's plane: one ray to the visible part's centre.
     Vec3 centre;
-    for (const Vec3& p : polygon.View()) centre += p / static_cast<double>(polygon.size);
+    for (const Vec3& p : polygon) centre += p / static_cast<double>(polygon.size());
     rays.push_back(ShadowRay(context, points[0], pi.normal, centre, pj.normal));
     kernels.push_back(1);
   }
@@ -141,11 +157,6 @@ double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
 
 }  // namespace
 
-bool PatchesCanExchange(const PatchMesh& mesh, uint32_t i, uint32_t j) {
-  return i != j && AnyVertexInFront(mesh, j, mesh.patches[i]) &&
-         AnyVertexInFront(mesh, i, mesh.patches[j]);
-}
-
 std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, uint64_t seed) {
   std::vector<Point2> u(static_cast<size_t>(s));
   MultiJitteredSamples(PatternSeed(seed, i, kPointStream), u);
@@ -155,48 +166,58 @@ std::vector<Vec3> PatchSamplePoints(const PatchMesh& mesh, uint32_t i, int s, ui
   return points;
 }
 
-double AnalyticPairFormFactor(const RowContext& context, uint32_t i,
-                              const std::vector<Vec3>& points, uint32_t j, uint64_t seed,
-                              uint64_t& rays) {
-  std::vector<StreamRay> batch;
-  std::vector<double> kernels;
-  const PairPlan plan = PlanPair(context, i, points, j, seed, batch, kernels, nullptr);
-  context.caster->OccludedStream(batch);
-  rays += batch.size();
-  return FinishPair(plan, kernels, batch);
+AnalyticPairs::AnalyticPairs(const RowContext& context)
+    : context_(context), patches_(*context.mesh) {}
+
+bool AnalyticPairs::CanExchange(uint32_t i, uint32_t j) const {
+  return i != j && FacePlane(patches_[j], patches_[i]).any_front &&
+         FacePlane(patches_[i], patches_[j]).any_front;
 }
 
-uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
-                            std::span<const uint32_t> columns, int samples, uint64_t seed,
-                            RowAccumulator& row) {
-  return AddAnalyticColumns(context, i, columns, PatchSamplePoints(*context.mesh, i, samples, seed),
-                            seed, row);
+double AnalyticPairs::FormFactor(uint32_t i, const std::vector<Vec3>& points, uint32_t j,
+                                 uint64_t seed, uint64_t& rays) const {
+  PairBatch batch;
+  batch.targets.resize(points.size());
+  const PairPlan plan = PlanPair(context_, patches_, i, points, j,
+                                 FacePlane(patches_[j], patches_[i]), seed, batch, nullptr);
+  context_.caster->OccludedStream(batch.rays);
+  rays += batch.rays.size();
+  return FinishPair(plan, batch.kernels, batch.rays);
 }
 
-uint64_t AddAnalyticColumns(const RowContext& context, uint32_t i,
-                            std::span<const uint32_t> columns, const std::vector<Vec3>& points,
-                            uint64_t seed, RowAccumulator& row, ContourCache* contours) {
-  const PatchMesh& mesh = *context.mesh;
+uint64_t AnalyticPairs::AddColumns(uint32_t i, std::span<const uint32_t> columns, int samples,
+                                   uint64_t seed, RowAccumulator& row) const {
+  return AddColumns(i, columns, PatchSamplePoints(*context_.mesh, i, samples, seed), seed, row);
+}
+
+uint64_t AnalyticPairs::AddColumns(uint32_t i, std::span<const uint32_t> columns,
+                                   const std::vector<Vec3>& points, uint64_t seed,
+                                   RowAccumulator& row, ContourCache* contours) const {
   // Per-thread scratch reused row to row: pairs are planned until their shadow rays make
   // a stream of kStreamRays, which is traced and finished before the next pairs are planned
   // (a whole analytic row's rays would not stay in cache between planning and finishing).
   constexpr size_t kStreamRays = 512;
-  thread_local std::vector<PairPlan> plans;
-  thread_local std::vector<StreamRay> rays;
-  thread_local std::vector<double> kernels;
+  thread_local PairBatch batch;
+  batch.targets.resize(points.size());
   uint64_t traced = 0;
   auto trace_planned = [&] {
-    context.caster->OccludedStream(rays);
-    for (const PairPlan& plan : plans) row.Add(plan.j, FinishPair(plan, kernels, rays));
-    traced += rays.size();
-    plans.clear();
-    rays.clear();
-    kernels.clear();
+    context_.caster->OccludedStream(batch.rays);
+    for (const PairPlan& plan : batch.plans) {
+      row.Add(plan.j, FinishPair(plan, batch.kernels, batch.rays));
+    }
+    traced += batch.rays.size();
+    batch.plans.clear();
+    batch.rays.clear();
+    batch.kernels.clear();
   };
+  const PairPatch& pi = patches_[i];
   for (uint32_t j : columns) {
-    if (!PatchesCanExchange(mesh, i, j)) continue;
-    plans.push_back(PlanPair(context, i, points, j, seed, rays, kernels, contours));
-    if (rays.size() >= kStreamRays) trace_planned();
+    if (j == i) continue;
+    const Facing facing = FacePlane(patches_[j], pi);
+    if (!facing.any_front || !FacePlane(pi, patches_[j]).any_front) continue;
+    batch.plans.push_back(
+        PlanPair(context_, patches_, i, points, j, facing, seed, batch, contours));
+    if (batch.rays.size() >= kStreamRays) trace_planned();
   }
   trace_planned();
   return traced;

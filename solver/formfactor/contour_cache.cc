@@ -30,38 +30,33 @@ PatchEdges::PatchEdges(const PatchMesh& mesh) : id_(4 * mesh.size(), 0) {
   if (!ends.empty()) ++count_;
 }
 
-void ContourCache::Begin(const PatchMesh& mesh, const PatchEdges& edges,
+void ContourCache::Begin(const PairPatches& patches, const PatchEdges& edges,
                          std::span<const Vec3> points, const Vec3& normal) {
-  mesh_ = &mesh;
+  patches_ = &patches;
   edges_ = &edges;
   points_ = points;
   normal_ = normal;
   const size_t entries = edges.size() * points.size();
-  if (term_.size() < entries) {
-    term_.resize(entries);
-    stamp_.resize(entries, 0);
-  }
+  if (term_.size() < entries) term_.resize(entries);
   ++row_;
 }
 
 double ContourCache::FormFactor(uint32_t j, size_t m) {
-  const Patch& patch = mesh_->patches[j];
-  const int count = patch.VertexCount();
+  const PairPatch& patch = (*patches_)[j];
   const Vec3& x = points_[m];
   double sum = 0;
-  for (int k = 0; k < count; ++k) {
-    const size_t entry = edges_->Id(j, k) * points_.size() + m;
-    const bool reversed = edges_->Reversed(j, k);
-    if (stamp_[entry] != row_) {
+  for (uint32_t k = 0; k < patch.corners; ++k) {
+    const uint32_t slot = edges_->Slot(j, k);
+    const bool reversed = slot & 1;
+    Term& term = term_[(slot >> 1) * points_.size() + m];
+    if (term.row != row_) {
       // The term in the edge's own direction (lower vertex index to higher).
-      const uint32_t a = patch.v[static_cast<size_t>(k)];
-      const uint32_t b = patch.v[static_cast<size_t>((k + 1) % count)];
-      const Vec3& from = mesh_->positions[reversed ? b : a];
-      const Vec3& to = mesh_->positions[reversed ? a : b];
-      term_[entry] = ContourEdgeTerm(from - x, to - x, normal_);
-      stamp_[entry] = row_;
+      const uint32_t next = k + 1 == patch.corners ? 0 : k + 1;
+      const Vec3& from = patch.corner[reversed ? next : k];
+      const Vec3& to = patch.corner[reversed ? k : next];
+      term = {ContourEdgeTerm(from - x, to - x, normal_), row_};
     }
-    sum += reversed ? -term_[entry] : term_[entry];
+    sum += reversed ? -term.value : term.value;
   }
   return FormFactorFromContourSum(sum);
 }

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/formfactor/pair_patches.h"
 #include "solver/mesh/patch_mesh.h"
 
 namespace radflux {
@@ -21,10 +22,9 @@ class PatchEdges {
  public:
   explicit PatchEdges(const PatchMesh& mesh);
   size_t size() const { return count_; }
-  // The edge of patch p's edge k, and whether the patch runs it against the edge's own
-  // direction (from its higher vertex index to its lower).
-  uint32_t Id(uint32_t p, int k) const { return id_[4 * p + static_cast<uint32_t>(k)] >> 1; }
-  bool Reversed(uint32_t p, int k) const { return id_[4 * p + static_cast<uint32_t>(k)] & 1; }
+  // The edge of patch p's edge k (in [0, size())) << 1, | 1 when the patch runs it against
+  // the edge's own direction (from its higher vertex index to its lower).
+  uint32_t Slot(uint32_t p, uint32_t k) const { return id_[4 * p + k]; }
 
  private:
   std::vector<uint32_t> id_;  // 4 per patch: edge id << 1 | reversed
@@ -34,20 +34,24 @@ class PatchEdges {
 // One thread's cache for one row at a time.
 class ContourCache {
  public:
-  // Starts a row: its sample points (all on one plane) and the plane's unit normal.
-  void Begin(const PatchMesh& mesh, const PatchEdges& edges, std::span<const Vec3> points,
+  // Starts a row: its sample points (all on one plane) and the plane's unit normal, with
+  // the patches and edges of one mesh.
+  void Begin(const PairPatches& patches, const PatchEdges& edges, std::span<const Vec3> points,
              const Vec3& normal);
   // UnclippedPointToPolygonFormFactor(points[m], normal, patch j's vertices), bit for bit.
   double FormFactor(uint32_t j, size_t m);
 
  private:
-  const PatchMesh* mesh_ = nullptr;
+  struct Term {
+    double value = 0;  // the term in the edge's own direction
+    uint64_t row = 0;  // the row whose term `value` is
+  };
+  const PairPatches* patches_ = nullptr;
   const PatchEdges* edges_ = nullptr;
   std::span<const Vec3> points_;
   Vec3 normal_;
-  std::vector<double> term_;     // [edge * points + m]: the term in the edge's direction
-  std::vector<uint64_t> stamp_;  // [edge * points + m]: the row whose term term_ holds
-  uint64_t row_ = 0;             // rows begun so far (stamps are never reused)
+  std::vector<Term> term_;  // [edge * points + m]
+  uint64_t row_ = 0;        // rows begun so far (a term's row is never reused)
 };
 
 }  // namespace radflux

@@ -8,6 +8,7 @@
 // emitters are dropped (a small bright emitter can fall between cell rays).
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "solver/core/sampling.h"
@@ -55,7 +56,9 @@ class HemicubeBuilder final : public RowBuilder {
         cells_(MakeHemicubeCells(options.hemicube_res)),
         emitters_(EmitterPatches(context)),
         samples_(options.samples),
-        seed_(options.seed) {}
+        seed_(options.seed) {
+    if (!emitters_.empty()) pairs_.emplace(context);
+  }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
     const PatchMesh& mesh = *context_.mesh;
@@ -81,7 +84,7 @@ class HemicubeBuilder final : public RowBuilder {
     // A hemicube is a point method: emitter columns from the centroid too (exact point form
     // factor, s shadow rays to stratified points on the emitter), so rows stay consistent.
     const std::vector<Vec3> centroid(static_cast<size_t>(samples_), patch.centroid);
-    return cells_.size() + AddAnalyticColumns(context_, i, emitters_, centroid, seed_, row);
+    return cells_.size() + pairs_->AddColumns(i, emitters_, centroid, seed_, row);
   }
 
  private:
@@ -89,6 +92,7 @@ class HemicubeBuilder final : public RowBuilder {
   const RowContext& context_;
   std::vector<Cell> cells_;
   std::vector<uint32_t> emitters_;
+  std::optional<AnalyticPairs> pairs_;  // the emitter columns, when there are emitters
   int samples_;
   uint64_t seed_;
 };

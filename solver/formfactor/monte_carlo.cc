@@ -2,6 +2,7 @@
 // that hits the front of patch j adds 1/k to F_ij. Emitter columns are computed
 // analytically instead (their direct light would be the noisiest term) and MC hits
 // on emitters are dropped, so the two never double count.
+#include <optional>
 #include <vector>
 
 #include "solver/core/sampling.h"
@@ -30,6 +31,7 @@ class MonteCarloBuilder final : public RowBuilder {
           MultiJitteredSample(PermuteIndex(r, k, kDirectionPattern), k, kDirectionPattern));
     }
     emitters_ = EmitterPatches(context);
+    if (!emitters_.empty()) pairs_.emplace(context);
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
@@ -57,13 +59,13 @@ class MonteCarloBuilder final : public RowBuilder {
       if (j != kNoPatch && !context_.emitter[j]) row.Add(j, weight);
     }
     if (emitters_.empty()) return stream.size();
-    return stream.size() +
-           AddAnalyticColumns(context_, i, emitters_, options_.samples, options_.seed, row);
+    return stream.size() + pairs_->AddColumns(i, emitters_, options_.samples, options_.seed, row);
   }
 
  private:
   const RowContext& context_;
   FormFactorOptions options_;
+  std::optional<AnalyticPairs> pairs_;  // the emitter columns, when there are emitters
   std::vector<Point2> positions_, directions_;
   std::vector<uint32_t> emitters_;
 };

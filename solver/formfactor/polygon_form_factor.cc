@@ -1,28 +1,40 @@
 #include "solver/formfactor/polygon_form_factor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 namespace radflux {
 
-size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
+size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, std::span<const double> distance,
                               std::span<Vec3> out) {
   size_t count = 0;
   for (size_t k = 0; k < polygon.size(); ++k) {
+    const size_t next = (k + 1) % polygon.size();
     const Vec3& a = polygon[k];
-    const Vec3& b = polygon[(k + 1) % polygon.size()];
-    const double da = Dot(a - origin, n), db = Dot(b - origin, n);
+    const Vec3& b = polygon[next];
+    const double da = distance[k], db = distance[next];
     if (da >= 0) out[count++] = a;
     if ((da >= 0) != (db >= 0)) out[count++] = a + (b - a) * (da / (da - db));
   }
   return count;
 }
 
+size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
+                              std::span<Vec3> out) {
+  std::array<double, kMaxClipVertices> distance;
+  for (size_t k = 0; k < polygon.size(); ++k) distance[k] = Dot(polygon[k] - origin, n);
+  return ClipPolygonToHalfSpace(polygon, std::span<const double>(distance.data(), polygon.size()),
+                                out);
+}
+
 std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin,
                                          const Vec3& n) {
+  std::vector<double> distance;
+  for (const Vec3& p : polygon) distance.push_back(Dot(p - origin, n));
   std::vector<Vec3> out(polygon.size() + 1);
-  out.resize(ClipPolygonToHalfSpace(polygon, origin, n, out));
+  out.resize(ClipPolygonToHalfSpace(polygon, distance, out));
   return out;
 }
 

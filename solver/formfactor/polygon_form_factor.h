@@ -20,9 +20,15 @@ double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Ve
 // The part of `polygon` with Dot(p - origin, n) >= 0 (Sutherland-Hodgman against one plane).
 std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin,
                                          const Vec3& n);
-// The same into `out` (room for polygon.size() + 1 vertices); returns the vertex count.
-// Allocates nothing: the form-factor builders clip once per patch pair.
+// The same into `out` (room for polygon.size() + 1 vertices) for a polygon of at most
+// kMaxClipVertices vertices; returns the vertex count. Allocates nothing.
+inline constexpr size_t kMaxClipVertices = 8;
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
+                              std::span<Vec3> out);
+// The same for any polygon, given each vertex's distance[k] = Dot(polygon[k] - origin, n);
+// returns the vertex count. Allocates nothing: the form-factor builders clip once per patch
+// pair, with the distances they already have.
+size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, std::span<const double> distance,
                               std::span<Vec3> out);
 
 // Lambert's contour sum for a polygon already in front of x: no clipping.

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/analytic_pair.h"
@@ -149,7 +150,9 @@ class RowSource {
   RowSource(const RowContext& context, const FormFactorOptions& ff, const ElementTree& tree,
             const std::vector<uint32_t>& leaves)
       : context_(context), ff_(ff), tree_(tree), leaves_(leaves) {
-    if (!PerEntry()) {
+    if (PerEntry()) {
+      pairs_.emplace(context);
+    } else {
       builder_ = MakeRowBuilder(context, ff);
       const int threads = ff.threads > 0 ? ff.threads : DefaultThreadCount();
       scratch_.assign(static_cast<size_t>(threads), RowAccumulator(context.mesh->size()));
@@ -180,9 +183,9 @@ class RowSource {
   // F_ij by analytic pairs from row i's Points (PerEntry only), appended when above the cut-off.
   void Entry(uint32_t i, const std::vector<Vec3>& points, uint32_t j, Row& row, uint64_t& entries,
              uint64_t& rays) const {
-    if (!PatchesCanExchange(*context_.mesh, i, j)) return;
+    if (!pairs_->CanExchange(i, j)) return;
     ++entries;
-    const double f = AnalyticPairFormFactor(context_, i, points, j, ff_.seed, rays);
+    const double f = pairs_->FormFactor(i, points, j, ff_.seed, rays);
     if (f > 0 && f >= ff_.cutoff) row.push_back({j, static_cast<float>(f)});
   }
 
@@ -191,7 +194,8 @@ class RowSource {
   const FormFactorOptions& ff_;
   const ElementTree& tree_;
   const std::vector<uint32_t>& leaves_;
-  std::unique_ptr<RowBuilder> builder_;
+  std::optional<AnalyticPairs> pairs_;           // PerEntry only
+  std::unique_ptr<RowBuilder> builder_;          // otherwise
   mutable std::vector<RowAccumulator> scratch_;  // one per thread
 };
 

@@ -184,11 +184,12 @@ TEST(FormFactorInvariants, ContourCacheGivesTheDirectContourSumBitForBit) {
   RowFixture fixture(ClosedCube(), MeshOptions{6 * 16, 0});
   const PatchMesh& mesh = fixture.mesh;
   const PatchEdges edges(mesh);
+  const PairPatches patches(mesh);
   EXPECT_LT(edges.size(), 4 * mesh.size());  // shared edges are counted once
   ContourCache cache;
   for (uint32_t i = 0; i < mesh.size(); i += 7) {
     const std::vector<Vec3> points = PatchSamplePoints(mesh, i, 3, 5);
-    cache.Begin(mesh, edges, points, mesh.patches[i].normal);
+    cache.Begin(patches, edges, points, mesh.patches[i].normal);
     for (uint32_t j = 0; j < mesh.size(); ++j) {
       std::vector<Vec3> polygon;
       for (int k = 0; k < mesh.patches[j].VertexCount(); ++k) polygon.push_back(mesh.Vertex(j, k));

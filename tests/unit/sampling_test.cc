@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <vector>
 
 namespace radflux {
 namespace {
@@ -25,7 +26,8 @@ TEST(Sampling, CosineHemisphereHasTheRightMean) {
   // E[cos theta] under the cosine pdf is 2/3.
   double mean = 0;
   const uint32_t n = 4096;
-  for (uint32_t i = 0; i < n; ++i) mean += SampleCosineHemisphere(MultiJitteredSample(i, n, 5)).z / n;
+  for (uint32_t i = 0; i < n; ++i)
+    mean += SampleCosineHemisphere(MultiJitteredSample(i, n, 5)).z / n;
   EXPECT_NEAR(mean, 2.0 / 3.0, 1e-3);
 }
 
@@ -54,6 +56,22 @@ TEST(Sampling, MultiJitteredIsStratifiedInEachDimension) {
     }
     EXPECT_EQ(xs.size(), n);  // one sample per 1/n column
     EXPECT_EQ(ys.size(), n);
+  }
+}
+
+// The set-at-once form is the sample-at-a-time one, bit for bit, at every kind of size:
+// one sample, powers of two, squares and neither.
+TEST(Sampling, MultiJitteredSamplesAreTheSingleSamples) {
+  for (uint32_t n : {1u, 2u, 3u, 4u, 5u, 9u, 12u, 16u, 64u, 100u, 257u}) {
+    for (uint32_t p : {0u, 1u, 7u, 0x9e3779b9u, 0xffffffffu}) {
+      std::vector<Point2> all(n);
+      MultiJitteredSamples(p, all);
+      for (uint32_t i = 0; i < n; ++i) {
+        const Point2 one = MultiJitteredSample(i, n, p);
+        ASSERT_EQ(all[i].x, one.x) << n << " " << p << " " << i;
+        ASSERT_EQ(all[i].y, one.y) << n << " " << p << " " << i;
+      }
+    }
   }
 }
 
