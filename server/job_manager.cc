@@ -388,6 +388,7 @@ void JobManager::RunOne(const std::string& job_id) {
   context.cancelled = &running->cancelled;
   context.checkpoint_seconds = options_.checkpoint_seconds;
   context.solve_delay_ms = options_.solve_delay_ms;
+  context.snapshot_interval_ms = options_.snapshot_interval_ms;
   context.farm = options_.farm;
   context.block_delay_ms = options_.block_delay_ms;
   context.max_memory = MaxJobMemory(options_);

@@ -36,6 +36,8 @@ struct ManagerOptions {
                                        // per interval (0 = after every block / iteration)
   int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
                                        // window in which a test can kill the server mid-solve)
+  int snapshot_interval_ms = 100;      // at most one snapshot per job per this interval (the
+                                       // newest; the last iteration's always), 0 = every one
   RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
   int block_delay_ms = 0;              // testing: sleep after each row block built on the server
 };

@@ -164,7 +164,8 @@ std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMetho
 }
 
 // The solve phase: resumes from the job's checkpoint when there is a usable one, publishes
-// progress and snapshots every iteration, checkpoints every context.checkpoint_seconds.
+// progress and snapshots every iteration (throttled), checkpoints every
+// context.checkpoint_seconds.
 absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
                                         const JobRows& rows, SolverOptions so, const RunContext& c,
                                         ProgressThrottle& throttle) {
@@ -196,7 +197,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
       std::this_thread::sleep_for(std::chrono::milliseconds(c.solve_delay_ms));
     }
     if (!sp.snapshot) return;
-    c.hub->PublishSnapshot(
+    throttle.PublishSnapshot(
         {offset + sp.iteration, std::make_shared<const std::vector<Rgb>>(*sp.snapshot)});
     if (!ResumableSolver(so.method) || sp.state == nullptr) return;
     last.iteration = offset + sp.iteration;
@@ -242,7 +243,9 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
 
-  ProgressThrottle throttle(*c.hub, kProgressInterval);  // flushed before each phase change
+  // Flushed before each phase change and after the last iteration.
+  ProgressThrottle throttle(*c.hub, kProgressInterval,
+                            std::chrono::milliseconds(c.snapshot_interval_ms));
   c.on_phase(v1::PHASE_ROWS, n);
   // Stores row blocks behind the row builders, into the solve; on an early return
   // (shutdown, error) it stores what is queued so that it is kept for the resume.
@@ -263,7 +266,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   const auto solve_start = Clock::now();
   absl::StatusOr<SolveResult> solved = SolveStored(job, p, *rows, options->solver, c, throttle);
   if (!solved.ok()) return solved.status();
-  throttle.Flush();  // the last iteration's progress goes before the job's final event
+  throttle.Flush();  // the last iteration's progress and B go before the job's final event
   writer.Finish(/*drain=*/false);  // solved: the row blocks are about to be deleted
   // The report of `radflux solve` (MakeJobReport), from the same pieces.
   JobResult result;
