@@ -53,6 +53,9 @@ std::string NewJobId() {
   return id;
 }
 
+// Results up to this size stay in memory after their job succeeds (JobManager::Result).
+constexpr size_t kRecentResultBytes = 64u << 20;
+
 bool Terminal(v1::JobState s) {
   return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED || s == v1::JOB_STATE_CANCELLED;
 }
@@ -163,7 +166,8 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget(scene, *options, MaxJobMemory(options_)).status();
+  return RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, MaxJobMemory(options_))
+      .status();
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
@@ -307,10 +311,16 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
                      job->message().empty() ? "" : " (" + job->message() + ")"));
   }
   const auto read_start = std::chrono::steady_clock::now();
-  absl::StatusOr<std::string> bytes = store_.GetResult(job_id);
-  if (!bytes.ok()) return bytes.status();
+  std::shared_ptr<const std::string> bytes = recent_results_.Get(job_id);
+  const bool in_memory = bytes != nullptr;
+  if (!in_memory) {
+    absl::StatusOr<std::string> read = store_.GetResult(job_id);
+    if (!read.ok()) return read.status();
+    bytes = std::make_shared<const std::string>(*std::move(read));
+  }
   absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes);
-  spdlog::debug("job {}: ms result read and decoded {:.1f}", job_id,
+  spdlog::debug("job {}: ms result {} and decoded {:.1f}", job_id,
+                in_memory ? "kept in memory" : "read",
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
   return chunks;
@@ -428,6 +438,9 @@ void JobManager::RunOne(const std::string& job_id) {
     absl::Status put = store_.PutResult(job_id, *result, prepared.ok());
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
+    if (put.ok() && result->size() <= kRecentResultBytes) {
+      recent_results_.Put(job_id, std::make_shared<const std::string>(*std::move(result)));
+    }
     spdlog::debug("job {}: ms result stored {:.1f}, work files removed {:.1f}", job_id,
                   MsBetween(put_start, remove_start),
                   MsBetween(remove_start, std::chrono::steady_clock::now()));

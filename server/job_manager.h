@@ -19,6 +19,7 @@
 #include "radflux/v1/radiosity.pb.h"
 #include "server/job_hub.h"
 #include "server/job_store.h"
+#include "server/recent_map.h"
 #include "server/scene_cache.h"
 
 namespace radflux {
@@ -98,6 +99,10 @@ class JobManager {
 
   JobStore& store_;
   SceneCache scenes_{store_};  // shared by the limits check and the jobs' start
+  // The stored bytes of the last results of jobs that succeeded here (up to
+  // kRecentResultBytes each): GetResult right after a job ends skips reading, verifying
+  // and decompressing its file.
+  RecentMap<std::string> recent_results_{2};
   const ManagerOptions options_;
   std::mutex mu_;
   std::condition_variable cv_;

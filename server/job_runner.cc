@@ -231,13 +231,14 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   options->form_factors.threads = c.threads;
-  Scene scene = (*loaded)->scene;  // PrepareJob takes its own copy
-  absl::StatusOr<uint64_t> row_budget = RowMemoryBudget(scene, *options, c.max_memory);
+  absl::StatusOr<uint64_t> row_budget =
+      RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, c.max_memory);
   if (!row_budget.ok()) return row_budget.status();
   options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
-  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(std::move(scene), *options);
+  // PrepareJob takes its own copy of the scene.
+  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob((*loaded)->scene, *options);
   if (!prepared.ok()) return prepared.status();
   const PreparedJob& p = **prepared;
   const int64_t n = static_cast<int64_t>(p.mesh.size());
