@@ -171,9 +171,15 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
+  // A job is made durable before any client hears of it (it may be one whose first submit
+  // is still making it durable).
+  const auto durable = [this](absl::StatusOr<v1::Job> job) -> absl::StatusOr<v1::Job> {
+    if (absl::Status s = store_.SyncCommits(); job.ok() && !s.ok()) return s;
+    return job;
+  };
   if (!request.request_id().empty()) {
     absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
-    if (earlier.ok()) return earlier;
+    if (earlier.ok()) return durable(earlier);
   }
   const auto check_start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckLimits(request); !s.ok()) return s;
@@ -193,8 +199,11 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
   job.set_state(v1::JOB_STATE_QUEUED);
   job.set_created_unix_ms(NowMs());
   job.set_request_id(request.request_id());
-  absl::StatusOr<v1::Job> created = store_.CreateJob(job);
-  if (!created.ok() || created->job_id() != job.job_id()) return created;  // error or retry
+  // Committed without its fsync, queued, and then made durable: the job starts (its first
+  // steps need no durable row) while the fsync runs, and the client hears of it only after.
+  absl::StatusOr<v1::Job> created = store_.CreateJob(job, /*sync=*/false);
+  if (!created.ok() || created->job_id() != job.job_id()) return durable(created);  // or retry
+  const auto sync_start = std::chrono::steady_clock::now();
   {
     std::lock_guard lock(mu_);
     queue_.push_back(job.job_id());
@@ -203,9 +212,14 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     HubLocked(job.job_id())->Publish(event);
   }
   cv_.notify_one();
-  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}", job.job_id(),
-                MsBetween(check_start, create_start),
-                MsBetween(create_start, std::chrono::steady_clock::now()));
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) {
+    spdlog::error("job {}: {}", job.job_id(), std::string(s.message()));
+    return s;
+  }
+  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}, made durable {:.1f}",
+                job.job_id(), MsBetween(check_start, create_start),
+                MsBetween(create_start, sync_start),
+                MsBetween(sync_start, std::chrono::steady_clock::now()));
   spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
   return job;
 }
@@ -231,7 +245,12 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
   return *job;
 }
 
-absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) { return store_.GetJob(job_id); }
+absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) {
+  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  // Synced after the read: whatever it saw is durable before the client hears of it.
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
+  return job;
+}
 
 absl::StatusOr<StoredScene> JobManager::GetScene(const std::string& sha256) {
   return store_.GetScene(sha256);
@@ -250,6 +269,8 @@ absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest&
   }
   absl::StatusOr<std::vector<v1::Job>> jobs = store_.ListJobs(filter);
   if (!jobs.ok()) return jobs.status();
+  // Synced after the read: whatever it saw is durable before the client hears of it.
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
   v1::ListJobsResponse response;
   for (v1::Job& job : *jobs) *response.add_jobs() = std::move(job);
   if (response.jobs_size() == filter.limit) {
