@@ -212,6 +212,7 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     HubLocked(job.job_id())->Publish(event);
   }
   cv_.notify_one();
+  spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
   if (absl::Status s = store_.SyncCommits(); !s.ok()) {
     spdlog::error("job {}: {}", job.job_id(), std::string(s.message()));
     return s;
@@ -220,7 +221,6 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
                 job.job_id(), MsBetween(check_start, create_start),
                 MsBetween(create_start, sync_start),
                 MsBetween(sync_start, std::chrono::steady_clock::now()));
-  spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
   return job;
 }
 
