@@ -14,8 +14,11 @@
 #     radfluxd pinned to CPU 0 (`taskset -c 0`, --threads 1), the 50 watcher processes
 #     pinned to CPU 1; the job's compute seconds with 0 vs 50 watchers, and `radflux solve
 #     --threads 1` on CPU 0 for reference.
-#  In B and C a blocker job runs first so the watchers connect while the measured job is
-#  queued: their start-up does not land on it. radfluxd runs with SPDLOG_LEVEL=debug and
+#  In B and C a blocker job (30,000 patches, seconds long) runs first and is cancelled once
+#  every watcher has connected, so the watchers connect while the measured job is queued:
+#  their start-up does not land on it (with the 4,000-patch blocker used before svc8 the
+#  blocker ended first, and late watchers connected during, or after, the measured job,
+#  getting its history and one snapshot). radfluxd runs with SPDLOG_LEVEL=debug and
 #  logs, per job, the CPU time of the job's own thread and of the whole server process
 #  while the job ran (ns clocks): C's "server CPU during the job" with 0 vs 50 watchers is
 #  what streaming to the watchers cost the server's core, the job's own thread excluded.
@@ -73,9 +76,9 @@ watched_job() {
   local addr_var=ADDR_$4 pid_var=PID_$4
   local addr=${!addr_var} pid=${!pid_var}
   shift 4
-  local c0 c1 job got started connected pids=()
+  local c0 c1 blocker job got started connected pids=()
   c0=$(server_cpu "$pid")
-  "$SERVICE" submit "$SCENE" --patches 4000 --server "$addr" >/dev/null 2>&1
+  blocker=$("$SERVICE" submit "$SCENE" --patches 30000 --server "$addr" 2>/dev/null | tail -n 1)
   job=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --server "$addr" 2>/dev/null | tail -n 1)
   rm -f "$DIR"/w_*.err
   for ((w = 0; w < watchers; ++w)); do
@@ -92,6 +95,7 @@ watched_job() {
     sleep 0.05
   done
   started=$("$SERVICE" list --server "$addr" | grep -c "^$job .*JOB_STATE_QUEUED" || true)
+  "$SERVICE" cancel "$blocker" --server "$addr" >/dev/null
   "$SERVICE" watch "$job" --server "$addr" 2>/dev/null
   for p in "${pids[@]}"; do wait "$p" || { echo "a watcher failed:" >&2; cat "$DIR"/w_*.err | grep radflux: | sort | uniq -c >&2; exit 1; }; done
   c1=$(server_cpu "$pid")
