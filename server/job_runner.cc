@@ -211,6 +211,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
       last_checkpoint = Clock::now();
     }
   };
+  throttle.RestartSnapshotInterval();
   absl::StatusOr<SolveResult> solved =
       Solve(RadiositySystem{rows.store ? nullptr : &rows.matrix, &p.attributes, rows.store.get()},
             so, on_progress);

@@ -44,6 +44,11 @@ void ProgressThrottle::PublishSnapshot(SnapshotData snapshot) {
   }
 }
 
+void ProgressThrottle::RestartSnapshotInterval() {
+  std::lock_guard lock(mu_);
+  snapshot_.last_published = Clock::now();
+}
+
 void ProgressThrottle::Flush() {
   std::lock_guard lock(mu_);
   PublishSnapshotLocked(Clock::now());

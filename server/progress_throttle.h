@@ -33,6 +33,10 @@ class ProgressThrottle {
   // Publishes `snapshot` now if `snapshot_interval` has passed since the last one, else
   // holds it.
   void PublishSnapshot(SnapshotData snapshot);
+  // Starts the snapshot interval now: the next snapshot is due one interval from now (the
+  // job calls it when its solve starts, so that a solve shorter than the interval sends
+  // its final B only, and a longer one a snapshot per interval).
+  void RestartSnapshotInterval();
   // Publishes the held snapshot and event, if any, now.
   void Flush();
 

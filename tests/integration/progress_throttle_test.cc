@@ -38,6 +38,16 @@ TEST(ProgressThrottleTest, SnapshotsWithinTheIntervalAreHeldAndFlushPublishesThe
   EXPECT_EQ(NewestIteration(hub), 5) << "Flush publishes the newest held, the job's last B";
 }
 
+TEST(ProgressThrottleTest, AfterRestartingTheIntervalTheFirstSnapshotIsHeldToo) {
+  JobHub hub("job-throttle");
+  ProgressThrottle throttle(hub, hours(1), hours(1));
+  throttle.RestartSnapshotInterval();
+  for (int i = 1; i <= 3; ++i) throttle.PublishSnapshot(Snapshot(i));
+  EXPECT_EQ(NewestIteration(hub), -1) << "a solve shorter than the interval: nothing yet";
+  throttle.Flush();
+  EXPECT_EQ(NewestIteration(hub), 3) << "then its final B";
+}
+
 TEST(ProgressThrottleTest, ZeroSnapshotIntervalPublishesEverySnapshot) {
   JobHub hub("job-throttle");
   ProgressThrottle throttle(hub, hours(1), milliseconds(0));
