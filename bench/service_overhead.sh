@@ -14,8 +14,14 @@
 #     radfluxd pinned to CPU 0 (`taskset -c 0`, --threads 1), the 50 watcher processes
 #     pinned to CPU 1; the job's compute seconds with 0 vs 50 watchers, and `radflux solve
 #     --threads 1` on CPU 0 for reference.
-#  In B and C a blocker job runs first so the watchers connect while the measured job is
-#  queued: their start-up does not land on it.
+#  In B and C a blocker job (30,000 patches, seconds long) runs first and is cancelled once
+#  every watcher has connected, so the watchers connect while the measured job is queued:
+#  their start-up does not land on it (with the 4,000-patch blocker used before svc8 the
+#  blocker ended first, and late watchers connected during, or after, the measured job,
+#  getting its history and one snapshot). radfluxd runs with SPDLOG_LEVEL=debug and
+#  logs, per job, the CPU time of the job's own thread and of the whole server process
+#  while the job ran (ns clocks): C's "server CPU during the job" with 0 vs 50 watchers is
+#  what streaming to the watchers cost the server's core, the job's own thread excluded.
 # Usage: bash bench/service_overhead.sh [BUILD_DIR] [RUNS]   (default build/release, 5;
 # needs radflux and radfluxd; set OMP_WAIT_POLICY=passive on a shared machine)
 set -euo pipefail
@@ -38,8 +44,8 @@ start_server() {
   local name=$1 threads=$2
   shift 2
   mkfifo "$DIR/out_$name"
-  "$@" "$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data_$name" --threads "$threads" \
-    --jobs 1 >"$DIR/out_$name" 2>"$DIR/server_$name.log" &
+  SPDLOG_LEVEL=debug "$@" "$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data_$name" \
+    --threads "$threads" --jobs 1 >"$DIR/out_$name" 2>"$DIR/server_$name.log" &
   local pid=$!
   PIDS+=("$pid")
   local line
@@ -58,14 +64,21 @@ compute() {  # mesh+embree+rows+solve seconds and solve seconds of a report
 print(s['mesh']+s['embree']+s['rows']+s['solve'], s['solve'])" "$1"
 }
 
-# watched_job PART RUN WATCHERS ADDR PID [taskset prefix for the watchers...]: one measured
-# job with that many snapshot watchers; appends a line to $DIR/PART.txt.
+# job_cpu NAME JOB: "job thread ms" and "process ms" of JOB from server NAME's debug log.
+job_cpu() {
+  grep "job $2: cpu ms" "$DIR/server_$1.log" | sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+)/\1 \2/'
+}
+
+# watched_job PART RUN WATCHERS NAME [taskset prefix for the watchers...]: one measured
+# job with that many snapshot watchers on server NAME; appends a line to $DIR/PART.txt.
 watched_job() {
-  local part=$1 i=$2 watchers=$3 addr=$4 pid=$5
-  shift 5
-  local c0 c1 job got started connected pids=()
+  local part=$1 i=$2 watchers=$3 name=$4
+  local addr_var=ADDR_$4 pid_var=PID_$4
+  local addr=${!addr_var} pid=${!pid_var}
+  shift 4
+  local c0 c1 blocker job got started connected pids=()
   c0=$(server_cpu "$pid")
-  "$SERVICE" submit "$SCENE" --patches 4000 --server "$addr" >/dev/null 2>&1
+  blocker=$("$SERVICE" submit "$SCENE" --patches 30000 --server "$addr" 2>/dev/null | tail -n 1)
   job=$("$SERVICE" submit "$SCENE" "${JOB_OPTS[@]}" --server "$addr" 2>/dev/null | tail -n 1)
   rm -f "$DIR"/w_*.err
   for ((w = 0; w < watchers; ++w)); do
@@ -82,6 +95,7 @@ watched_job() {
     sleep 0.05
   done
   started=$("$SERVICE" list --server "$addr" | grep -c "^$job .*JOB_STATE_QUEUED" || true)
+  "$SERVICE" cancel "$blocker" --server "$addr" >/dev/null
   "$SERVICE" watch "$job" --server "$addr" 2>/dev/null
   for p in "${pids[@]}"; do wait "$p" || { echo "a watcher failed:" >&2; cat "$DIR"/w_*.err | grep radflux: | sort | uniq -c >&2; exit 1; }; done
   c1=$(server_cpu "$pid")
@@ -95,6 +109,7 @@ watched_job() {
   echo "$part $i watchers $watchers compute_solve $(compute "$DIR/${part}_${i}_$watchers.json")" \
        "snapshots_per_watcher $got still_queued_when_all_connected $started" \
        "server_cpu_blocker_and_job $(echo "$c1 - $c0" | bc) events_per_watcher $events" \
+       "cpu_ms_job_thread_process $(job_cpu "$name" "$job")" \
     | tee -a "$DIR/$part.txt" >&2
 }
 
@@ -120,14 +135,14 @@ for i in $(seq "$RUNS"); do
        "two_process_wall $(echo "$t3 - $t2" | bc)" \
     | tee -a "$DIR/A.txt" >&2
   # B: 0 vs 50 watchers, unpinned.
-  watched_job B "$i" 0 "$ADDR_main" "$PID_main"
-  watched_job B "$i" 50 "$ADDR_main" "$PID_main"
+  watched_job B "$i" 0 main
+  watched_job B "$i" 50 main
   # C: server on CPU 0 (1 thread), watchers on CPU 1; solve --threads 1 on CPU 0.
   taskset -c 0 "$RADFLUX" solve "$SCENE" "${JOB_OPTS[@]}" --threads 1 -q \
     --report "$DIR/C_solve_$i.json"
   echo "Csolve $i compute_solve $(compute "$DIR/C_solve_$i.json")" | tee -a "$DIR/Csolve.txt" >&2
-  watched_job C "$i" 0 "$ADDR_pinned" "$PID_pinned" taskset -c 1
-  watched_job C "$i" 50 "$ADDR_pinned" "$PID_pinned" taskset -c 1
+  watched_job C "$i" 0 pinned taskset -c 1
+  watched_job C "$i" 50 pinned taskset -c 1
 done
 
 echo "load average (1/5/15 min) at start: $LOAD_START, at end: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -167,6 +182,12 @@ def watchers(part, title, solve_ref=None):
     print(f"| server CPU s, blocker + job | {u0:.3f} | {u50:.3f} | {u50 - u0:+.3f} s |")
     ratio = st.median(float(f[5]) / float(z[5]) for z, f in zip(zero, fifty))
     print(f"| median of paired job-compute ratios | | | {pct(1, ratio)} |")
+    t0, t50 = med(r[16] for r in zero), med(r[16] for r in fifty)
+    print(f"| CPU ms of the job's own thread | {t0:.1f} | {t50:.1f} | {pct(t0, t50)} |")
+    p0, p50 = med(r[17] for r in zero), med(r[17] for r in fifty)
+    print(f"| server CPU ms during the job (all threads) | {p0:.1f} | {p50:.1f} | {p50 - p0:+.1f} ms |")
+    extra = st.median((float(f[17]) - float(z[17])) / float(z[17]) for z, f in zip(zero, fifty))
+    print(f"| watchers' extra server CPU / server CPU of the job, paired median | | | {100 * extra:+.1f}% |")
 watchers("B", "B: unpinned, watchers on the server's cores")
 cs = med(l.split()[3] for l in open(f"{d}/Csolve.txt"))
 watchers("C", "C: server on CPU 0 (1 thread), watchers on CPU 1", cs)

@@ -36,7 +36,14 @@ bool WriteAll(int fd, std::string_view data) {
   return true;
 }
 
-// fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
+std::string ParentDir(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
+
+// The blob file's bytes: header (magic, raw size, SHA-256 of the raw bytes), then `data`
+// compressed.
+}  // namespace
+
 bool SyncPath(const std::string& path) {
   const int fd = ::open(path.empty() ? "." : path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return false;
@@ -45,12 +52,8 @@ bool SyncPath(const std::string& path) {
   return ok;
 }
 
-std::string ParentDir(const std::string& path) {
-  return std::filesystem::path(path).parent_path().string();
-}
+namespace {
 
-// The blob file's bytes: header (magic, raw size, SHA-256 of the raw bytes), then `data`
-// compressed.
 absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
   std::string compressed(ZSTD_compressBound(data.size()), '\0');
   const size_t size =

@@ -12,6 +12,9 @@
 
 namespace radflux {
 
+// fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
+bool SyncPath(const std::string& path);
+
 // Compresses `data` and atomically replaces `path` with it.
 absl::Status WriteBlobFile(const std::string& path, std::string_view data);
 

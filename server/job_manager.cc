@@ -2,6 +2,7 @@
 
 #include <openssl/rand.h>
 #include <spdlog/spdlog.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -32,6 +33,14 @@ double MsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_cl
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+// CPU milliseconds of `clock` (CLOCK_THREAD_CPUTIME_ID: the calling thread;
+// CLOCK_PROCESS_CPUTIME_ID: every thread of the server, ended ones included), ns resolution.
+double CpuMs(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
 std::string NewJobId() {
   unsigned char bytes[8];
   RAND_bytes(bytes, sizeof(bytes));
@@ -43,6 +52,9 @@ std::string NewJobId() {
   }
   return id;
 }
+
+// Results up to this size stay in memory after their job succeeds (JobManager::Result).
+constexpr size_t kRecentResultBytes = 64u << 20;
 
 bool Terminal(v1::JobState s) {
   return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED || s == v1::JOB_STATE_CANCELLED;
@@ -154,13 +166,20 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget(scene, *options, MaxJobMemory(options_)).status();
+  return RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, MaxJobMemory(options_))
+      .status();
 }
 
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
+  // A job is made durable before any client hears of it (it may be one whose first submit
+  // is still making it durable).
+  const auto durable = [this](absl::StatusOr<v1::Job> job) -> absl::StatusOr<v1::Job> {
+    if (absl::Status s = store_.SyncCommits(); job.ok() && !s.ok()) return s;
+    return job;
+  };
   if (!request.request_id().empty()) {
     absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
-    if (earlier.ok()) return earlier;
+    if (earlier.ok()) return durable(earlier);
   }
   const auto check_start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckLimits(request); !s.ok()) return s;
@@ -180,8 +199,11 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
   job.set_state(v1::JOB_STATE_QUEUED);
   job.set_created_unix_ms(NowMs());
   job.set_request_id(request.request_id());
-  absl::StatusOr<v1::Job> created = store_.CreateJob(job);
-  if (!created.ok() || created->job_id() != job.job_id()) return created;  // error or retry
+  // Committed without its fsync, queued, and then made durable: the job starts (its first
+  // steps need no durable row) while the fsync runs, and the client hears of it only after.
+  absl::StatusOr<v1::Job> created = store_.CreateJob(job, /*sync=*/false);
+  if (!created.ok() || created->job_id() != job.job_id()) return durable(created);  // or retry
+  const auto sync_start = std::chrono::steady_clock::now();
   {
     std::lock_guard lock(mu_);
     queue_.push_back(job.job_id());
@@ -190,10 +212,15 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     HubLocked(job.job_id())->Publish(event);
   }
   cv_.notify_one();
-  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}", job.job_id(),
-                MsBetween(check_start, create_start),
-                MsBetween(create_start, std::chrono::steady_clock::now()));
   spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) {
+    spdlog::error("job {}: {}", job.job_id(), std::string(s.message()));
+    return s;
+  }
+  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}, made durable {:.1f}",
+                job.job_id(), MsBetween(check_start, create_start),
+                MsBetween(create_start, sync_start),
+                MsBetween(sync_start, std::chrono::steady_clock::now()));
   return job;
 }
 
@@ -218,7 +245,12 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
   return *job;
 }
 
-absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) { return store_.GetJob(job_id); }
+absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) {
+  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  // Synced after the read: whatever it saw is durable before the client hears of it.
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
+  return job;
+}
 
 absl::StatusOr<StoredScene> JobManager::GetScene(const std::string& sha256) {
   return store_.GetScene(sha256);
@@ -237,6 +269,8 @@ absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest&
   }
   absl::StatusOr<std::vector<v1::Job>> jobs = store_.ListJobs(filter);
   if (!jobs.ok()) return jobs.status();
+  // Synced after the read: whatever it saw is durable before the client hears of it.
+  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
   v1::ListJobsResponse response;
   for (v1::Job& job : *jobs) *response.add_jobs() = std::move(job);
   if (response.jobs_size() == filter.limit) {
@@ -298,10 +332,16 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
                      job->message().empty() ? "" : " (" + job->message() + ")"));
   }
   const auto read_start = std::chrono::steady_clock::now();
-  absl::StatusOr<std::string> bytes = store_.GetResult(job_id);
-  if (!bytes.ok()) return bytes.status();
+  std::shared_ptr<const std::string> bytes = recent_results_.Get(job_id);
+  const bool in_memory = bytes != nullptr;
+  if (!in_memory) {
+    absl::StatusOr<std::string> read = store_.GetResult(job_id);
+    if (!read.ok()) return read.status();
+    bytes = std::make_shared<const std::string>(*std::move(read));
+  }
   absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes);
-  spdlog::debug("job {}: ms result read and decoded {:.1f}", job_id,
+  spdlog::debug("job {}: ms result {} and decoded {:.1f}", job_id,
+                in_memory ? "kept in memory" : "read",
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
   return chunks;
@@ -379,6 +419,7 @@ void JobManager::RunOne(const std::string& job_id) {
   context.cancelled = &running->cancelled;
   context.checkpoint_seconds = options_.checkpoint_seconds;
   context.solve_delay_ms = options_.solve_delay_ms;
+  context.snapshot_interval_ms = options_.snapshot_interval_ms;
   context.farm = options_.farm;
   context.block_delay_ms = options_.block_delay_ms;
   context.max_memory = MaxJobMemory(options_);
@@ -392,7 +433,16 @@ void JobManager::RunOne(const std::string& job_id) {
   // result at the end takes one fsync instead of three (JobStore::PrepareResult).
   std::future<absl::Status> prepare =
       std::async(std::launch::async, [&] { return store_.PrepareResult(job_id); });
+  const double thread_cpu = CpuMs(CLOCK_THREAD_CPUTIME_ID);
+  const double process_cpu = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
   absl::StatusOr<std::string> result = RunStoredJob(job, context);
+  // What the job cost the server's CPU while it ran: its own thread (with --threads 1 all
+  // of its rows and solve), and every thread of the process (OpenMP and helper threads,
+  // gRPC, watchers' writes, other calls); bench/service_overhead.sh compares them with and
+  // without watchers.
+  spdlog::debug("job {}: cpu ms job thread {:.2f}, process {:.2f}", job_id,
+                CpuMs(CLOCK_THREAD_CPUTIME_ID) - thread_cpu,
+                CpuMs(CLOCK_PROCESS_CPUTIME_ID) - process_cpu);
   const absl::Status prepared = prepare.get();
   if (!prepared.ok()) {
     spdlog::warn("job {}: {} (the result is stored atomically instead)", job_id,
@@ -409,6 +459,9 @@ void JobManager::RunOne(const std::string& job_id) {
     absl::Status put = store_.PutResult(job_id, *result, prepared.ok());
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
+    if (put.ok() && result->size() <= kRecentResultBytes) {
+      recent_results_.Put(job_id, std::make_shared<const std::string>(*std::move(result)));
+    }
     spdlog::debug("job {}: ms result stored {:.1f}, work files removed {:.1f}", job_id,
                   MsBetween(put_start, remove_start),
                   MsBetween(remove_start, std::chrono::steady_clock::now()));

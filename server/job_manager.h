@@ -19,6 +19,7 @@
 #include "radflux/v1/radiosity.pb.h"
 #include "server/job_hub.h"
 #include "server/job_store.h"
+#include "server/recent_map.h"
 #include "server/scene_cache.h"
 
 namespace radflux {
@@ -36,6 +37,8 @@ struct ManagerOptions {
                                        // per interval (0 = after every block / iteration)
   int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
                                        // window in which a test can kill the server mid-solve)
+  int snapshot_interval_ms = 100;      // at most one snapshot per job per this interval (the
+                                       // newest; the last iteration's always), 0 = every one
   RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
   int block_delay_ms = 0;              // testing: sleep after each row block built on the server
 };
@@ -96,6 +99,10 @@ class JobManager {
 
   JobStore& store_;
   SceneCache scenes_{store_};  // shared by the limits check and the jobs' start
+  // The stored bytes of the last results of jobs that succeeded here (up to
+  // kRecentResultBytes each): GetResult right after a job ends skips reading, verifying
+  // and decompressing its file.
+  RecentMap<std::string> recent_results_{2};
   const ManagerOptions options_;
   std::mutex mu_;
   std::condition_variable cv_;

@@ -29,8 +29,9 @@ double SecondsSince(Clock::time_point start) {
 
 bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
 
-// Watchers get at most one progress event per this interval (the newest).
-constexpr std::chrono::milliseconds kProgressInterval{50};
+// Watchers get at most one progress event per this interval (the newest): ten a second
+// for a progress bar; each costs the server one write per watcher.
+constexpr std::chrono::milliseconds kProgressInterval{100};
 
 // Publishes a progress event of the running job (throttled).
 void PublishProgress(ProgressThrottle& throttle, v1::Phase phase, const v1::Progress& progress) {
@@ -164,7 +165,8 @@ std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMetho
 }
 
 // The solve phase: resumes from the job's checkpoint when there is a usable one, publishes
-// progress and snapshots every iteration, checkpoints every context.checkpoint_seconds.
+// progress and snapshots every iteration (throttled), checkpoints every
+// context.checkpoint_seconds.
 absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
                                         const JobRows& rows, SolverOptions so, const RunContext& c,
                                         ProgressThrottle& throttle) {
@@ -196,7 +198,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
       std::this_thread::sleep_for(std::chrono::milliseconds(c.solve_delay_ms));
     }
     if (!sp.snapshot) return;
-    c.hub->PublishSnapshot(
+    throttle.PublishSnapshot(
         {offset + sp.iteration, std::make_shared<const std::vector<Rgb>>(*sp.snapshot)});
     if (!ResumableSolver(so.method) || sp.state == nullptr) return;
     last.iteration = offset + sp.iteration;
@@ -209,6 +211,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
       last_checkpoint = Clock::now();
     }
   };
+  throttle.RestartSnapshotInterval();
   absl::StatusOr<SolveResult> solved =
       Solve(RadiositySystem{rows.store ? nullptr : &rows.matrix, &p.attributes, rows.store.get()},
             so, on_progress);
@@ -230,19 +233,22 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
   options->form_factors.threads = c.threads;
-  Scene scene = (*loaded)->scene;  // PrepareJob takes its own copy
-  absl::StatusOr<uint64_t> row_budget = RowMemoryBudget(scene, *options, c.max_memory);
+  absl::StatusOr<uint64_t> row_budget =
+      RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, c.max_memory);
   if (!row_budget.ok()) return row_budget.status();
   options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
-  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(std::move(scene), *options);
+  // PrepareJob takes its own copy of the scene.
+  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob((*loaded)->scene, *options);
   if (!prepared.ok()) return prepared.status();
   const PreparedJob& p = **prepared;
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
 
-  ProgressThrottle throttle(*c.hub, kProgressInterval);  // flushed before each phase change
+  // Flushed before each phase change and after the last iteration.
+  ProgressThrottle throttle(*c.hub, kProgressInterval,
+                            std::chrono::milliseconds(c.snapshot_interval_ms));
   c.on_phase(v1::PHASE_ROWS, n);
   // Stores row blocks behind the row builders, into the solve; on an early return
   // (shutdown, error) it stores what is queued so that it is kept for the resume.
@@ -263,7 +269,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   const auto solve_start = Clock::now();
   absl::StatusOr<SolveResult> solved = SolveStored(job, p, *rows, options->solver, c, throttle);
   if (!solved.ok()) return solved.status();
-  throttle.Flush();  // the last iteration's progress goes before the job's final event
+  throttle.Flush();  // the last iteration's progress and B go before the job's final event
   writer.Finish(/*drain=*/false);  // solved: the row blocks are about to be deleted
   // The report of `radflux solve` (MakeJobReport), from the same pieces.
   JobResult result;

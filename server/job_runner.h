@@ -32,6 +32,7 @@ struct RunContext {
   int threads = 0;                               // OpenMP threads for this job (0 = all cores)
   double checkpoint_seconds = 1.0;  // at most one row-block and one solver checkpoint per interval
   int solve_delay_ms = 0;           // testing: sleep after each solver iteration
+  int snapshot_interval_ms = 100;   // at most one snapshot per this interval reaches the hub
   RowFarm* farm = nullptr;  // shares the row blocks with worker nodes (null: this job's own)
   int block_delay_ms = 0;   // testing: sleep after each row block built here
   // Bytes per job (EstimateJobBytes); a job whose rows do not fit spills them to a file in

@@ -150,7 +150,7 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
   return scene;
 }
 
-absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job) {
+absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job, bool sync) {
   std::lock_guard lock(mu_);
   if (!job.request_id().empty()) {
     Statement find(db_, "SELECT job FROM jobs WHERE request_id = ?");
@@ -161,21 +161,44 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job) {
       return existing;
     }
   }
-  Statement st(db_,
-               "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
-               "VALUES(?, ?, ?, ?, ?)");
-  st.Bind(1, job.job_id());
-  if (job.request_id().empty())
-    st.BindNull(2);
-  else
-    st.Bind(2, job.request_id());
-  st.Bind(3, job.scene_sha256());
-  st.BindInt(4, job.state());
-  st.BindBlob(5, job.SerializeAsString());
-  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "create job");
+  if (!sync) (void)Exec("PRAGMA synchronous=NORMAL");
+  absl::Status inserted;
+  {
+    Statement st(db_,
+                 "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
+                 "VALUES(?, ?, ?, ?, ?)");
+    st.Bind(1, job.job_id());
+    if (job.request_id().empty())
+      st.BindNull(2);
+    else
+      st.Bind(2, job.request_id());
+    st.Bind(3, job.scene_sha256());
+    st.BindInt(4, job.state());
+    st.BindBlob(5, job.SerializeAsString());
+    if (!st.ok() || st.Step() != SQLITE_DONE) inserted = SqlError(db_, "create job");
+  }
+  if (!sync) (void)Exec("PRAGMA synchronous=FULL");
+  if (!inserted.ok()) return inserted;
+  if (!sync) ++unsynced_creates_;
   std::error_code ec;
   fs::create_directories(JobDir(job.job_id()), ec);
   return job;
+}
+
+absl::Status JobStore::SyncCommits() {
+  const uint64_t target = unsynced_creates_.load();
+  if (synced_creates_.load() >= target) return absl::OkStatus();
+  std::lock_guard lock(sync_mu_);
+  if (synced_creates_.load() >= target) return absl::OkStatus();  // a sync just covered it
+  // The log lives as long as the connection; its name is made durable once per process (a
+  // fresh log's first synchronous=FULL commit would do the same).
+  const std::string log = (fs::path(data_dir_) / "radflux.db-wal").string();
+  if (!SyncPath(log) || (!log_dir_synced_ && !SyncPath(data_dir_))) {
+    return absl::InternalError(absl::StrCat("job store: cannot fsync ", log));
+  }
+  log_dir_synced_ = true;
+  synced_creates_.store(target);
+  return absl::OkStatus();
 }
 
 absl::Status JobStore::UpdateJob(const v1::Job& job) {

@@ -2,9 +2,11 @@
 // are rows of an SQLite database (radflux.db); scene texts, form-factor row blocks,
 // solver checkpoints and results are checksummed blob files (see blob_file.h) under
 // scenes/ and jobs/<id>/. Every write is durable (fsynced) when the call returns, except
-// UpdateJob of a RUNNING job, which survives kill -9 but not an OS crash. Thread-safe.
+// UpdateJob of a RUNNING job and CreateJob(sync = false), which survive kill -9 but not an
+// OS crash (the latter until SyncCommits). Thread-safe.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -54,8 +56,15 @@ class JobStore {
   absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
 
   // Inserts a new job. When job.request_id() is set and a job with that request id
-  // exists, returns the existing job instead (and inserts nothing).
-  absl::StatusOr<v1::Job> CreateJob(const v1::Job& job);
+  // exists, returns the existing job instead (and inserts nothing). With `sync` false the
+  // insert is committed without its fsync (it survives kill -9), to be made durable by
+  // SyncCommits, so that the caller can start the job meanwhile.
+  absl::StatusOr<v1::Job> CreateJob(const v1::Job& job, bool sync = true);
+  // Makes every CreateJob(sync = false) that returned before this call durable: one
+  // fdatasync of the database's write-ahead log, which is where SQLite's synchronous=FULL
+  // commit puts its own fsync, done here without the store's lock so that other calls go
+  // on meanwhile. Immediate when there is nothing to sync.
+  absl::Status SyncCommits();
   // Replaces the stored job with the same id.
   absl::Status UpdateJob(const v1::Job& job);
   absl::StatusOr<v1::Job> GetJob(const std::string& job_id);
@@ -109,6 +118,10 @@ class JobStore {
   std::string data_dir_;
   std::mutex mu_;  // guards db_
   sqlite3* db_ = nullptr;
+  std::atomic<uint64_t> unsynced_creates_{0};  // CreateJob(sync = false) calls committed
+  std::atomic<uint64_t> synced_creates_{0};    // how many of those are known durable
+  std::mutex sync_mu_;                         // one SyncCommits at a time (not mu_)
+  bool log_dir_synced_ = false;                // the log's directory entry, once per process
 };
 
 }  // namespace radflux

@@ -196,6 +196,11 @@ int main(int argc, char** argv) {
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")
       ->check(CLI::Range(0, 60000));
+  app.add_option("--snapshot-interval-ms", flags.manager.snapshot_interval_ms,
+                 "watchers get at most one snapshot of a job per this many milliseconds of its "
+                 "solve: the newest, and always the last iteration's before the job ends (0 = "
+                 "every snapshot a watcher's snapshot_every asks for)")
+      ->check(CLI::Range(0, 3600000));
   app.add_option("--worker-token", flags.worker_token,
                  "server: require this bearer token of workers (without it, workers are refused "
                  "when --token is set); worker: send it");

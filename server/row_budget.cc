@@ -4,11 +4,11 @@
 
 namespace radflux {
 
-absl::StatusOr<uint64_t> RowMemoryBudget(const Scene& scene, const JobOptions& options,
+absl::StatusOr<uint64_t> RowMemoryBudget(uint64_t patches, const JobOptions& options,
                                          uint64_t max_memory) {
   JobOptions in_memory = options;
   in_memory.spill = RowSpillOptions{};
-  const uint64_t bytes = EstimateJobBytes(scene, in_memory);
+  const uint64_t bytes = EstimateJobBytes(patches, in_memory);
   if (bytes <= max_memory) return 0;
   const std::string needs = absl::StrCat("job needs an estimated ", bytes,
                                          " bytes with its rows in memory; this server allows ",
@@ -25,7 +25,7 @@ absl::StatusOr<uint64_t> RowMemoryBudget(const Scene& scene, const JobOptions& o
   // The estimate with a 1-byte row budget is everything but the rows kept in memory.
   JobOptions spilled = in_memory;
   spilled.spill.memory_limit = 1;
-  const uint64_t rest = EstimateJobBytes(scene, spilled) - 1;
+  const uint64_t rest = EstimateJobBytes(patches, spilled) - 1;
   if (rest >= max_memory) {
     return absl::ResourceExhaustedError(absl::StrCat(
         "job needs an estimated ", rest + 1, " bytes even with its rows spilled to disk; ",

@@ -15,7 +15,8 @@ namespace radflux {
 // other rows spill. RESOURCE_EXHAUSTED, naming the reason and --max-memory, when it does
 // not fit even spilled or its options cannot spill (cg, southwell, direct, hierarchical,
 // adaptive).
-absl::StatusOr<uint64_t> RowMemoryBudget(const Scene& scene, const JobOptions& options,
+// `patches`: the job's patch count (LoadedScene::PatchCount).
+absl::StatusOr<uint64_t> RowMemoryBudget(uint64_t patches, const JobOptions& options,
                                          uint64_t max_memory);
 
 }  // namespace radflux

@@ -116,9 +116,11 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
 }
 
 uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
-  // Patch count from the subdivision rule itself (cheap: counting, not building).
   absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options.mesh);
-  const uint64_t n = mesh.ok() ? mesh->size() : 0;
+  return EstimateJobBytes(mesh.ok() ? mesh->size() : 0, options);
+}
+
+uint64_t EstimateJobBytes(uint64_t n, const JobOptions& options) {
   const FormFactorOptions& f = options.form_factors;
   // Non-zeros per row: bounded by n, and by the rays or cells that can land in a row.
   uint64_t per_row = n;

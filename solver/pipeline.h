@@ -67,6 +67,9 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
 // Upper estimate of a job's peak memory in bytes for n patches (mesh, Embree, rows, solver),
 // so a server can refuse before any work starts.
 uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options);
+// The same for a scene known to mesh into `patches` patches with options.mesh (counting
+// them subdivides the scene: a caller that asks often can count once).
+uint64_t EstimateJobBytes(uint64_t patches, const JobOptions& options);
 
 struct JobTimings {
   double load = 0, mesh = 0, embree = 0, rows = 0, solve = 0;  // seconds per phase
