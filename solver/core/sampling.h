@@ -26,6 +26,11 @@ inline double Select(bool c, double a, double b) {
   return std::bit_cast<double>((std::bit_cast<uint64_t>(a) & mask) |
                                (std::bit_cast<uint64_t>(b) & ~mask));
 }
+inline float Select(bool c, float a, float b) {
+  const uint32_t mask = uint32_t{0} - static_cast<uint32_t>(c);
+  return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & mask) |
+                              (std::bit_cast<uint32_t>(b) & ~mask));
+}
 
 // 64-bit mix of (seed, index) into a 32-bit pattern id (splitmix64 finaliser).
 inline uint32_t PatternSeed(uint64_t seed, uint64_t index, uint64_t stream = 0) {
@@ -49,12 +54,19 @@ Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p);
 // third fewer hashes at n = 4).
 void MultiJitteredSamples(uint32_t p, std::span<Point2> out);
 
+// One coordinate of the rotation below: u + shift wrapped back into [0, 1) for u, shift in
+// [0, 1) (in float, u + shift may round up to 1 exactly; then the result is 1). T is
+// double or float.
+template <class T>
+inline T WrapShift(T u, T shift) {
+  const T x = u + shift;
+  return Select(x >= 1, x - 1, x);
+}
 // u moved toroidally by `shift` on [0,1)^2 (Cranley-Patterson rotation): applied to a
 // shared stratified set with a random shift per use, it keeps the set stratified and
 // makes each estimate unbiased, at two additions per sample.
 inline Point2 CranleyPattersonShift(Point2 u, Point2 shift) {
-  const double x = u.x + shift.x, y = u.y + shift.y;
-  return {Select(x >= 1, x - 1, x), Select(y >= 1, y - 1, y)};
+  return {WrapShift(u.x, shift.x), WrapShift(u.y, shift.y)};
 }
 // The random shift of pattern p (two hashed floats).
 inline Point2 RandomShift(uint32_t p, uint32_t first = 0) {
@@ -62,36 +74,46 @@ inline Point2 RandomShift(uint32_t p, uint32_t first = 0) {
 }
 
 namespace internal {
-// sin and cos of |a| <= pi/4 by their Taylor series to a^12 (error < 1e-11): the one
-// place a ray's cost is dominated by libm otherwise.
-inline void SinCosQuarter(double a, double& s, double& c) {
-  const double a2 = a * a;
-  s = a * (1 + a2 * (-1.0 / 6 +
-                     a2 * (1.0 / 120 +
-                           a2 * (-1.0 / 5040 + a2 * (1.0 / 362880 + a2 * (-1.0 / 39916800))))));
-  c = 1 + a2 * (-0.5 + a2 * (1.0 / 24 +
-                             a2 * (-1.0 / 720 +
-                                   a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800 + a2 / 479001600)))));
-}
-
-// Branch-free (Select): the two wedges of the square are equally likely.
-inline Point2 SampleUniformDiskConcentric(Point2 u) {
-  const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
-  // |ox| > |oy|: theta = pi/4 * oy/ox; otherwise theta = pi/2 - pi/4 * ox/oy.
-  const bool wide = std::abs(ox) > std::abs(oy);
-  const double r = Select(wide, ox, oy), q = Select(wide, oy, ox);  // |q| <= |r|; q = 0 if r = 0
-  double s, c;
-  SinCosQuarter(std::numbers::pi / 4 * (q / Select(r == 0, 1, r)), s, c);
-  return {Select(wide, r * c, r * s), Select(wide, r * s, r * c)};
+// sin and cos of |a| <= pi/4 by their Taylor series to a^12 (truncation < 1e-11; in
+// float the rounding, a few ulp, dominates): the one place a ray's cost is dominated by
+// libm otherwise. T is double or float.
+template <class T>
+inline void SinCosQuarter(T a, T& s, T& c) {
+  const T a2 = a * a;
+  s = a * (1 + a2 * (T(-1.0 / 6) +
+                     a2 * (T(1.0 / 120) + a2 * (T(-1.0 / 5040) + a2 * (T(1.0 / 362880) +
+                                                                       a2 * T(-1.0 / 39916800))))));
+  c = 1 + a2 * (T(-0.5) +
+                a2 * (T(1.0 / 24) +
+                      a2 * (T(-1.0 / 720) +
+                            a2 * (T(1.0 / 40320) + a2 * (T(-1.0 / 3628800) + a2 / T(479001600))))));
 }
 }  // namespace internal
 
-// Cosine-weighted direction on the hemisphere around +z (concentric mapping). Inline:
-// monte_carlo calls it once per ray.
+// The concentric map of (ux, uy) in [0,1]^2 to the unit disk, lifted to the hemisphere
+// around +z: a cosine-weighted direction (x, y, z), unit up to T's rounding. One
+// implementation for both precisions: in double it is SampleCosineHemisphere; in float
+// (monte_carlo's rays, which Embree takes in float anyway) it is within 1e-6 of the
+// double direction for the same u (tested), and branch-free (Select: the two wedges of
+// the square are equally likely), so a loop of it vectorises.
+template <class T>
+inline void CosineHemisphereDirection(T ux, T uy, T& x, T& y, T& z) {
+  const T ox = 2 * ux - 1, oy = 2 * uy - 1;
+  // |ox| > |oy|: theta = pi/4 * oy/ox; otherwise theta = pi/2 - pi/4 * ox/oy.
+  const bool wide = std::abs(ox) > std::abs(oy);
+  const T r = Select(wide, ox, oy), q = Select(wide, oy, ox);  // |q| <= |r|; q = 0 if r = 0
+  T s, c;
+  internal::SinCosQuarter(T(std::numbers::pi / 4) * (q / Select(r == 0, T(1), r)), s, c);
+  x = Select(wide, r * c, r * s);
+  y = Select(wide, r * s, r * c);
+  z = std::sqrt(std::max(T(0), 1 - x * x - y * y));
+}
+
+// Cosine-weighted direction on the hemisphere around +z (concentric mapping).
 inline Vec3 SampleCosineHemisphere(Point2 u) {
-  const Point2 d = internal::SampleUniformDiskConcentric(u);
-  const double z = std::sqrt(std::max(0.0, 1 - d.x * d.x - d.y * d.y));
-  return {d.x, d.y, z};
+  Vec3 w;
+  CosineHemisphereDirection(u.x, u.y, w.x, w.y, w.z);
+  return w;
 }
 inline double CosineHemispherePdf(double cos_theta) { return cos_theta * std::numbers::inv_pi; }
 // Inverse of SampleCosineHemisphere for a direction with z >= 0.
