@@ -4,20 +4,20 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include "absl/strings/str_cat.h"
 #include "client/exit_status.h"
 #include "client/job_flags.h"
+#include "client/job_watch.h"
 #include "client/output_flags.h"
+#include "client/scene_upload.h"
+#include "client/service_client.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "server/grpc_credentials.h"
 #include "server/proto_convert.h"
-#include "server/scene_hash.h"
 #include "server/scene_stream.h"
 #include "server/stored_scene.h"
 #include "solver/mesh/subdivide.h"
@@ -27,132 +27,6 @@ namespace radflux::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct ConnectionFlags {
-  std::string server = "localhost:50051";
-  std::string token;
-  std::string tls_ca;
-  std::string tls_cert, tls_key;  // client certificate, for a server with --tls-client-ca
-};
-
-// A failed call as one line; UNAVAILABLE means nobody answered.
-int Report(const grpc::Status& status, const ConnectionFlags& c) {
-  if (status.error_code() == grpc::StatusCode::UNAVAILABLE) {
-    std::cerr << "radflux: cannot reach radfluxd at " << c.server << " (" << status.error_message()
-              << ")\n";
-  } else {
-    std::cerr << "radflux: server refused: "
-              << absl::StatusCodeToString(static_cast<absl::StatusCode>(status.error_code()))
-              << ": " << status.error_message() << "\n";
-  }
-  return 1;
-}
-
-class Client {
- public:
-  explicit Client(const ConnectionFlags& c) : flags_(c) {
-    std::shared_ptr<grpc::ChannelCredentials> credentials =
-        ChannelCredentialsFromFile(c.tls_ca, c.tls_cert, c.tls_key);
-    if (!credentials) {  // warn, and go on with TLS trusting the default roots
-      std::cerr << "radflux: cannot read --tls-ca " << c.tls_ca << " / --tls-cert " << c.tls_cert
-                << " / --tls-key " << c.tls_key << "\n";
-      credentials = grpc::SslCredentials(grpc::SslCredentialsOptions());
-    }
-    // A dropped connection is retried within a second (gRPC's default backoff grows to
-    // 120 s), so that a watch resumes soon after a server restart. (Not the "min" backoff:
-    // gRPC uses it as the timeout of each connection attempt, 20 s by default.)
-    grpc::ChannelArguments arguments;
-    arguments.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
-    arguments.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 1000);
-    channel_ = grpc::CreateCustomChannel(c.server, credentials, arguments);
-    stub_ = v1::Radiosity::NewStub(channel_);
-  }
-  std::unique_ptr<grpc::ClientContext> Context() const {
-    auto context = std::make_unique<grpc::ClientContext>();
-    if (!flags_.token.empty()) context->AddMetadata("authorization", "Bearer " + flags_.token);
-    return context;
-  }
-  v1::Radiosity::Stub& stub() { return *stub_; }
-  const ConnectionFlags& flags() const { return flags_; }
-  // Waits until the channel is connected (reconnecting as needed), at most until `deadline`.
-  bool WaitForConnected(std::chrono::system_clock::time_point deadline) {
-    return channel_->WaitForConnected(deadline);
-  }
-
- private:
-  ConnectionFlags flags_;
-  std::shared_ptr<grpc::Channel> channel_;
-  std::unique_ptr<v1::Radiosity::Stub> stub_;
-};
-
-// The MTL text of an OBJ: its mtllib file beside it, else SCENE.mtl, else empty.
-std::string FindMtl(const std::string& obj_path, const std::string& obj) {
-  std::istringstream lines(obj);
-  std::string line, mtl;
-  while (std::getline(lines, line)) {
-    if (line.rfind("mtllib ", 0) == 0) {
-      std::string name = line.substr(7);
-      while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
-      if (ReadFile((fs::path(obj_path).parent_path() / name).string(), &mtl)) return mtl;
-    }
-  }
-  ReadFile(fs::path(obj_path).replace_extension(".mtl").string(), &mtl);
-  return mtl;
-}
-
-// An OBJ scene file as the client sends it: its text, its MTL text and their content address.
-struct SceneFile {
-  std::string name, obj, mtl, sha256;
-};
-
-absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path) {
-  SceneFile scene;
-  if (!ReadFile(path, &scene.obj)) return absl::NotFoundError("cannot read " + path);
-  scene.mtl = FindMtl(path, scene.obj);
-  scene.name = fs::path(path).filename().string();
-  scene.sha256 = SceneContentHash(scene.obj, scene.mtl);
-  return scene;
-}
-
-grpc::Status UploadScene(Client& client, const SceneFile& scene) {
-  v1::SceneRef ref;
-  auto context = client.Context();
-  auto writer = client.stub().UploadScene(context.get(), &ref);
-  v1::SceneChunk chunk;
-  chunk.mutable_header()->set_name(scene.name);
-  chunk.mutable_header()->set_obj_size(scene.obj.size());
-  chunk.mutable_header()->set_mtl_size(scene.mtl.size());
-  chunk.mutable_header()->set_sha256(scene.sha256);
-  const std::string data = scene.obj + scene.mtl;
-  constexpr size_t kChunk = 1 << 20;
-  for (size_t at = 0; at == 0 || at < data.size(); at += kChunk) {
-    chunk.set_data(data.substr(at, kChunk));
-    if (!writer->Write(chunk)) break;
-    chunk.clear_header();
-  }
-  writer->WritesDone();
-  return writer->Finish();
-}
-
-// Submits `request` for `scene`: by its content address first, so that a scene the server
-// already holds is not sent again (one call instead of two); uploaded, and submitted again,
-// only when the server answers NOT_FOUND.
-grpc::Status SubmitScene(Client& client, const SceneFile& scene, v1::SubmitJobRequest& request,
-                         v1::Job* job) {
-  request.set_scene_sha256(scene.sha256);
-  grpc::Status status = client.stub().SubmitJob(client.Context().get(), request, job);
-  if (status.error_code() != grpc::StatusCode::NOT_FOUND) return status;
-  if (status = UploadScene(client, scene); !status.ok()) return status;
-  return client.stub().SubmitJob(client.Context().get(), request, job);
-}
-
-// A job's scene fetched from the server (GetScene), re-loaded and re-meshed with the job's
-// options: with B, all that WriteOutputs needs. Meshing is deterministic, so this is the
-// mesh the server solved on (GetResult checks it against the mesh it streams).
-struct JobGeometry {
-  Scene scene;
-  PatchMesh mesh;
-};
 
 absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
   v1::GetJobRequest request;
@@ -180,166 +54,8 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   return geometry;
 }
 
-// One line on stderr for a failure; server errors name the server, local ones do not.
-int Fail(const absl::Status& status, const ConnectionFlags& c) {
-  if (status.code() == absl::StatusCode::kUnavailable ||
-      status.code() == absl::StatusCode::kUnauthenticated ||
-      status.code() == absl::StatusCode::kNotFound ||
-      status.code() == absl::StatusCode::kFailedPrecondition) {
-    return Report(ToGrpcStatus(status), c);
-  }
-  std::cerr << "radflux: " << status.message() << "\n";
-  return 1;
-}
-
 bool WantsGeometry(const OutputFlags& f) {
   return !f.out.empty() || !f.render.empty() || !f.patch_values.empty();
-}
-
-// What the flags of `radflux result` and `radflux watch` ask for.
-struct OutputArgs {
-  OutputFlags output;
-  int threads = 0;
-};
-
-// Writes snapshot B of `snapshot` as DIR/snapshot_<iteration>.png with the camera flags.
-absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& geometry,
-                              const std::string& dir, const OutputArgs& args) {
-  absl::StatusOr<std::vector<float>> values = SnapshotValues(snapshot);
-  if (!values.ok()) return values.status();
-  if (snapshot.patch_count() != geometry.mesh.size() || snapshot.bands_size() != kBands) {
-    return absl::DataLossError(absl::StrCat("snapshot of ", snapshot.patch_count(), " patches and ",
-                                            snapshot.bands_size(), " bands for a mesh of ",
-                                            geometry.mesh.size()));
-  }
-  std::vector<Rgb> radiosity(geometry.mesh.size());
-  for (size_t p = 0; p < radiosity.size(); ++p)
-    for (int b = 0; b < kBands; ++b) radiosity[p][b] = (*values)[p * kBands + b];
-  OutputFlags flags = args.output;
-  flags.out.clear();
-  flags.patch_values.clear();
-  char name[64];
-  std::snprintf(name, sizeof(name), "snapshot_%06d.png", snapshot.iteration());
-  flags.render = (fs::path(dir) / name).string();
-  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, args.threads);
-}
-
-// One progress line of a job event on stderr.
-void PrintEvent(const v1::JobEvent& event) {
-  const v1::Progress& p = event.progress();
-  std::cerr << "[" << event.sequence() << "] " << v1::JobState_Name(event.state()) << " "
-            << v1::Phase_Name(event.phase());
-  if (event.phase() == v1::PHASE_ROWS && p.rows_total() > 0) {
-    std::cerr << " rows " << p.rows_done() << "/" << p.rows_total() << " ("
-              << static_cast<int64_t>(p.rays_per_second()) << " rays/s, ETA "
-              << static_cast<int>(p.eta_seconds()) << " s)";
-  }
-  if (event.phase() == v1::PHASE_SOLVE && p.iteration() > 0) {
-    std::cerr << " iteration " << p.iteration() << " residual " << p.residual();
-  }
-  if (!event.message().empty()) std::cerr << ": " << event.message();
-  std::cerr << "\n";
-}
-
-bool Terminal(v1::JobState state) {
-  return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
-         state == v1::JOB_STATE_CANCELLED;
-}
-
-// True when a watch stream that failed with `code` before its job's final event may be
-// reopened: the server went away (restart, network) rather than refused the watch.
-bool StreamMayResume(grpc::StatusCode code) {
-  return code == grpc::StatusCode::UNAVAILABLE || code == grpc::StatusCode::CANCELLED ||
-         code == grpc::StatusCode::UNKNOWN || code == grpc::StatusCode::INTERNAL ||
-         code == grpc::StatusCode::DEADLINE_EXCEEDED;
-}
-
-// What a watch of `job_id` has seen so far, across reconnections.
-struct WatchProgress {
-  uint64_t last_sequence = 0;  // of the last event (not snapshot) received
-  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
-  std::string message;
-  int64_t snapshots = 0;
-};
-
-// One WatchJob stream from after progress->last_sequence until the job's final event (the
-// stream is then cancelled: the result can be asked for at once, without waiting for the
-// stream's end) or until the stream ends; returns its status.
-grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
-                         const std::string& snapshots_dir, const JobGeometry* geometry,
-                         const OutputArgs& args, WatchProgress* progress) {
-  request.set_after_sequence(progress->last_sequence);
-  auto context = client.Context();
-  auto reader = client.stub().WatchJob(context.get(), request);
-  v1::JobEvent event;
-  while (reader->Read(&event)) {
-    if (event.has_snapshot()) {
-      ++progress->snapshots;
-      if (snapshots_dir.empty()) continue;
-      if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
-          !s.ok()) {
-        std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
-                  << "\n";
-      }
-      continue;
-    }
-    progress->last_sequence = event.sequence();
-    progress->state = event.state();
-    progress->message = event.message();
-    PrintEvent(event);
-    if (Terminal(event.state())) {
-      context->TryCancel();
-      break;
-    }
-  }
-  return reader->Finish();
-}
-
-// Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
-// snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
-// `snapshot_every` iterations (without a directory they are only counted). When the stream
-// drops after its first event (a server restart), it is reopened after the last event seen,
-// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED.
-int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
-             const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
-             int reconnect_seconds) {
-  v1::WatchJobRequest request;
-  request.set_job_id(job_id);
-  request.set_snapshot_every(snapshot_every);
-  // Snapshots become 8-bit PNGs here: float16 B (11 significant bits) renders the same
-  // picture at half the bytes of float32.
-  request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT16);
-  if (!snapshots_dir.empty()) {
-    request.set_snapshot_every(std::max(1, snapshot_every));
-    std::error_code error;
-    fs::create_directories(snapshots_dir, error);
-  }
-  WatchProgress progress;
-  for (;;) {
-    const grpc::Status status =
-        WatchStream(client, request, snapshots_dir, geometry, args, &progress);
-    if (Terminal(progress.state)) break;
-    if (progress.last_sequence == 0 || reconnect_seconds <= 0 ||
-        !StreamMayResume(status.error_code())) {
-      if (!status.ok()) return Report(status, client.flags());
-      break;
-    }
-    std::cerr << "radflux: watch of " << job_id << " dropped after event " << progress.last_sequence
-              << " (" << status.error_message() << "); reconnecting\n";
-    if (!client.WaitForConnected(std::chrono::system_clock::now() +
-                                 std::chrono::seconds(reconnect_seconds))) {
-      return Report(grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                                 absl::StrCat("no answer for ", reconnect_seconds, " s")),
-                    client.flags());
-    }
-  }
-  if (request.snapshot_every() > 0) std::cerr << progress.snapshots << " snapshots received\n";
-  if (progress.state != v1::JOB_STATE_SUCCEEDED) {
-    std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(progress.state)
-              << (progress.message.empty() ? "" : ": " + progress.message) << "\n";
-    return 1;
-  }
-  return 0;
 }
 
 // A finished job's result as streamed: the mesh the server solved on, B, the report.
