@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -25,7 +26,6 @@
 namespace radflux::cli {
 namespace {
 
-namespace fs = std::filesystem;
 
 absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
   v1::GetJobRequest request;
