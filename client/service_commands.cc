@@ -26,7 +26,6 @@
 namespace radflux::cli {
 namespace {
 
-
 absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
   v1::GetJobRequest request;
   request.set_job_id(job_id);
