@@ -51,11 +51,6 @@ void PrintEvent(const v1::JobEvent& event) {
   std::cerr << "\n";
 }
 
-bool Terminal(v1::JobState state) {
-  return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
-         state == v1::JOB_STATE_CANCELLED;
-}
-
 // True when a watch stream that failed with `code` before its job's final event may be
 // reopened: the server went away (restart, network) rather than refused the watch.
 bool StreamMayResume(grpc::StatusCode code) {
@@ -97,7 +92,7 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
     progress->state = event.state();
     progress->message = event.message();
     PrintEvent(event);
-    if (Terminal(event.state())) {
+    if (IsTerminal(event.state())) {
       context->TryCancel();
       break;
     }
@@ -130,7 +125,7 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
   for (;;) {
     const grpc::Status status =
         WatchStream(client, request, snapshots_dir, geometry, args, &progress);
-    if (Terminal(progress.state)) break;
+    if (IsTerminal(progress.state)) break;
     if (progress.last_sequence == 0 || reconnect_seconds <= 0 ||
         !StreamMayResume(status.error_code())) {
       if (!status.ok()) return Report(status, client.flags());

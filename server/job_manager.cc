@@ -56,10 +56,6 @@ std::string NewJobId() {
 // Results up to this size stay in memory after their job succeeds (JobManager::Result).
 constexpr size_t kRecentResultBytes = 64u << 20;
 
-bool Terminal(v1::JobState s) {
-  return s == v1::JOB_STATE_SUCCEEDED || s == v1::JOB_STATE_FAILED || s == v1::JOB_STATE_CANCELLED;
-}
-
 // Bytes per job: --max-memory, or half the RAM.
 uint64_t MaxJobMemory(const ManagerOptions& options) {
   if (options.max_memory > 0) return options.max_memory;
@@ -226,7 +222,7 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
 
 absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
   absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
-  if (!job.ok() || Terminal(job->state())) return job;
+  if (!job.ok() || IsTerminal(job->state())) return job;
   {
     std::lock_guard lock(mu_);
     if (auto it = running_.find(job_id); it != running_.end()) {
@@ -293,7 +289,7 @@ std::shared_ptr<JobHub> JobManager::RebuildHubLocked(const v1::Job& job, uint64_
   event.set_phase(job.phase());
   event.set_message(job.message());
   hub->Publish(event);
-  if (Terminal(job.state())) {
+  if (IsTerminal(job.state())) {
     hub->Close();
     RetireHubLocked(job.job_id());
   }
@@ -353,7 +349,7 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   job.set_state(state);
   job.set_phase(phase);
   job.set_message(message);
-  if (Terminal(state)) job.set_finished_unix_ms(NowMs());
+  if (IsTerminal(state)) job.set_finished_unix_ms(NowMs());
   const auto update_start = std::chrono::steady_clock::now();
   if (absl::Status s = store_.UpdateJob(job); !s.ok()) {
     spdlog::error("job {}: cannot store state: {}", job.job_id(), std::string(s.message()));
@@ -370,7 +366,7 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   event.set_phase(phase);
   event.set_message(message);
   hub->Publish(event);
-  if (Terminal(state)) {
+  if (IsTerminal(state)) {
     hub->Close();
     std::lock_guard lock(mu_);
     RetireHubLocked(job.job_id());

@@ -23,6 +23,9 @@ v1::SolveOptions ToProto(const JobOptions& options);
 grpc::Status ToGrpcStatus(const absl::Status& status);
 absl::Status FromGrpcStatus(const grpc::Status& status);
 
+// True for the states a job ends in: SUCCEEDED, FAILED, CANCELLED.
+bool IsTerminal(v1::JobState state);
+
 // B per patch as a snapshot message with the given bands (empty = all) and format.
 v1::Snapshot ToProtoSnapshot(int iteration, const std::vector<Rgb>& radiosity,
                              const std::vector<int>& bands, v1::SnapshotFormat format);

@@ -18,10 +18,6 @@ WatchReactor::WatchReactor(std::shared_ptr<JobHub> hub, const v1::WatchJobReques
 }
 
 namespace {
-bool IsTerminal(v1::JobState state) {
-  return state == v1::JOB_STATE_SUCCEEDED || state == v1::JOB_STATE_FAILED ||
-         state == v1::JOB_STATE_CANCELLED;
-}
 
 // A slice of `part` without a copy: the slice holds a reference until gRPC has sent it.
 grpc::Slice SharedSlice(const EventWire& part) {
