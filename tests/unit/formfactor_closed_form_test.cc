@@ -2,7 +2,9 @@
 // and the error shrinking as its knob (k, r, s) grows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "howell_closed_forms.h"
@@ -19,7 +21,8 @@ using testing::SceneFromObj;
 // Plate "a" at z=0 facing +z and plate "b" at z=d facing -z, both 1 x 1 centred on the axis.
 Scene ParallelSquares(double d) {
   int next = 1;
-  std::string obj = ObjQuad("a", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
+  std::string obj =
+      ObjQuad("a", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
   obj += ObjQuad("b", "white", {{-.5, -.5, d}, {-.5, .5, d}, {.5, .5, d}, {.5, -.5, d}}, next);
   return SceneFromObj(obj);
 }
@@ -103,7 +106,8 @@ TEST(FormFactorClosedForm, CoaxialParallelDiscs) {
   disc("a", r1, 0, true);
   disc("b", r2, h, false);
   // The exact value for the inscribed polygons: discs of equal area are a close proxy.
-  const double shrink = std::sqrt(sides * std::sin(2 * std::numbers::pi / sides) / (2 * std::numbers::pi));
+  const double shrink =
+      std::sqrt(sides * std::sin(2 * std::numbers::pi / sides) / (2 * std::numbers::pi));
   const double exact = testing::CoaxialDiscs(r1 * shrink, r2 * shrink, h);
   RowFixture fixture(SceneFromObj(obj), MeshOptions{0, 0.45});
   std::printf("coaxial discs exact %.6f\n", exact);
@@ -112,13 +116,55 @@ TEST(FormFactorClosedForm, CoaxialParallelDiscs) {
   CheckSweep(fixture, exact, {FormFactorMethod::kAnalytic, {1, 4, 16}, 0.005});
 }
 
+// gamma / |a x b| of ContourEdgeTerm, from the same double cross and dot products, in long
+// double: isolates the angle factor (series or atan2) from the products' own rounding.
+long double AngleOverCrossLength(const Vec3& a, const Vec3& b) {
+  const Vec3 c = Cross(a, b);
+  const long double cross_len = std::sqrt(static_cast<long double>(Dot(c, c)));
+  return std::atan2(cross_len, static_cast<long double>(Dot(a, b))) / cross_len;
+}
+
+TEST(FormFactorClosedForm, ContourEdgeTermIsWithinUlpsOfItsAtan2Form) {
+  // Edges from 1e-5 to 3 radians wide at distances 1e-3 to 1e3, in many directions: both
+  // the small-angle series and the atan2 form, and the switch between them.
+  const Vec3 n = Normalize(Vec3{0.3, -0.2, 0.9});
+  int series = 0, atan2_form = 0;
+  double worst = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double distance = std::pow(10.0, -3 + 6 * ((i * 37) % 101) / 100.0);
+    const double gamma = std::pow(10.0, -5 + 5.48 * ((i * 53) % 97) / 96.0);
+    const double phi = 0.7 * i, tilt = 0.31 * i;
+    const Vec3 a = Vec3{std::cos(phi), std::sin(phi), 0.4 * std::sin(tilt)} * distance;
+    const Vec3 axis = Normalize(Cross(a, Vec3{std::sin(tilt), 1, std::cos(phi)}));
+    // b: a rotated by gamma about `axis` (Rodrigues; axis is perpendicular to a).
+    const Vec3 b =
+        (a * std::cos(gamma) + Cross(axis, a) * std::sin(gamma)) * (1 + 0.3 * std::sin(i));
+    const Vec3 c = Cross(a, b);
+    if (Dot(n, c) == 0) continue;
+    const double d = Dot(a, b);
+    (d > 0 && Dot(c, c) < kSmallAngleTan2 * d * d ? series : atan2_form)++;
+    const long double exact = AngleOverCrossLength(a, b);
+    const double factor = ContourEdgeTerm(a, b, n) / Dot(n, c);
+    worst = std::max(worst, static_cast<double>(std::abs(factor - exact) / exact));
+    // The reversed edge's term is the exact negation, on either path.
+    EXPECT_EQ(ContourEdgeTerm(b, a, n), -ContourEdgeTerm(a, b, n)) << i;
+  }
+  EXPECT_GT(series, 1000);
+  EXPECT_GT(atan2_form, 500);
+  EXPECT_LT(worst, 8 * std::numeric_limits<double>::epsilon())
+      << series << " series, " << atan2_form << " atan2";
+  EXPECT_EQ(ContourEdgeTerm({1, 0, 0}, {2, 0, 0}, n), 0.0);  // an edge pointing at x
+  EXPECT_EQ(AtanOverTOfSquare(0), 1.0);
+}
+
 TEST(FormFactorClosedForm, PointFacingAPolygonIsExact) {
   // Differential area at the origin facing +z; a 0.8 x 1.5 rectangle at height 0.6 with
   // one corner on the normal.
   const std::vector<Vec3> rect{{0, 0, 0.6}, {0, 1.5, 0.6}, {0.8, 1.5, 0.6}, {0.8, 0, 0.6}};
   EXPECT_NEAR(PointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, rect),
               testing::PointToCornerRectangle(0.8, 1.5, 0.6), 1e-12);
-  // The same rectangle seen from below its plane contributes nothing, tilted half-way it is clipped.
+  // The same rectangle seen from below its plane contributes nothing, tilted half-way it is
+  // clipped.
   EXPECT_EQ(PointToPolygonFormFactor({0, 0, 1}, {0, 0, 1}, rect), 0.0);
   const std::vector<Vec3> straddling{{-1, -1, -1}, {1, -1, -1}, {1, 1, 1}, {-1, 1, 1}};
   const double half = PointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, straddling);
