@@ -21,12 +21,16 @@ struct SmallPolygon {
   std::span<const Vec3> View() const { return {vertex.data(), size}; }
 };
 
-// cos(theta_x) cos(theta_y) / r^2 of the pair (x, y): the form-factor kernel up to pi,
-// 0 when either point is behind the other's plane.
-double PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+// cos(theta_x) cos(theta_y) / r^2 of the pair (x, y), the form-factor kernel up to pi,
+// into `kernel`; false when either point is behind the other's plane (decided before the
+// division, so that the caller's branch does not wait for it).
+bool PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny, double& kernel) {
   const Vec3 d = y - x;
-  const double cx = Dot(nx, d), cy = -Dot(ny, d), r2 = Dot(d, d);
-  return cx > 0 && cy > 0 ? cx * cy / (r2 * r2) : 0;
+  const double cx = Dot(nx, d), cy = -Dot(ny, d);
+  if (!(cx > 0 && cy > 0)) return false;
+  const double r2 = Dot(d, d);
+  kernel = cx * cy / (r2 * r2);
+  return true;
 }
 
 // A shadow ray between two surface points, each lifted off its surface by the epsilon;
@@ -120,8 +124,8 @@ PairPlan PlanPair(const RowContext& context, const PairPatches& patches, uint32_
     }
     unoccluded += f;
     const Vec3 target = sample_target(targets[m]);
-    const double kernel = PairKernel(points[m], pi.normal, target, pj.normal);
-    if (kernel <= 0) continue;
+    double kernel;
+    if (!PairKernel(points[m], pi.normal, target, pj.normal, kernel)) continue;
     rays.push_back(ShadowRay(context, points[m], pi.normal, target, pj.normal));
     kernels.push_back(kernel);
   }
@@ -152,7 +156,7 @@ double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
     weight += kernels[r];
     if (!rays[r].Occluded()) visible += kernels[r];
   }
-  return plan.unoccluded * (visible / weight);
+  return weight > 0 ? plan.unoccluded * (visible / weight) : 0;  // 0: kernels underflowed
 }
 
 }  // namespace
