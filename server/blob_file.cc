@@ -89,13 +89,13 @@ absl::Status CreateDurableFile(const std::string& path) {
   return absl::OkStatus();
 }
 
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data) {
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync) {
   absl::StatusOr<std::string> blob = EncodeBlob(data);
   if (!blob.ok()) return blob.status();
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) return ErrnoError("cannot open", path);
   const bool ok = WriteAll(fd, *blob) && ::ftruncate(fd, static_cast<off_t>(blob->size())) == 0 &&
-                  ::fsync(fd) == 0;
+                  (!sync || ::fsync(fd) == 0);
   ::close(fd);
   if (!ok) return ErrnoError("cannot write", path);
   return absl::OkStatus();

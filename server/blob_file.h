@@ -24,10 +24,11 @@ absl::Status WriteBlobFile(const std::string& path, std::string_view data);
 absl::Status CreateDurableFile(const std::string& path);
 
 // Writes the blob of `data` into the existing file `path` (see CreateDurableFile) with one
-// fsync. Not atomic: until it returns, and after a crash while it runs, the file may hold a
-// partial blob (which ReadBlobFile reports as DATA_LOSS), so it is for files that no one
-// reads before a later, durable commit says they are complete.
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data);
+// fsync (none with `sync` false: then SyncPath(path) makes it durable). Not atomic: until it
+// returns, and after a crash while it runs, the file may hold a partial blob (which
+// ReadBlobFile reports as DATA_LOSS), so it is for files that no one reads before a later
+// commit says they are complete.
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync = true);
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);
