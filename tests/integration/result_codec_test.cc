@@ -1,0 +1,47 @@
+// ResultEncoder against EncodeResultChunks(MakeResultChunks(...)): the same bytes, for meshes
+// of zero, one and several patch and vertex chunks.
+#include "server/result_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace radflux {
+namespace {
+
+// A mesh of `patches` quads over `patches` + 3 vertices (not a surface: only the encoding
+// reads it), and B of every patch, from a fixed seed.
+void MakeMesh(size_t patches, PatchMesh* mesh, SolveResult* solve) {
+  std::mt19937_64 random(patches);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  for (size_t i = 0; i < patches + 3; ++i)
+    mesh->positions.push_back({value(random), value(random), value(random)});
+  for (size_t i = 0; i < patches; ++i) {
+    Patch patch;
+    const auto v = static_cast<uint32_t>(i);
+    patch.v = {v, v + 1, v + 2, i % 2 ? v + 2 : v + 3};
+    patch.face = static_cast<uint32_t>(i / 7);
+    mesh->patches.push_back(patch);
+    solve->radiosity.push_back({value(random), value(random), value(random)});
+  }
+}
+
+TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
+  for (size_t patches :
+       {size_t{0}, size_t{1}, size_t{1000}, kResultChunkItems, 2 * kResultChunkItems + 5}) {
+    PatchMesh mesh;
+    SolveResult solve;
+    MakeMesh(patches, &mesh, &solve);
+    const std::string report = R"({"solve": {"iterations": 7}})";
+    const std::string whole = EncodeResultChunks(MakeResultChunks(mesh, solve, report));
+    const ResultEncoder encoder(mesh);
+    EXPECT_EQ(encoder.Finish(solve, report), whole) << patches << " patches";
+    // And it decodes to the chunks it encodes.
+    absl::StatusOr<std::vector<v1::ResultChunk>> decoded = DecodeResultChunks(whole);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_EQ(decoded->back().report_json(), report);
+  }
+}
+
+}  // namespace
+}  // namespace radflux
