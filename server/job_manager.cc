@@ -475,7 +475,7 @@ void JobManager::RunOne(const std::string& job_id) {
       std::async(std::launch::async, [&] { return store_.PrepareResult(job_id); });
   const double thread_cpu = CpuMs(CLOCK_THREAD_CPUTIME_ID);
   const double process_cpu = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
-  absl::StatusOr<std::string> result = RunStoredJob(job, context);
+  absl::StatusOr<EncodedResult> result = RunStoredJob(job, context);
   // What the job cost the server's CPU while it ran: its own thread (with --threads 1 all
   // of its rows and solve), and every thread of the process (OpenMP and helper threads,
   // gRPC, watchers' writes, other calls); bench/service_overhead.sh compares them with and
@@ -502,11 +502,11 @@ void JobManager::RunOne(const std::string& job_id) {
     // finds the result unreadable and computes it again (CheckResultsAtStart).
     const bool overlap = prepared.ok();
     const auto put_start = std::chrono::steady_clock::now();
-    absl::Status put = store_.PutResult(job_id, *result, prepared.ok(), /*sync=*/!overlap);
+    absl::Status put = store_.PutResultFile(job_id, result->file, prepared.ok(), !overlap);
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
-    if (put.ok() && result->size() <= kRecentResultBytes) {
-      recent_results_.Put(job_id, std::make_shared<const std::string>(*std::move(result)));
+    if (put.ok() && result->bytes.size() <= kRecentResultBytes) {
+      recent_results_.Put(job_id, std::make_shared<const std::string>(std::move(result->bytes)));
     }
     spdlog::debug("job {}: ms result {} {:.1f}, work files removed {:.1f}", job_id,
                   overlap ? "written" : "stored", MsBetween(put_start, remove_start),

@@ -227,7 +227,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 
 }  // namespace
 
-absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c) {
+absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
   const auto start = Clock::now();
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = c.scenes->Get(job.scene_sha256());
   if (!loaded.ok()) return loaded.status();
@@ -289,7 +289,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   result.timings.solve = SecondsSince(solve_start);
   const auto encode_start = Clock::now();
   const std::string report = MakeJobReport(result, *options, (*loaded)->name).dump(2);
-  std::string encoded = encoder.get().Finish(result.solve, report);
+  absl::StatusOr<EncodedResult> encoded = encoder.get().Finish(result.solve, report);
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
       "result encoding {:.1f}",

@@ -367,6 +367,12 @@ absl::Status JobStore::PutResult(const std::string& job_id, const std::string& b
   return prepared ? WriteBlobFileInPlace(path, bytes, sync) : WriteBlobFile(path, bytes);
 }
 
+absl::Status JobStore::PutResultFile(const std::string& job_id, std::string_view file,
+                                     bool prepared, bool sync) {
+  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
+  return prepared ? WriteBuiltBlobFileInPlace(path, file, sync) : WriteBuiltBlobFile(path, file);
+}
+
 absl::Status JobStore::SyncResult(const std::string& job_id) {
   const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
   if (!SyncPath(path)) return absl::InternalError(absl::StrCat("cannot fsync ", path));

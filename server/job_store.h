@@ -116,6 +116,9 @@ class JobStore {
   // durable by SyncResult, e.g. while the SUCCEEDED state is being made durable.
   absl::Status PutResult(const std::string& job_id, const std::string& bytes, bool prepared,
                          bool sync = true);
+  // PutResult of a result whose blob file is built already (`file`: BlobBuilder::File()).
+  absl::Status PutResultFile(const std::string& job_id, std::string_view file, bool prepared,
+                             bool sync = true);
   // fsyncs the job's result file (see PutResult).
   absl::Status SyncResult(const std::string& job_id);
   absl::StatusOr<std::string> GetResult(const std::string& job_id);

@@ -116,17 +116,21 @@ ResultEncoder::ResultEncoder(const PatchMesh& mesh) : patch_count_(mesh.size()) 
     bytes.clear();
   }
   before_b_.push_back(std::move(bytes));  // after the last patch chunk's B: nothing
+  status_ = blob_.Append(before_b_.front());
 }
 
-std::string ResultEncoder::Finish(const SolveResult& solve, const std::string& report_json) const {
+absl::StatusOr<EncodedResult> ResultEncoder::Finish(const SolveResult& solve,
+                                                    const std::string& report_json) && {
   static_assert(sizeof(Rgb) == kBands * sizeof(double), "B is copied as packed doubles");
   static_assert(std::endian::native == std::endian::little, "packed doubles are little-endian");
+  if (!status_.ok()) return status_;
   v1::ResultChunk report;
   report.set_report_json(report_json);
   const std::string encoded_report = report.SerializeAsString();
   size_t total = sizeof(uint64_t) + encoded_report.size() + sizeof(Rgb) * patch_count_;
   for (const std::string& part : before_b_) total += part.size();
-  std::string out;
+  EncodedResult result;
+  std::string& out = result.bytes;
   out.reserve(total);
   for (size_t k = 0; k + 1 < before_b_.size(); ++k) {
     out += before_b_[k];
@@ -138,7 +142,13 @@ std::string ResultEncoder::Finish(const SolveResult& solve, const std::string& r
   out += before_b_.back();
   AppendSize(out, encoded_report.size());
   out += encoded_report;
-  return out;
+  // The blob has before_b_[0] already: the rest is one more frame.
+  if (absl::Status s = blob_.Append(std::string_view(out).substr(before_b_.front().size()));
+      !s.ok()) {
+    return s;
+  }
+  result.file = blob_.File();
+  return result;
 }
 
 absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(const std::string& bytes) {

@@ -1,5 +1,5 @@
-// ResultEncoder against EncodeResultChunks(MakeResultChunks(...)): the same bytes, for meshes
-// of zero, one and several patch and vertex chunks.
+// ResultEncoder against EncodeResultChunks(MakeResultChunks(...)): the same bytes, and a blob
+// file that reads back as them, for meshes of zero, one and several patch and vertex chunks.
 #include "server/result_codec.h"
 
 #include <gtest/gtest.h>
@@ -34,8 +34,16 @@ TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
     MakeMesh(patches, &mesh, &solve);
     const std::string report = R"({"solve": {"iterations": 7}})";
     const std::string whole = EncodeResultChunks(MakeResultChunks(mesh, solve, report));
-    const ResultEncoder encoder(mesh);
-    EXPECT_EQ(encoder.Finish(solve, report), whole) << patches << " patches";
+    ResultEncoder encoder(mesh);
+    absl::StatusOr<EncodedResult> encoded = std::move(encoder).Finish(solve, report);
+    ASSERT_TRUE(encoded.ok()) << encoded.status();
+    EXPECT_EQ(encoded->bytes, whole) << patches << " patches";
+    // Its blob file (two zstd frames) reads back as those bytes.
+    const std::string path = ::testing::TempDir() + "/result_codec_test.rfb";
+    ASSERT_TRUE(WriteBuiltBlobFile(path, encoded->file).ok());
+    absl::StatusOr<std::string> read = ReadBlobFile(path);
+    ASSERT_TRUE(read.ok()) << read.status();
+    EXPECT_EQ(*read, whole);
     // And it decodes to the chunks it encodes.
     absl::StatusOr<std::vector<v1::ResultChunk>> decoded = DecodeResultChunks(whole);
     ASSERT_TRUE(decoded.ok()) << decoded.status();
