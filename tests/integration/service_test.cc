@@ -622,10 +622,20 @@ TEST_F(ServiceTest, OldFinishedJobsLeaveMemoryButStayWatchable) {
     ASSERT_TRUE(Submit(SmallOptions(4, "cg"), &job, ref.sha256()).ok());
     jobs.push_back(job.job_id());
   }
+  // Waits for every job without watching it: a watch of a job whose hub was pruned rebuilds
+  // it, which prunes the oldest kept one, so watching the jobs in turn after they all ended
+  // would rebuild them one after the other up to the newest (the test used to, and passed
+  // only while it watched each job before it was pruned).
   for (const std::string& id : jobs) {
-    const std::vector<v1::JobEvent> events = Watch(id);
-    ASSERT_FALSE(events.empty());
-    ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << id;
+    v1::GetJobRequest request;
+    request.set_job_id(id);
+    v1::Job job;
+    for (;;) {
+      ASSERT_TRUE(stub_->GetJob(Context().get(), request, &job).ok());
+      if (IsTerminal(job.state())) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_EQ(job.state(), v1::JOB_STATE_SUCCEEDED) << id;
   }
   const std::vector<v1::JobEvent> first = Watch(jobs.front());
   ASSERT_EQ(first.size(), 1u) << "a pruned hub is rebuilt from the store as one event";
