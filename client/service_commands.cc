@@ -63,11 +63,16 @@ struct StreamedResult {
   std::vector<uint32_t> vertices, faces;
   std::vector<Rgb> radiosity;
   std::string report;
+  uint64_t patch_count = 0;  // from the header (also when the mesh and B were not asked for)
 };
 
-absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id) {
+// With `report_only`, asks for the header and the report alone (a server older than that
+// request field sends everything, which is read as usual).
+absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id,
+                                           bool report_only) {
   v1::GetResultRequest request;
   request.set_job_id(job_id);
+  request.set_report_only(report_only);
   auto context = client.Context();
   auto reader = client.stub().GetResult(context.get(), request);
   v1::ResultChunk chunk;
@@ -91,6 +96,8 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
     if (chunk.part_case() == v1::ResultChunk::kReportJson) r.report = chunk.report_json();
   }
   if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
+  r.patch_count = patch_count;
+  if (report_only && xyz.empty() && r.faces.empty()) return r;
   if (xyz.size() != 3 * vertex_count || r.faces.size() != patch_count ||
       r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
     return absl::DataLossError("result stream does not match its header's counts");
@@ -124,7 +131,9 @@ bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
 int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
               const JobGeometry* prefetched = nullptr) {
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
-  absl::StatusOr<StreamedResult> result = FetchResult(client, job_id);
+  // The mesh and B are streamed only for the outputs that need them (most of the bytes).
+  absl::StatusOr<StreamedResult> result =
+      FetchResult(client, job_id, /*report_only=*/!WantsGeometry(args.output));
   if (!result.ok()) return Fail(result.status(), client.flags());
   if (WantsGeometry(args.output)) {
     std::optional<JobGeometry> fetched;
@@ -152,7 +161,7 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
     if (!out)
       return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
-  std::cout << result->faces.size() << " patches\n";
+  std::cout << result->patch_count << " patches\n";
   return 0;
 }
 

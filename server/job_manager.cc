@@ -346,7 +346,8 @@ absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_i
   return RebuildHubLocked(*job, *base);
 }
 
-absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id) {
+absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id,
+                                                                bool report_only) {
   absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
   if (!job.ok()) return job.status();
   if (job->state() != v1::JOB_STATE_SUCCEEDED) {
@@ -367,6 +368,10 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
                 in_memory ? "kept in memory" : "read",
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
+  if (chunks.ok() && report_only) {
+    std::erase_if(*chunks,
+                  [](const v1::ResultChunk& c) { return c.has_vertices() || c.has_patches(); });
+  }
   return chunks;
 }
 

@@ -73,8 +73,10 @@ class JobManager {
   absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
   // The event hub of a job (live, or a closed one-event history for a finished job).
   absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);
-  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that).
-  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id);
+  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that); with
+  // `report_only`, only the header and the report (GetResultRequest.report_only).
+  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id,
+                                                      bool report_only = false);
 
  private:
   struct Running {

@@ -92,9 +92,24 @@ TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
   EXPECT_TRUE(reader->Finish().ok());
 
   std::vector<double> served;
-  const grpc::Status status = Result(job.job_id(), &served);
+  std::string report;
+  const grpc::Status status = Result(job.job_id(), &served, &report);
   ASSERT_TRUE(status.ok()) << status.error_message();
   ExpectBitIdentical(served, InProcess(options));
+
+  // report_only: the header (with the counts) and the same report, no mesh and no B.
+  v1::GetResultRequest request;
+  request.set_job_id(job.job_id());
+  request.set_report_only(true);
+  auto result_context = Context();
+  auto result_reader = stub_->GetResult(result_context.get(), request);
+  std::vector<v1::ResultChunk> chunks;
+  for (v1::ResultChunk chunk; result_reader->Read(&chunk);) chunks.push_back(chunk);
+  ASSERT_TRUE(result_reader->Finish().ok());
+  ASSERT_EQ(chunks.size(), 2u);
+  EXPECT_EQ(chunks[0].header().patch_count(), served.size() / 3);
+  EXPECT_EQ(chunks[0].header().job().job_id(), job.job_id());
+  EXPECT_EQ(chunks[1].report_json(), report);
 }
 
 // Progress events are throttled (at most one per 50 ms, the newest): the newest of each
