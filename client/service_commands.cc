@@ -63,11 +63,16 @@ struct StreamedResult {
   std::vector<uint32_t> vertices, faces;
   std::vector<Rgb> radiosity;
   std::string report;
+  uint64_t patch_count = 0;  // from the header (also when the mesh and B were not asked for)
 };
 
-absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id) {
+// With `report_only`, asks for the header and the report alone (a server older than that
+// request field sends everything, which is read as usual).
+absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id,
+                                           bool report_only) {
   v1::GetResultRequest request;
   request.set_job_id(job_id);
+  request.set_report_only(report_only);
   auto context = client.Context();
   auto reader = client.stub().GetResult(context.get(), request);
   v1::ResultChunk chunk;
@@ -91,6 +96,8 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
     if (chunk.part_case() == v1::ResultChunk::kReportJson) r.report = chunk.report_json();
   }
   if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
+  r.patch_count = patch_count;
+  if (report_only && xyz.empty() && r.faces.empty()) return r;
   if (xyz.size() != 3 * vertex_count || r.faces.size() != patch_count ||
       r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
     return absl::DataLossError("result stream does not match its header's counts");
@@ -124,7 +131,9 @@ bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
 int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
               const JobGeometry* prefetched = nullptr) {
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
-  absl::StatusOr<StreamedResult> result = FetchResult(client, job_id);
+  // The mesh and B are streamed only for the outputs that need them (most of the bytes).
+  absl::StatusOr<StreamedResult> result =
+      FetchResult(client, job_id, /*report_only=*/!WantsGeometry(args.output));
   if (!result.ok()) return Fail(result.status(), client.flags());
   if (WantsGeometry(args.output)) {
     std::optional<JobGeometry> fetched;
@@ -152,7 +161,7 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
     if (!out)
       return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
-  std::cout << result->faces.size() << " patches\n";
+  std::cout << result->patch_count << " patches\n";
   return 0;
 }
 
@@ -177,6 +186,12 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
   if (watched != 0 || !wants_result) return watched;
   return GetResult(client, job_id, args, g);
 }
+
+// The verb's connection, for the rest of the process: never destroyed, because destroying
+// the last gRPC channel shuts gRPC down (its threads joined, with sleeps), which radflux-service
+// skips by ending with _Exit once its output is written (service_main.cc): ~3-6 ms of a round
+// trip.
+Client& ProcessClient(const ConnectionFlags& c) { return *new Client(c); }
 
 // How long a watch whose stream dropped waits for the server to answer again, by default.
 constexpr int kReconnectSeconds = 60;
@@ -250,7 +265,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     }
     absl::StatusOr<SceneFile> scene_file = ReadSceneFile(*scene);
     if (!scene_file.ok()) return void(exit_code = Fail(scene_file.status(), *c));
-    Client client(*c);
+    Client& client = ProcessClient(*c);
     v1::SubmitJobRequest request;
     *request.mutable_options() = ToProto(*options);
     request.set_request_id(*request_id);
@@ -287,7 +302,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     if (absl::Status s = ValidateOutputFlags(watch_args->output); !s.ok()) {
       return void(exit_code = Fail(s, *c));
     }
-    Client client(*c);
+    Client& client = ProcessClient(*c);
     exit_code = WatchAndWriteResult(client, *job_id, *snapshots, *watch_args, *snapshot_every,
                                     *reconnect_seconds);
   });
@@ -301,7 +316,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   result->add_option("--threads", result_args->threads, "render threads (0 = all cores)");
   AddConnectionFlags(*result, *c);
   result->callback([=, &exit_code] {
-    Client client(*c);
+    Client& client = ProcessClient(*c);
     exit_code = GetResult(client, *result_id, *result_args);
   });
 
@@ -310,7 +325,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   cancel->add_option("job", *cancel_id, "job id")->required();
   AddConnectionFlags(*cancel, *c);
   cancel->callback([=, &exit_code] {
-    Client client(*c);
+    Client& client = ProcessClient(*c);
     v1::CancelJobRequest request;
     request.set_job_id(*cancel_id);
     v1::Job job;
@@ -324,7 +339,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   list->add_option("--limit", *page_size, "at most this many jobs");
   AddConnectionFlags(*list, *c);
   list->callback([=, &exit_code] {
-    Client client(*c);
+    Client& client = ProcessClient(*c);
     v1::ListJobsRequest request;
     request.set_page_size(*page_size);
     v1::ListJobsResponse response;

@@ -1,9 +1,11 @@
 #include "server/blob_file.h"
 
 #include <fcntl.h>
+#include <openssl/evp.h>
 #include <unistd.h>
 #include <zstd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -40,8 +42,6 @@ std::string ParentDir(const std::string& path) {
   return std::filesystem::path(path).parent_path().string();
 }
 
-// The blob file's bytes: header (magic, raw size, SHA-256 of the raw bytes), then `data`
-// compressed.
 }  // namespace
 
 bool SyncPath(const std::string& path) {
@@ -52,15 +52,53 @@ bool SyncPath(const std::string& path) {
   return ok;
 }
 
+struct BlobBuilder::Hash {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx{EVP_MD_CTX_new(), EVP_MD_CTX_free};
+};
+
+BlobBuilder::BlobBuilder() : hash_(std::make_unique<Hash>()) {
+  EVP_DigestInit_ex(hash_->ctx.get(), EVP_sha256(), nullptr);
+}
+BlobBuilder::~BlobBuilder() = default;
+BlobBuilder::BlobBuilder(BlobBuilder&&) noexcept = default;
+BlobBuilder& BlobBuilder::operator=(BlobBuilder&&) noexcept = default;
+
+absl::Status BlobBuilder::Append(std::string_view data) {
+  const size_t at = frames_.size();
+  frames_.resize(at + ZSTD_compressBound(data.size()));
+  const size_t size =
+      ZSTD_compress(frames_.data() + at, frames_.size() - at, data.data(), data.size(), kZstdLevel);
+  if (ZSTD_isError(size)) {
+    frames_.resize(at);
+    return absl::InternalError(ZSTD_getErrorName(size));
+  }
+  frames_.resize(at + size);
+  EVP_DigestUpdate(hash_->ctx.get(), data.data(), data.size());
+  raw_size_ += data.size();
+  return absl::OkStatus();
+}
+
+std::string BlobBuilder::File() const {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_MD_CTX_copy_ex(ctx.get(), hash_->ctx.get());
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  EVP_DigestFinal_ex(ctx.get(), digest.data(), &length);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) {
+    hex.push_back(kHex[digest[i] >> 4]);
+    hex.push_back(kHex[digest[i] & 15]);
+  }
+  return absl::StrCat(std::string(kMagic), raw_size_, "\n", hex, "\n", frames_);
+}
+
 namespace {
 
 absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
-  std::string compressed(ZSTD_compressBound(data.size()), '\0');
-  const size_t size =
-      ZSTD_compress(compressed.data(), compressed.size(), data.data(), data.size(), kZstdLevel);
-  if (ZSTD_isError(size)) return absl::InternalError(ZSTD_getErrorName(size));
-  compressed.resize(size);
-  return absl::StrCat(std::string(kMagic), data.size(), "\n", Sha256Hex(data), "\n", compressed);
+  BlobBuilder blob;
+  if (absl::Status s = blob.Append(data); !s.ok()) return s;
+  return blob.File();
 }
 
 }  // namespace
@@ -68,10 +106,14 @@ absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
 absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
   absl::StatusOr<std::string> blob = EncodeBlob(data);
   if (!blob.ok()) return blob.status();
+  return WriteBuiltBlobFile(path, *blob);
+}
+
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file) {
   const std::string temp = path + ".tmp";
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return ErrnoError("cannot create", temp);
-  const bool ok = WriteAll(fd, *blob) && ::fsync(fd) == 0;
+  const bool ok = WriteAll(fd, file) && ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) return ErrnoError("cannot write", temp);
   if (::rename(temp.c_str(), path.c_str()) != 0) return ErrnoError("cannot rename", temp);
@@ -89,13 +131,17 @@ absl::Status CreateDurableFile(const std::string& path) {
   return absl::OkStatus();
 }
 
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data) {
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync) {
   absl::StatusOr<std::string> blob = EncodeBlob(data);
   if (!blob.ok()) return blob.status();
+  return WriteBuiltBlobFileInPlace(path, *blob, sync);
+}
+
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file, bool sync) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) return ErrnoError("cannot open", path);
-  const bool ok = WriteAll(fd, *blob) && ::ftruncate(fd, static_cast<off_t>(blob->size())) == 0 &&
-                  ::fsync(fd) == 0;
+  const bool ok = WriteAll(fd, file) && ::ftruncate(fd, static_cast<off_t>(file.size())) == 0 &&
+                  (!sync || ::fsync(fd) == 0);
   ::close(fd);
   if (!ok) return ErrnoError("cannot write", path);
   return absl::OkStatus();

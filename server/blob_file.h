@@ -5,12 +5,38 @@
 // file no one reads before a later commit, in place with one fsync (WriteBlobFileInPlace).
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
 #include "absl/status/statusor.h"
 
 namespace radflux {
+
+// A blob built from pieces as they become known: each Append compresses its piece as one
+// zstd frame and adds it to the SHA-256 of the raw bytes, so that what is known early (a
+// result's mesh) is compressed and hashed before the rest exists. File() is what
+// WriteBlobFile would write for the concatenation of the pieces, except that the
+// compressed data is one frame per piece (ReadBlobFile reads both alike: zstd decompresses
+// concatenated frames as one).
+class BlobBuilder {
+ public:
+  BlobBuilder();
+  ~BlobBuilder();
+  BlobBuilder(BlobBuilder&&) noexcept;
+  BlobBuilder& operator=(BlobBuilder&&) noexcept;
+
+  absl::Status Append(std::string_view data);
+  // The blob file's bytes: header (magic, raw size, SHA-256), then the frames.
+  std::string File() const;
+
+ private:
+  struct Hash;                  // the running SHA-256 (OpenSSL)
+  std::unique_ptr<Hash> hash_;  // null after a move
+  uint64_t raw_size_ = 0;
+  std::string frames_;
+};
 
 // fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
 bool SyncPath(const std::string& path);
@@ -24,10 +50,16 @@ absl::Status WriteBlobFile(const std::string& path, std::string_view data);
 absl::Status CreateDurableFile(const std::string& path);
 
 // Writes the blob of `data` into the existing file `path` (see CreateDurableFile) with one
-// fsync. Not atomic: until it returns, and after a crash while it runs, the file may hold a
-// partial blob (which ReadBlobFile reports as DATA_LOSS), so it is for files that no one
-// reads before a later, durable commit says they are complete.
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data);
+// fsync (none with `sync` false: then SyncPath(path) makes it durable). Not atomic: until it
+// returns, and after a crash while it runs, the file may hold a partial blob (which
+// ReadBlobFile reports as DATA_LOSS), so it is for files that no one reads before a later
+// commit says they are complete.
+absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync = true);
+
+// WriteBlobFile and WriteBlobFileInPlace of a blob built already (`file`: BlobBuilder::File()).
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file);
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file,
+                                       bool sync = true);
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);

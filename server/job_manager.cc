@@ -100,8 +100,35 @@ absl::Status JobManager::Start() {
     queue_.push_back(job.job_id());
     RebuildHubLocked(job, *base);
   }
+  if (absl::Status s = CheckResultsAtStart(); !s.ok()) return s;
   for (int i = 0; i < std::max(1, options_.jobs); ++i)
     workers_.emplace_back([this] { WorkerLoop(); });
+  return absl::OkStatus();
+}
+
+absl::Status JobManager::CheckResultsAtStart() {
+  absl::StatusOr<std::vector<v1::Job>> unchecked = store_.UncheckedResults();
+  if (!unchecked.ok()) return unchecked.status();
+  for (v1::Job& job : *unchecked) {
+    const absl::StatusOr<std::string> result = store_.GetResult(job.job_id());
+    if (result.ok()) {
+      if (absl::Status s = store_.MarkResultDurable(job.job_id()); !s.ok()) return s;
+      continue;
+    }
+    spdlog::warn("job {}: SUCCEEDED but its result is unreadable ({}); computing it again",
+                 job.job_id(), std::string(result.status().message()));
+    store_.DiscardResult(job.job_id());
+    job.set_state(v1::JOB_STATE_QUEUED);
+    job.set_phase(v1::PHASE_UNSPECIFIED);
+    job.set_message("result lost in a crash; computing it again");
+    job.clear_finished_unix_ms();
+    if (absl::Status s = store_.UpdateJob(job); !s.ok()) return s;
+    absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
+    if (!base.ok()) return base.status();
+    std::lock_guard lock(mu_);
+    queue_.push_back(job.job_id());
+    RebuildHubLocked(job, *base);
+  }
   return absl::OkStatus();
 }
 
@@ -319,7 +346,8 @@ absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_i
   return RebuildHubLocked(*job, *base);
 }
 
-absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id) {
+absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id,
+                                                                bool report_only) {
   absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
   if (!job.ok()) return job.status();
   if (job->state() != v1::JOB_STATE_SUCCEEDED) {
@@ -340,22 +368,38 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
                 in_memory ? "kept in memory" : "read",
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
+  if (chunks.ok() && report_only) {
+    std::erase_if(*chunks,
+                  [](const v1::ResultChunk& c) { return c.has_vertices() || c.has_patches(); });
+  }
   return chunks;
 }
 
 void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
-                            const std::string& message) {
+                            const std::string& message, std::future<absl::Status>* result_synced) {
   const v1::JobState from = job.state();
   job.set_state(state);
   job.set_phase(phase);
   job.set_message(message);
   if (IsTerminal(state)) job.set_finished_unix_ms(NowMs());
   const auto update_start = std::chrono::steady_clock::now();
-  if (absl::Status s = store_.UpdateJob(job); !s.ok()) {
-    spdlog::error("job {}: cannot store state: {}", job.job_id(), std::string(s.message()));
+  absl::Status stored = store_.UpdateJob(job, /*sync=*/result_synced == nullptr);
+  if (stored.ok() && result_synced != nullptr) stored = store_.SyncCommits();
+  if (!stored.ok()) {
+    spdlog::error("job {}: cannot store state: {}", job.job_id(), std::string(stored.message()));
   }
-  spdlog::debug("job {}: ms state stored {:.1f}", job.job_id(),
-                MsBetween(update_start, std::chrono::steady_clock::now()));
+  const auto stored_end = std::chrono::steady_clock::now();
+  bool result_durable = false;
+  if (result_synced != nullptr) {
+    // Reported, not undone: the result is in the file (and survives kill -9); if an OS
+    // crash loses it, the next start computes it again (CheckResultsAtStart).
+    const absl::Status s = result_synced->get();
+    if (!s.ok()) spdlog::error("job {}: {}", job.job_id(), std::string(s.message()));
+    result_durable = s.ok();
+  }
+  spdlog::debug("job {}: ms state stored {:.1f}, result synced {:.1f} later", job.job_id(),
+                MsBetween(update_start, stored_end),
+                MsBetween(stored_end, std::chrono::steady_clock::now()));
   std::shared_ptr<JobHub> hub;
   {
     std::lock_guard lock(mu_);
@@ -370,6 +414,11 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
     hub->Close();
     std::lock_guard lock(mu_);
     RetireHubLocked(job.job_id());
+  }
+  if (result_durable) {  // after the event: the mark is for the next start only
+    if (absl::Status s = store_.MarkResultDurable(job.job_id()); !s.ok()) {
+      spdlog::warn("job {}: {}", job.job_id(), std::string(s.message()));
+    }
   }
   spdlog::info("job {}: {} -> {} {}{}{}", job.job_id(), v1::JobState_Name(from),
                v1::JobState_Name(state), v1::Phase_Name(phase), message.empty() ? "" : ": ",
@@ -431,7 +480,7 @@ void JobManager::RunOne(const std::string& job_id) {
       std::async(std::launch::async, [&] { return store_.PrepareResult(job_id); });
   const double thread_cpu = CpuMs(CLOCK_THREAD_CPUTIME_ID);
   const double process_cpu = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
-  absl::StatusOr<std::string> result = RunStoredJob(job, context);
+  absl::StatusOr<EncodedResult> result = RunStoredJob(job, context);
   // What the job cost the server's CPU while it ran: its own thread (with --threads 1 all
   // of its rows and solve), and every thread of the process (OpenMP and helper threads,
   // gRPC, watchers' writes, other calls); bench/service_overhead.sh compares them with and
@@ -451,18 +500,32 @@ void JobManager::RunOne(const std::string& job_id) {
   }
   // Work files go before the terminal transition: whoever sees the end sees them gone.
   if (result.ok()) {
+    // Into the prepared file without its fsync, which then runs beside the SUCCEEDED
+    // commit's (JobStore::SyncCommits) instead of before it: no client hears SUCCEEDED
+    // before both are durable, except GetJob/ListJobs, which may see the commit durable
+    // while the result's fsync still runs; after an OS crash in that window, the restart
+    // finds the result unreadable and computes it again (CheckResultsAtStart).
+    const bool overlap = prepared.ok();
     const auto put_start = std::chrono::steady_clock::now();
-    absl::Status put = store_.PutResult(job_id, *result, prepared.ok());
+    absl::Status put = store_.PutResultFile(job_id, result->file, prepared.ok(), !overlap);
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
-    if (put.ok() && result->size() <= kRecentResultBytes) {
-      recent_results_.Put(job_id, std::make_shared<const std::string>(*std::move(result)));
+    if (put.ok() && result->bytes.size() <= kRecentResultBytes) {
+      recent_results_.Put(job_id, std::make_shared<const std::string>(std::move(result->bytes)));
     }
-    spdlog::debug("job {}: ms result stored {:.1f}, work files removed {:.1f}", job_id,
-                  MsBetween(put_start, remove_start),
+    spdlog::debug("job {}: ms result {} {:.1f}, work files removed {:.1f}", job_id,
+                  overlap ? "written" : "stored", MsBetween(put_start, remove_start),
                   MsBetween(remove_start, std::chrono::steady_clock::now()));
     if (put.ok()) {
-      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "");
+      std::future<absl::Status> synced;
+      if (overlap) {
+        synced = std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
+      } else {  // stored atomically: fsynced already
+        std::promise<absl::Status> done;
+        done.set_value(absl::OkStatus());
+        synced = done.get_future();
+      }
+      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "", &synced);
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
     }

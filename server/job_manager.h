@@ -8,6 +8,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -72,8 +73,10 @@ class JobManager {
   absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
   // The event hub of a job (live, or a closed one-event history for a finished job).
   absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);
-  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that).
-  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id);
+  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that); with
+  // `report_only`, only the header and the report (GetResultRequest.report_only).
+  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id,
+                                                      bool report_only = false);
 
  private:
   struct Running {
@@ -85,8 +88,19 @@ class JobManager {
   absl::Status CheckLimits(const v1::SubmitJobRequest& request);
   void WorkerLoop();
   void RunOne(const std::string& job_id);
-  // Stores the job's new state/phase, publishes it and logs one line.
-  void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message);
+  // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`
+  // (SUCCEEDED, its result written but not yet fsynced: JobStore::PutResult with sync
+  // false) the state is committed, and the commit made durable while that fsync runs; the
+  // event is published once both are durable.
+  void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message,
+                  std::future<absl::Status>* result_synced = nullptr);
+  // On Start: every SUCCEEDED job whose result was never marked durable (an OS crash may
+  // have cut short its fsync, which runs beside the SUCCEEDED commit's) has its result file
+  // read and verified; when it is missing or corrupt, the job goes back to QUEUED (with a
+  // message saying why) and computes its result again: the same B, the computation being
+  // deterministic (rows still stored are reused; a solver checkpoint is not, so that cg,
+  // whose resume agrees only within the tolerance, restarts as the first run did).
+  absl::Status CheckResultsAtStart();
   std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
   // A job's event history rebuilt from the store (after a restart, or when its finished hub
   // left memory): numbered after `base` (JobStore::NextHistoryBase), its first event the

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <future>
 #include <optional>
 #include <thread>
 
@@ -226,7 +227,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 
 }  // namespace
 
-absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c) {
+absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
   const auto start = Clock::now();
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = c.scenes->Get(job.scene_sha256());
   if (!loaded.ok()) return loaded.status();
@@ -245,6 +246,10 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   const PreparedJob& p = **prepared;
   const int64_t n = static_cast<int64_t>(p.mesh.size());
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
+  // The result's bytes that do not depend on B, encoded beside the rows, so that after the
+  // solve only B and the report are.
+  std::future<ResultEncoder> encoder =
+      std::async(std::launch::async, [&p] { return ResultEncoder(p.mesh); });
 
   // Flushed before each phase change and after the last iteration.
   ProgressThrottle throttle(*c.hub, kProgressInterval,
@@ -284,8 +289,7 @@ absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& c
   result.timings.solve = SecondsSince(solve_start);
   const auto encode_start = Clock::now();
   const std::string report = MakeJobReport(result, *options, (*loaded)->name).dump(2);
-  std::string encoded =
-      EncodeResultChunks(MakeResultChunks(result.job->mesh, result.solve, report));
+  absl::StatusOr<EncodedResult> encoded = encoder.get().Finish(result.solve, report);
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
       "result encoding {:.1f}",

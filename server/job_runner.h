@@ -17,6 +17,7 @@
 #include "radflux/v1/job.pb.h"
 #include "server/job_hub.h"
 #include "server/job_store.h"
+#include "server/result_codec.h"
 #include "server/scene_cache.h"
 
 namespace radflux {
@@ -42,8 +43,9 @@ struct RunContext {
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
 };
 
-// Runs the job to completion and returns its encoded result (see result_codec.h);
-// CANCELLED when *stop was set (rows done so far and a checkpoint stay stored).
-absl::StatusOr<std::string> RunStoredJob(const v1::Job& job, const RunContext& context);
+// Runs the job to completion and returns its encoded result and its blob file (see
+// result_codec.h); CANCELLED when *stop was set (rows done so far and a checkpoint stay
+// stored).
+absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& context);
 
 }  // namespace radflux

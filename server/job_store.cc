@@ -26,6 +26,7 @@ CREATE TABLE IF NOT EXISTS jobs(
   job BLOB NOT NULL);
 CREATE TABLE IF NOT EXISTS job_histories(
   job_id TEXT PRIMARY KEY, rebuilds INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS durable_results(job_id TEXT PRIMARY KEY);
 )sql";
 
 // A prepared statement that finalizes itself.
@@ -179,17 +180,17 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job, bool sync) {
   }
   if (!sync) (void)Exec("PRAGMA synchronous=FULL");
   if (!inserted.ok()) return inserted;
-  if (!sync) ++unsynced_creates_;
+  if (!sync) ++unsynced_commits_;
   std::error_code ec;
   fs::create_directories(JobDir(job.job_id()), ec);
   return job;
 }
 
 absl::Status JobStore::SyncCommits() {
-  const uint64_t target = unsynced_creates_.load();
-  if (synced_creates_.load() >= target) return absl::OkStatus();
+  const uint64_t target = unsynced_commits_.load();
+  if (synced_commits_.load() >= target) return absl::OkStatus();
   std::lock_guard lock(sync_mu_);
-  if (synced_creates_.load() >= target) return absl::OkStatus();  // a sync just covered it
+  if (synced_commits_.load() >= target) return absl::OkStatus();  // a sync just covered it
   // The log lives as long as the connection; its name is made durable once per process (a
   // fresh log's first synchronous=FULL commit would do the same).
   const std::string log = (fs::path(data_dir_) / "radflux.db-wal").string();
@@ -197,17 +198,18 @@ absl::Status JobStore::SyncCommits() {
     return absl::InternalError(absl::StrCat("job store: cannot fsync ", log));
   }
   log_dir_synced_ = true;
-  synced_creates_.store(target);
+  synced_commits_.store(target);
   return absl::OkStatus();
 }
 
-absl::Status JobStore::UpdateJob(const v1::Job& job) {
+absl::Status JobStore::UpdateJob(const v1::Job& job, bool sync) {
   std::lock_guard lock(mu_);
   // A RUNNING job's phase is not fsynced (synchronous=NORMAL: it survives kill -9, an OS
   // crash may lose it, and the job resumes from its files either way); every other state
-  // is, with whatever was committed before it.
+  // is, with whatever was committed before it, here or (sync = false) in SyncCommits.
   const bool running = job.state() == v1::JOB_STATE_RUNNING;
-  if (running) (void)Exec("PRAGMA synchronous=NORMAL");
+  const bool deferred = !running && !sync;
+  if (running || deferred) (void)Exec("PRAGMA synchronous=NORMAL");
   absl::Status status;
   {
     Statement st(db_, "UPDATE jobs SET state = ?, job = ? WHERE job_id = ?");
@@ -216,7 +218,8 @@ absl::Status JobStore::UpdateJob(const v1::Job& job) {
     st.Bind(3, job.job_id());
     if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "update job");
   }
-  if (running) (void)Exec("PRAGMA synchronous=FULL");
+  if (running || deferred) (void)Exec("PRAGMA synchronous=FULL");
+  if (deferred && status.ok()) ++unsynced_commits_;
   return status;
 }
 
@@ -286,6 +289,27 @@ absl::StatusOr<std::vector<v1::Job>> JobStore::UnfinishedJobs() {
       {});
 }
 
+absl::StatusOr<std::vector<v1::Job>> JobStore::UncheckedResults() {
+  return QueryJobs(
+      absl::StrCat("SELECT job FROM jobs WHERE state = ", static_cast<int>(v1::JOB_STATE_SUCCEEDED),
+                   " AND job_id NOT IN (SELECT job_id FROM durable_results)"
+                   " ORDER BY seq ASC"),
+      {});
+}
+
+absl::Status JobStore::MarkResultDurable(const std::string& job_id) {
+  std::lock_guard lock(mu_);
+  (void)Exec("PRAGMA synchronous=NORMAL");
+  absl::Status status;
+  {
+    Statement st(db_, "INSERT OR IGNORE INTO durable_results(job_id) VALUES(?)");
+    st.Bind(1, job_id);
+    if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "mark result durable");
+  }
+  (void)Exec("PRAGMA synchronous=FULL");
+  return status;
+}
+
 absl::Status JobStore::PutRowBlocks(const std::string& job_id, uint32_t name_index,
                                     const std::vector<const StoredRowBlock*>& blocks) {
   return WriteBlobFile((fs::path(JobDir(job_id)) / RowBlockName(name_index)).string(),
@@ -337,14 +361,32 @@ absl::Status JobStore::PrepareResult(const std::string& job_id) {
   return CreateDurableFile((fs::path(JobDir(job_id)) / "result.rfb").string());
 }
 
-absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes,
-                                 bool prepared) {
+absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes, bool prepared,
+                                 bool sync) {
   const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
-  return prepared ? WriteBlobFileInPlace(path, bytes) : WriteBlobFile(path, bytes);
+  return prepared ? WriteBlobFileInPlace(path, bytes, sync) : WriteBlobFile(path, bytes);
+}
+
+absl::Status JobStore::PutResultFile(const std::string& job_id, std::string_view file,
+                                     bool prepared, bool sync) {
+  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
+  return prepared ? WriteBuiltBlobFileInPlace(path, file, sync) : WriteBuiltBlobFile(path, file);
+}
+
+absl::Status JobStore::SyncResult(const std::string& job_id) {
+  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
+  if (!SyncPath(path)) return absl::InternalError(absl::StrCat("cannot fsync ", path));
+  return absl::OkStatus();
 }
 
 absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
   return ReadBlobFile((fs::path(JobDir(job_id)) / "result.rfb").string());
+}
+
+void JobStore::DiscardResult(const std::string& job_id) {
+  std::error_code ec;
+  fs::remove(fs::path(JobDir(job_id)) / "result.rfb", ec);
+  fs::remove(fs::path(JobDir(job_id)) / "checkpoint.rfb", ec);
 }
 
 void JobStore::RemoveWorkFiles(const std::string& job_id) {

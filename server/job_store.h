@@ -2,8 +2,9 @@
 // are rows of an SQLite database (radflux.db); scene texts, form-factor row blocks,
 // solver checkpoints and results are checksummed blob files (see blob_file.h) under
 // scenes/ and jobs/<id>/. Every write is durable (fsynced) when the call returns, except
-// UpdateJob of a RUNNING job and CreateJob(sync = false), which survive kill -9 but not an
-// OS crash (the latter until SyncCommits). Thread-safe.
+// UpdateJob of a RUNNING job, CreateJob(sync = false), UpdateJob(sync = false),
+// PutResult(sync = false) and MarkResultDurable, which survive kill -9 but not an OS crash
+// (until SyncCommits, resp. SyncResult). Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -60,19 +61,29 @@ class JobStore {
   // insert is committed without its fsync (it survives kill -9), to be made durable by
   // SyncCommits, so that the caller can start the job meanwhile.
   absl::StatusOr<v1::Job> CreateJob(const v1::Job& job, bool sync = true);
-  // Makes every CreateJob(sync = false) that returned before this call durable: one
-  // fdatasync of the database's write-ahead log, which is where SQLite's synchronous=FULL
-  // commit puts its own fsync, done here without the store's lock so that other calls go
-  // on meanwhile. Immediate when there is nothing to sync.
+  // Makes every CreateJob(sync = false) and UpdateJob(sync = false) that returned before
+  // this call durable: one fsync of the database's write-ahead log, which is where SQLite's
+  // synchronous=FULL commit puts its own fsync, done here without the store's lock so that
+  // other calls go on meanwhile. Immediate when there is nothing to sync.
   absl::Status SyncCommits();
-  // Replaces the stored job with the same id.
-  absl::Status UpdateJob(const v1::Job& job);
+  // Replaces the stored job with the same id. A RUNNING job's row is never fsynced (it
+  // survives kill -9, not an OS crash); any other state is durable when this returns, or,
+  // with `sync` false, once SyncCommits returns.
+  absl::Status UpdateJob(const v1::Job& job, bool sync = true);
   absl::StatusOr<v1::Job> GetJob(const std::string& job_id);
   // The job created with this client request id; NOT_FOUND when none.
   absl::StatusOr<v1::Job> GetJobByRequestId(const std::string& request_id);
   absl::StatusOr<std::vector<v1::Job>> ListJobs(const JobFilter& filter);
   // Jobs QUEUED or RUNNING, oldest first: what a restarted server must finish.
   absl::StatusOr<std::vector<v1::Job>> UnfinishedJobs();
+  // SUCCEEDED jobs, oldest first, whose result file has not been marked durable
+  // (MarkResultDurable): those whose result a restart must check (and, if it is missing
+  // or corrupt, compute again). Jobs of a store written before the mark existed have none.
+  absl::StatusOr<std::vector<v1::Job>> UncheckedResults();
+  // Records that the job's result file is durable (after SyncResult, or after a restart
+  // read and verified it). Not fsynced itself: a mark lost in an OS crash only makes the
+  // next start check that result again.
+  absl::Status MarkResultDurable(const std::string& job_id);
 
   // The sequence number after which a rebuilt event history of the job starts (after a
   // restart, or when its finished hub left memory): k * 2^kHistorySequenceBits for its k-th
@@ -100,9 +111,20 @@ class JobStore {
   // The serialized result stream of a finished job (see result_codec.h), durable when this
   // returns. `prepared`: PrepareResult succeeded for the job; then the result is written
   // into that file (one fsync; the job is not SUCCEEDED yet, so no one reads it meanwhile),
-  // else atomically (temp file, rename: three fsyncs).
-  absl::Status PutResult(const std::string& job_id, const std::string& bytes, bool prepared);
+  // else atomically (temp file, rename: three fsyncs). With `prepared` and `sync` false the
+  // bytes are written without the fsync (readable at once and after kill -9), to be made
+  // durable by SyncResult, e.g. while the SUCCEEDED state is being made durable.
+  absl::Status PutResult(const std::string& job_id, const std::string& bytes, bool prepared,
+                         bool sync = true);
+  // PutResult of a result whose blob file is built already (`file`: BlobBuilder::File()).
+  absl::Status PutResultFile(const std::string& job_id, std::string_view file, bool prepared,
+                             bool sync = true);
+  // fsyncs the job's result file (see PutResult).
+  absl::Status SyncResult(const std::string& job_id);
   absl::StatusOr<std::string> GetResult(const std::string& job_id);
+  // Deletes a job's result file and solver checkpoint (a result found missing or corrupt
+  // at a restart, before the job computes it again).
+  void DiscardResult(const std::string& job_id);
   // Deletes the row blocks, checkpoint and other work files of a job (after it finished or
   // was cancelled); a written result is kept, an empty one from PrepareResult is not.
   void RemoveWorkFiles(const std::string& job_id);
@@ -118,8 +140,8 @@ class JobStore {
   std::string data_dir_;
   std::mutex mu_;  // guards db_
   sqlite3* db_ = nullptr;
-  std::atomic<uint64_t> unsynced_creates_{0};  // CreateJob(sync = false) calls committed
-  std::atomic<uint64_t> synced_creates_{0};    // how many of those are known durable
+  std::atomic<uint64_t> unsynced_commits_{0};  // Create/UpdateJob(sync = false) commits
+  std::atomic<uint64_t> synced_commits_{0};    // how many of those are known durable
   std::mutex sync_mu_;                         // one SyncCommits at a time (not mu_)
   bool log_dir_synced_ = false;                // the log's directory entry, once per process
 };

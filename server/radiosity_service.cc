@@ -228,7 +228,9 @@ grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(
     return new ErrorWriteReactor<v1::ResultChunk>(auth);
   }
   return new ChunkStreamReactor<v1::ResultChunk>(
-      work_, [this, job_id = request->job_id()] { return manager_.Result(job_id); });
+      work_, [this, job_id = request->job_id(), report_only = request->report_only()] {
+        return manager_.Result(job_id, report_only);
+      });
 }
 
 grpc::ServerUnaryReactor* RadiosityService::GetJob(grpc::CallbackServerContext* context,

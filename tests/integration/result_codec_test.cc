@@ -1,0 +1,55 @@
+// ResultEncoder against EncodeResultChunks(MakeResultChunks(...)): the same bytes, and a blob
+// file that reads back as them, for meshes of zero, one and several patch and vertex chunks.
+#include "server/result_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace radflux {
+namespace {
+
+// A mesh of `patches` quads over `patches` + 3 vertices (not a surface: only the encoding
+// reads it), and B of every patch, from a fixed seed.
+void MakeMesh(size_t patches, PatchMesh* mesh, SolveResult* solve) {
+  std::mt19937_64 random(patches);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  for (size_t i = 0; i < patches + 3; ++i)
+    mesh->positions.push_back({value(random), value(random), value(random)});
+  for (size_t i = 0; i < patches; ++i) {
+    Patch patch;
+    const auto v = static_cast<uint32_t>(i);
+    patch.v = {v, v + 1, v + 2, i % 2 ? v + 2 : v + 3};
+    patch.face = static_cast<uint32_t>(i / 7);
+    mesh->patches.push_back(patch);
+    solve->radiosity.push_back({value(random), value(random), value(random)});
+  }
+}
+
+TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
+  for (size_t patches :
+       {size_t{0}, size_t{1}, size_t{1000}, kResultChunkItems, 2 * kResultChunkItems + 5}) {
+    PatchMesh mesh;
+    SolveResult solve;
+    MakeMesh(patches, &mesh, &solve);
+    const std::string report = R"({"solve": {"iterations": 7}})";
+    const std::string whole = EncodeResultChunks(MakeResultChunks(mesh, solve, report));
+    ResultEncoder encoder(mesh);
+    absl::StatusOr<EncodedResult> encoded = std::move(encoder).Finish(solve, report);
+    ASSERT_TRUE(encoded.ok()) << encoded.status();
+    EXPECT_EQ(encoded->bytes, whole) << patches << " patches";
+    // Its blob file (two zstd frames) reads back as those bytes.
+    const std::string path = ::testing::TempDir() + "/result_codec_test.rfb";
+    ASSERT_TRUE(WriteBuiltBlobFile(path, encoded->file).ok());
+    absl::StatusOr<std::string> read = ReadBlobFile(path);
+    ASSERT_TRUE(read.ok()) << read.status();
+    EXPECT_EQ(*read, whole);
+    // And it decodes to the chunks it encodes.
+    absl::StatusOr<std::vector<v1::ResultChunk>> decoded = DecodeResultChunks(whole);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_EQ(decoded->back().report_json(), report);
+  }
+}
+
+}  // namespace
+}  // namespace radflux
