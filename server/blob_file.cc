@@ -81,16 +81,7 @@ absl::Status BlobBuilder::Append(std::string_view data) {
 std::string BlobBuilder::File() const {
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_MD_CTX_copy_ex(ctx.get(), hash_->ctx.get());
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int length = 0;
-  EVP_DigestFinal_ex(ctx.get(), digest.data(), &length);
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) {
-    hex.push_back(kHex[digest[i] >> 4]);
-    hex.push_back(kHex[digest[i] & 15]);
-  }
-  return absl::StrCat(std::string(kMagic), raw_size_, "\n", hex, "\n", frames_);
+  return absl::StrCat(std::string(kMagic), raw_size_, "\n", DigestHex(ctx.get()), "\n", frames_);
 }
 
 namespace {
