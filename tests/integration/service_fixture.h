@@ -134,7 +134,7 @@ class ServiceFixture : public ::testing::Test {
 };
 
 // Small Cornell-box options: about `patches` patches, 128 rays, a fixed seed.
-v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver) {
+inline v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver) {
   v1::SolveOptions options;
   options.set_target_patches(patches);
   options.set_rays(128);
