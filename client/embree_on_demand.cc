@@ -1,10 +1,11 @@
-// Embree on demand: radflux-service's own definitions of the Embree functions the solver
-// calls. Each loads libembree3 (and with it TBB) the first time one of them is called, so a
-// service verb that renders nothing (submit, list, watch without --snapshots, result
-// without --render) starts without Embree's stack: ~4 ms of every client start
-// (bench/RESULTS.md, "Service overhead (issue 4)"). The executable is linked --as-needed,
-// and the ctest `service_client_loads_embree_on_demand` checks that it does not name
-// libembree3: a solver change that calls an Embree function missing here fails that test.
+// Embree on demand: the client executables' own definitions of the Embree functions the
+// solver calls. Each loads libembree3 (and with it TBB) the first time one of them is called,
+// so `radflux submit` and the other service verbs exec radflux-service without loading it,
+// and a verb that renders nothing never does (~4 ms of a process start: bench/RESULTS.md,
+// "Service overhead (issue 4)"); `radflux solve` loads it at its first Embree call. The
+// executables link --as-needed, and the ctests `radflux_loads_embree_on_demand` and
+// `radflux-service_loads_embree_on_demand` check that they do not name libembree3: a solver
+// change that calls an Embree function missing here fails them.
 #include <dlfcn.h>
 #include <embree3/rtcore.h>
 
@@ -16,7 +17,7 @@ namespace {
 // The library, loaded once; a clear message and exit status 1 if it cannot be.
 void* Embree() {
   static void* const handle = [] {
-    void* h = dlopen("libembree3.so.3", RTLD_NOW | RTLD_LOCAL);
+    void* h = dlopen("libembree3.so.3", RTLD_LAZY | RTLD_LOCAL);
     if (h == nullptr) {
       std::fprintf(stderr, "radflux: cannot load Embree (needed to render): %s\n", dlerror());
       std::exit(1);
