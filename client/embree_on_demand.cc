@@ -19,7 +19,7 @@ void* Embree() {
   static void* const handle = [] {
     void* h = dlopen("libembree3.so.3", RTLD_LAZY | RTLD_LOCAL);
     if (h == nullptr) {
-      std::fprintf(stderr, "radflux: cannot load Embree (needed to render): %s\n", dlerror());
+      std::fprintf(stderr, "radflux: cannot load Embree (libembree3.so.3): %s\n", dlerror());
       std::exit(1);
     }
     return h;
