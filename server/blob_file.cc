@@ -5,7 +5,6 @@
 #include <unistd.h>
 #include <zstd.h>
 
-#include <array>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -122,17 +121,10 @@ absl::Status CreateDurableFile(const std::string& path) {
   return absl::OkStatus();
 }
 
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync) {
-  absl::StatusOr<std::string> blob = EncodeBlob(data);
-  if (!blob.ok()) return blob.status();
-  return WriteBuiltBlobFileInPlace(path, *blob, sync);
-}
-
-absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file, bool sync) {
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) return ErrnoError("cannot open", path);
-  const bool ok = WriteAll(fd, file) && ::ftruncate(fd, static_cast<off_t>(file.size())) == 0 &&
-                  (!sync || ::fsync(fd) == 0);
+  const bool ok = WriteAll(fd, file) && ::ftruncate(fd, static_cast<off_t>(file.size())) == 0;
   ::close(fd);
   if (!ok) return ErrnoError("cannot write", path);
   return absl::OkStatus();

@@ -2,7 +2,8 @@
 // results. A blob is zstd-compressed with a header carrying the raw size and the SHA-256
 // of the raw bytes; it is written atomically (temp file, fsync, rename, fsync of the dir),
 // so a reader sees either the whole previous file, the whole new one, or none; or, for a
-// file no one reads before a later commit, in place with one fsync (WriteBlobFileInPlace).
+// file no one reads before a later commit, in place without an fsync of its own
+// (WriteBuiltBlobFileInPlace, then SyncPath).
 #pragma once
 
 #include <cstdint>
@@ -49,17 +50,14 @@ absl::Status WriteBlobFile(const std::string& path, std::string_view data);
 // file in a directory created just before survives an OS crash too.
 absl::Status CreateDurableFile(const std::string& path);
 
-// Writes the blob of `data` into the existing file `path` (see CreateDurableFile) with one
-// fsync (none with `sync` false: then SyncPath(path) makes it durable). Not atomic: until it
+// WriteBlobFile of a blob built already (`file`: BlobBuilder::File()).
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file);
+// Writes a built blob into the existing file `path` (see CreateDurableFile) without an
+// fsync: it survives kill -9, and SyncPath(path) makes it durable. Not atomic: until it
 // returns, and after a crash while it runs, the file may hold a partial blob (which
 // ReadBlobFile reports as DATA_LOSS), so it is for files that no one reads before a later
 // commit says they are complete.
-absl::Status WriteBlobFileInPlace(const std::string& path, std::string_view data, bool sync = true);
-
-// WriteBlobFile and WriteBlobFileInPlace of a blob built already (`file`: BlobBuilder::File()).
-absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file);
-absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file,
-                                       bool sync = true);
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file);
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);

@@ -505,26 +505,21 @@ void JobManager::RunOne(const std::string& job_id) {
     // before both are durable, except GetJob/ListJobs, which may see the commit durable
     // while the result's fsync still runs; after an OS crash in that window, the restart
     // finds the result unreadable and computes it again (CheckResultsAtStart).
-    const bool overlap = prepared.ok();
     const auto put_start = std::chrono::steady_clock::now();
-    absl::Status put = store_.PutResultFile(job_id, result->file, prepared.ok(), !overlap);
+    absl::Status put = store_.PutResult(job_id, result->file, prepared.ok());
     const auto remove_start = std::chrono::steady_clock::now();
     if (put.ok()) store_.RemoveWorkFiles(job_id);
     if (put.ok() && result->bytes.size() <= kRecentResultBytes) {
       recent_results_.Put(job_id, std::make_shared<const std::string>(std::move(result->bytes)));
     }
     spdlog::debug("job {}: ms result {} {:.1f}, work files removed {:.1f}", job_id,
-                  overlap ? "written" : "stored", MsBetween(put_start, remove_start),
+                  prepared.ok() ? "written" : "stored", MsBetween(put_start, remove_start),
                   MsBetween(remove_start, std::chrono::steady_clock::now()));
     if (put.ok()) {
-      std::future<absl::Status> synced;
-      if (overlap) {
-        synced = std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
-      } else {  // stored atomically: fsynced already
-        std::promise<absl::Status> done;
-        done.set_value(absl::OkStatus());
-        synced = done.get_future();
-      }
+      // Written in place: its fsync now, beside the commit's. Stored atomically: fsynced.
+      std::future<absl::Status> synced =
+          prepared.ok() ? std::async(std::launch::async, [&] { return store_.SyncResult(job_id); })
+                        : std::async(std::launch::deferred, [] { return absl::OkStatus(); });
       Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "", &synced);
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));

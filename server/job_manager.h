@@ -89,9 +89,9 @@ class JobManager {
   void WorkerLoop();
   void RunOne(const std::string& job_id);
   // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`
-  // (SUCCEEDED, its result written but not yet fsynced: JobStore::PutResult with sync
-  // false) the state is committed, and the commit made durable while that fsync runs; the
-  // event is published once both are durable.
+  // (SUCCEEDED, its result written in place but not yet fsynced: JobStore::PutResult
+  // of a prepared file) the state is committed, and the commit made durable while that fsync runs;
+  // the event is published once both are durable.
   void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message,
                   std::future<absl::Status>* result_synced = nullptr);
   // On Start: every SUCCEEDED job whose result was never marked durable (an OS crash may

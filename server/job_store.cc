@@ -98,6 +98,10 @@ std::string JobStore::JobDir(const std::string& job_id) const {
   return (fs::path(data_dir_) / "jobs" / job_id).string();
 }
 
+std::string JobStore::ResultPath(const std::string& job_id) const {
+  return (fs::path(JobDir(job_id)) / "result.rfb").string();
+}
+
 bool JobStore::HasScene(const std::string& sha256) {
   std::lock_guard lock(mu_);
   Statement st(db_, "SELECT 1 FROM scenes WHERE sha256 = ?");
@@ -358,34 +362,27 @@ absl::Status JobStore::PrepareResult(const std::string& job_id) {
   std::error_code ec;
   fs::create_directories(JobDir(job_id), ec);
   if (ec) return absl::InternalError(absl::StrCat("cannot create ", JobDir(job_id)));
-  return CreateDurableFile((fs::path(JobDir(job_id)) / "result.rfb").string());
+  return CreateDurableFile(ResultPath(job_id));
 }
 
-absl::Status JobStore::PutResult(const std::string& job_id, const std::string& bytes, bool prepared,
-                                 bool sync) {
-  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
-  return prepared ? WriteBlobFileInPlace(path, bytes, sync) : WriteBlobFile(path, bytes);
-}
-
-absl::Status JobStore::PutResultFile(const std::string& job_id, std::string_view file,
-                                     bool prepared, bool sync) {
-  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
-  return prepared ? WriteBuiltBlobFileInPlace(path, file, sync) : WriteBuiltBlobFile(path, file);
+absl::Status JobStore::PutResult(const std::string& job_id, std::string_view file, bool prepared) {
+  const std::string path = ResultPath(job_id);
+  return prepared ? WriteBuiltBlobFileInPlace(path, file) : WriteBuiltBlobFile(path, file);
 }
 
 absl::Status JobStore::SyncResult(const std::string& job_id) {
-  const std::string path = (fs::path(JobDir(job_id)) / "result.rfb").string();
+  const std::string path = ResultPath(job_id);
   if (!SyncPath(path)) return absl::InternalError(absl::StrCat("cannot fsync ", path));
   return absl::OkStatus();
 }
 
 absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
-  return ReadBlobFile((fs::path(JobDir(job_id)) / "result.rfb").string());
+  return ReadBlobFile(ResultPath(job_id));
 }
 
 void JobStore::DiscardResult(const std::string& job_id) {
   std::error_code ec;
-  fs::remove(fs::path(JobDir(job_id)) / "result.rfb", ec);
+  fs::remove(ResultPath(job_id), ec);
   fs::remove(fs::path(JobDir(job_id)) / "checkpoint.rfb", ec);
 }
 

@@ -3,7 +3,7 @@
 // solver checkpoints and results are checksummed blob files (see blob_file.h) under
 // scenes/ and jobs/<id>/. Every write is durable (fsynced) when the call returns, except
 // UpdateJob of a RUNNING job, CreateJob(sync = false), UpdateJob(sync = false),
-// PutResult(sync = false) and MarkResultDurable, which survive kill -9 but not an OS crash
+// PutResult(prepared = true) and MarkResultDurable, which survive kill -9 but not an OS crash
 // (until SyncCommits, resp. SyncResult). Thread-safe.
 #pragma once
 
@@ -105,20 +105,16 @@ class JobStore {
   absl::Status PutCheckpoint(const std::string& job_id, const SolverCheckpoint& checkpoint);
   absl::StatusOr<SolverCheckpoint> GetCheckpoint(const std::string& job_id);
   // Creates the job's directory and an empty result file in it, and makes both durable
-  // (fsync of the file, the directory and jobs/), so that PutResult needs one fsync. For
-  // when the job starts, off its critical path.
+  // (fsync of the file, the directory and jobs/), so that storing the result needs one fsync
+  // (SyncResult). For when the job starts, off its critical path.
   absl::Status PrepareResult(const std::string& job_id);
-  // The serialized result stream of a finished job (see result_codec.h), durable when this
-  // returns. `prepared`: PrepareResult succeeded for the job; then the result is written
-  // into that file (one fsync; the job is not SUCCEEDED yet, so no one reads it meanwhile),
-  // else atomically (temp file, rename: three fsyncs). With `prepared` and `sync` false the
-  // bytes are written without the fsync (readable at once and after kill -9), to be made
-  // durable by SyncResult, e.g. while the SUCCEEDED state is being made durable.
-  absl::Status PutResult(const std::string& job_id, const std::string& bytes, bool prepared,
-                         bool sync = true);
-  // PutResult of a result whose blob file is built already (`file`: BlobBuilder::File()).
-  absl::Status PutResultFile(const std::string& job_id, std::string_view file, bool prepared,
-                             bool sync = true);
+  // Stores a finished job's result, its blob file built already (`file`: the
+  // BlobBuilder::File() of its serialized stream, see result_codec.h). `prepared`:
+  // PrepareResult succeeded for the job; then `file` is written into that file without its
+  // fsync (readable at once and after kill -9; the job is not SUCCEEDED yet, so no one
+  // reads it meanwhile), to be made durable by SyncResult, e.g. while the SUCCEEDED state
+  // is made durable; else atomically and durably (temp file, rename: three fsyncs).
+  absl::Status PutResult(const std::string& job_id, std::string_view file, bool prepared);
   // fsyncs the job's result file (see PutResult).
   absl::Status SyncResult(const std::string& job_id);
   absl::StatusOr<std::string> GetResult(const std::string& job_id);
@@ -132,6 +128,7 @@ class JobStore {
   std::string JobDir(const std::string& job_id) const;
 
  private:
+  std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::Status Exec(const std::string& sql);
   absl::StatusOr<std::vector<v1::Job>> QueryJobs(const std::string& sql,
