@@ -93,12 +93,8 @@ absl::Status JobManager::Start() {
   absl::StatusOr<std::vector<v1::Job>> unfinished = store_.UnfinishedJobs();
   if (!unfinished.ok()) return unfinished.status();
   for (const v1::Job& job : *unfinished) {
-    absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
-    if (!base.ok()) return base.status();
-    std::lock_guard lock(mu_);
     spdlog::info("job {}: {} at startup, requeued", job.job_id(), v1::JobState_Name(job.state()));
-    queue_.push_back(job.job_id());
-    RebuildHubLocked(job, *base);
+    if (absl::Status s = RequeueAtStart(job); !s.ok()) return s;
   }
   if (absl::Status s = CheckResultsAtStart(); !s.ok()) return s;
   for (int i = 0; i < std::max(1, options_.jobs); ++i)
@@ -123,12 +119,17 @@ absl::Status JobManager::CheckResultsAtStart() {
     job.set_message("result lost in a crash; computing it again");
     job.clear_finished_unix_ms();
     if (absl::Status s = store_.UpdateJob(job); !s.ok()) return s;
-    absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
-    if (!base.ok()) return base.status();
-    std::lock_guard lock(mu_);
-    queue_.push_back(job.job_id());
-    RebuildHubLocked(job, *base);
+    if (absl::Status s = RequeueAtStart(job); !s.ok()) return s;
   }
+  return absl::OkStatus();
+}
+
+absl::Status JobManager::RequeueAtStart(const v1::Job& job) {
+  absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
+  if (!base.ok()) return base.status();
+  std::lock_guard lock(mu_);
+  queue_.push_back(job.job_id());
+  RebuildHubLocked(job, *base);
   return absl::OkStatus();
 }
 
@@ -363,15 +364,11 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
     if (!read.ok()) return read.status();
     bytes = std::make_shared<const std::string>(*std::move(read));
   }
-  absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes);
+  absl::StatusOr<std::vector<v1::ResultChunk>> chunks = DecodeResultChunks(*bytes, report_only);
   spdlog::debug("job {}: ms result {} and decoded {:.1f}", job_id,
                 in_memory ? "kept in memory" : "read",
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
-  if (chunks.ok() && report_only) {
-    std::erase_if(*chunks,
-                  [](const v1::ResultChunk& c) { return c.has_vertices() || c.has_patches(); });
-  }
   return chunks;
 }
 

@@ -101,6 +101,8 @@ class JobManager {
   // deterministic (rows still stored are reused; a solver checkpoint is not, so that cg,
   // whose resume agrees only within the tolerance, restarts as the first run did).
   absl::Status CheckResultsAtStart();
+  // On Start: queues a stored QUEUED or RUNNING job and rebuilds its event history.
+  absl::Status RequeueAtStart(const v1::Job& job);
   std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
   // A job's event history rebuilt from the store (after a restart, or when its finished hub
   // left memory): numbered after `base` (JobStore::NextHistoryBase), its first event the
