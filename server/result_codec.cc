@@ -4,6 +4,8 @@
 #include <bit>
 #include <cstring>
 
+#include "google/protobuf/io/coded_stream.h"
+
 namespace radflux {
 
 namespace {
@@ -60,22 +62,13 @@ std::string EncodeResultChunks(const std::vector<v1::ResultChunk>& chunks) {
 
 namespace {
 
+using google::protobuf::io::CodedOutputStream;
+
 // Appends `value` as a protobuf varint.
 void AppendVarint(std::string& out, uint64_t value) {
-  while (value >= 0x80) {
-    out.push_back(static_cast<char>((value & 0x7f) | 0x80));
-    value >>= 7;
-  }
-  out.push_back(static_cast<char>(value));
-}
-
-size_t VarintSize(uint64_t value) {
-  size_t size = 1;
-  while (value >= 0x80) {
-    value >>= 7;
-    ++size;
-  }
-  return size;
+  uint8_t varint[10];
+  const uint8_t* end = CodedOutputStream::WriteVarint64ToArray(value, varint);
+  out.append(reinterpret_cast<const char*>(varint), static_cast<size_t>(end - varint));
 }
 
 // Wire tags (field number << 3 | 2, length-delimited) of ResultChunk.patches and
@@ -105,8 +98,8 @@ ResultEncoder::ResultEncoder(const PatchMesh& mesh) : patch_count_(mesh.size()) 
     const v1::PatchChunk& p = chunk.patches();
     const uint64_t b_bytes = sizeof(double) * kBands * static_cast<uint64_t>(p.source_face_size());
     const std::string fields = p.SerializeAsString();  // first_patch, vertices, source_face
-    const uint64_t inner = fields.size() + 1 + VarintSize(b_bytes) + b_bytes;
-    AppendSize(bytes, 1 + VarintSize(inner) + inner);
+    const uint64_t inner = fields.size() + 1 + CodedOutputStream::VarintSize64(b_bytes) + b_bytes;
+    AppendSize(bytes, 1 + CodedOutputStream::VarintSize64(inner) + inner);
     bytes.push_back(kPatchesTag);
     AppendVarint(bytes, inner);
     bytes += fields;
@@ -151,16 +144,20 @@ absl::StatusOr<EncodedResult> ResultEncoder::Finish(const SolveResult& solve,
   return result;
 }
 
-absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(const std::string& bytes) {
+absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(const std::string& bytes,
+                                                                bool header_and_report_only) {
   std::vector<v1::ResultChunk> chunks;
   size_t at = 0;
-  while (at < bytes.size()) {
+  for (size_t index = 0; at < bytes.size(); ++index) {
     uint64_t size = 0;
     if (bytes.size() - at < sizeof(size)) return absl::DataLossError("truncated result");
     std::memcpy(&size, bytes.data() + at, sizeof(size));
     at += sizeof(size);
     if (bytes.size() - at < size) return absl::DataLossError("truncated result");
-    if (!chunks.emplace_back().ParseFromArray(bytes.data() + at, static_cast<int>(size))) {
+    // MakeResultChunks' order: the header first, the report last.
+    const bool wanted = !header_and_report_only || index == 0 || at + size == bytes.size();
+    if (wanted &&
+        !chunks.emplace_back().ParseFromArray(bytes.data() + at, static_cast<int>(size))) {
       return absl::DataLossError("corrupt result chunk");
     }
     at += size;

@@ -22,7 +22,10 @@ std::vector<v1::ResultChunk> MakeResultChunks(const PatchMesh& mesh, const Solve
 
 // Length-prefixed concatenation of the chunks' wire encodings.
 std::string EncodeResultChunks(const std::vector<v1::ResultChunk>& chunks);
-absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(const std::string& bytes);
+// The chunks back; with `header_and_report_only`, only the first (header) and the last
+// (report), the others' lengths checked but not parsed.
+absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(
+    const std::string& bytes, bool header_and_report_only = false);
 
 // A finished job's result: EncodeResultChunks' bytes, and the blob file storing them.
 struct EncodedResult {

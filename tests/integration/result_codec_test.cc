@@ -48,6 +48,14 @@ TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
     absl::StatusOr<std::vector<v1::ResultChunk>> decoded = DecodeResultChunks(whole);
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     EXPECT_EQ(decoded->back().report_json(), report);
+    // Header and report alone: the first and the last chunk, the same messages.
+    absl::StatusOr<std::vector<v1::ResultChunk>> brief =
+        DecodeResultChunks(whole, /*header_and_report_only=*/true);
+    ASSERT_TRUE(brief.ok()) << brief.status();
+    ASSERT_EQ(brief->size(), 2u);
+    EXPECT_TRUE(brief->front().has_header());
+    EXPECT_EQ(brief->front().header().patch_count(), patches);
+    EXPECT_EQ(brief->back().report_json(), report);
   }
 }
 
