@@ -53,9 +53,9 @@ inline double AtanOverTOfSquare(double u) {
 // One edge's term of Lambert's contour sum: gamma n.(a x b) / |a x b| for the edge from
 // x + a to x + b, gamma the angle it subtends at x; 0 when the edge points at x. An edge
 // seen under less than ~14 degrees (most of a row's) takes gamma / |a x b| =
-// atan(t) / (t a.b), t = tan gamma, from its series: no square root, no atan2, within an
-// ulp or two of the atan2 form. The reversed edge (b, a) gives exactly the negated term
-// (bit for bit), so patches sharing an edge can share its term.
+// atan(t) / (t a.b), t = tan gamma, from its series: no square root, no atan2, within a
+// few ulp of the atan2 form (tested: below 8). The reversed edge (b, a) gives exactly the
+// negated term (bit for bit), so patches sharing an edge can share its term.
 inline double ContourEdgeTerm(const Vec3& a, const Vec3& b, const Vec3& n) {
   const Vec3 c = Cross(a, b);
   const double d = Dot(a, b);
