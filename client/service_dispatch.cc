@@ -1,11 +1,13 @@
 #include "client/service_dispatch.h"
 
+#include <limits.h>
+#include <string.h>
 #include <unistd.h>
 
 #include <array>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
-#include <filesystem>
 
 namespace radflux::cli {
 namespace {
@@ -40,15 +42,32 @@ std::string_view FindVerb(int argc, char** argv) {
   return {};
 }
 
-std::string ExecServiceBinary(char** argv) {
-  std::error_code error;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error) return "cannot find this executable (/proc/self/exe): " + error.message();
-  const std::filesystem::path service = self.parent_path() / "radflux-service";
-  argv[0] = const_cast<char*>(service.c_str());
-  ::execv(service.c_str(), argv);
-  return "cannot run " + service.string() + " (it implements the service verbs and is installed " +
-         "next to radflux): " + std::strerror(errno);
+const char* SiblingFor(int argc, char** argv) {
+  return IsServiceVerb(FindVerb(argc, argv)) ? "radflux-service" : "radflux-local";
+}
+
+void ExecSibling(const char* name, char** argv) {
+  char path[PATH_MAX];
+  const ssize_t length = ::readlink("/proc/self/exe", path, sizeof path);
+  if (length <= 0 || static_cast<size_t>(length) >= sizeof path) {
+    std::fprintf(stderr, "radflux: cannot find this executable (/proc/self/exe): %s\n",
+                 length < 0 ? std::strerror(errno) : "path too long");
+    return;
+  }
+  char* slash = static_cast<char*>(::memrchr(path, '/', static_cast<size_t>(length)));
+  const size_t directory = slash == nullptr ? 0 : static_cast<size_t>(slash - path) + 1;
+  if (directory + std::strlen(name) >= sizeof path) {
+    std::fprintf(stderr, "radflux: the path of %s next to %.*s is too long\n", name,
+                 static_cast<int>(length), path);
+    return;
+  }
+  std::strcpy(path + directory, name);
+  argv[0] = path;
+  ::execv(path, argv);
+  std::fprintf(stderr,
+               "radflux: cannot run %s (it implements this verb and is installed next to "
+               "radflux): %s\n",
+               path, std::strerror(errno));
 }
 
 }  // namespace radflux::cli

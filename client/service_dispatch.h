@@ -1,11 +1,12 @@
-// The service verbs (submit, watch, result, cancel, list) live in a sibling executable,
-// radflux-service, so that `radflux solve` never loads gRPC, protobuf and OpenSSL: their
-// dynamic linking and start-up were 6 ms of a 50 ms Cornell solve. `radflux VERB ...`
-// with a service verb replaces itself by `radflux-service VERB ...`, arguments unchanged,
-// so the command line is one contract whichever binary parses it.
+// `radflux` is a dispatcher, as git is for git-VERB: it reads the verb and replaces itself by
+// the sibling executable that implements it, arguments unchanged, so the command line is one
+// contract whichever binary parses it:
+//   radflux-service  the service verbs (submit, watch, result, cancel, list): gRPC, OpenSSL;
+//   radflux-local    everything else (solve, viewfactors, --help): the in-process solver.
+// The dispatcher links only the C library, statically: the hop costs about 1 ms, where
+// starting either side's libraries costs 8-18 ms (bench/RESULTS.md, "Service overhead").
 #pragma once
 
-#include <string>
 #include <string_view>
 
 namespace radflux::cli {
@@ -18,8 +19,12 @@ bool IsServiceVerb(std::string_view verb);
 // --tls-key may come before the verb). Empty when there is none.
 std::string_view FindVerb(int argc, char** argv);
 
-// Replaces this process by radflux-service found next to this executable, with the same
-// arguments. Returns only on failure, with a message naming the path it tried.
-std::string ExecServiceBinary(char** argv);
+// The sibling executable for a command line: "radflux-service" or "radflux-local".
+const char* SiblingFor(int argc, char** argv);
+
+// Replaces this process by the executable `name` found next to this one, with the same
+// arguments. Returns only on failure, having printed to stderr a message naming the path
+// it tried and why.
+void ExecSibling(const char* name, char** argv);
 
 }  // namespace radflux::cli

@@ -56,7 +56,17 @@ expect_error "spill dir is a file" "cannot create a spill file in" solve "$corne
 "$radflux" solve --help | grep -q -- "--hemicube-res" || fail "--help lists options"
 "$radflux" solve --help | grep -q -- "--memory-limit" || fail "--help lists --memory-limit"
 
-checks=24
+# `radflux` only dispatches (client/service_dispatch.h): alone, without its siblings, it says
+# which executable it could not run.
+cp "$radflux" "$tmp/radflux"
+expect_missing_sibling_for() {
+  "$tmp/radflux" "${@:2}" >"$tmp/alone.out" 2>&1 && fail "radflux alone: ${*:2} exited 0"
+  grep -q "cannot run $tmp/$1 " "$tmp/alone.out" || fail "radflux alone: ${*:2} does not name $1"
+}
+expect_missing_sibling_for radflux-local solve "$cornell"
+expect_missing_sibling_for radflux-service --server 127.0.0.1:1 list
+
+checks=26
 # The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
 # command line reaches them, connection flags before or after the verb.
 if [ -x "$(dirname "$radflux")/radflux-service" ]; then

@@ -37,10 +37,12 @@ if not froms or any(not f.startswith("debian:12") for f in froms):
     fail(f"Dockerfile stages must be Debian 12: {froms}")
 if "scripts/setup.sh" not in dockerfile:
     fail("Dockerfile must install the packages of scripts/setup.sh")
-if not re.search(r"--target radflux radflux-service radfluxd", dockerfile):
-    fail("Dockerfile must build radflux, radflux-service (its service verbs) and radfluxd")
-if "/usr/local/bin/radflux-service" not in dockerfile.split("COPY --from=build")[-1]:
-    fail("the runtime image must carry radflux-service next to radflux")
+if not re.search(r"--target radflux radflux-local radflux-service radfluxd", dockerfile):
+    fail("Dockerfile must build radflux, radflux-local and radflux-service (the executables "
+         "it dispatches to) and radfluxd")
+for sibling in ("radflux-local", "radflux-service"):
+    if f"/usr/local/bin/{sibling}" not in dockerfile.split("COPY --from=build")[-1]:
+        fail(f"the runtime image must carry {sibling} next to radflux")
 exposed = {int(p) for p in re.findall(r"^EXPOSE\s+(\d+)", dockerfile, re.M)}
 if len(exposed) != 1:
     fail(f"Dockerfile must EXPOSE exactly one port: {exposed}")

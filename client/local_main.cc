@@ -1,23 +1,15 @@
-// radflux: the command-line client. `solve` and `viewfactors` run in-process; the
-// service verbs (submit, watch, result, cancel, list) talk to radfluxd and run in
-// radflux-service, which this binary becomes for them (client/service_dispatch.h).
+// radflux-local: the verbs of `radflux` that run in-process (solve, viewfactors) and its
+// top-level help. `radflux` runs it for every verb that is not a service verb
+// (client/service_dispatch.h); it can be run directly with the same arguments.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <cstdio>
 
 #include "client/run_app.h"
-#include "client/service_dispatch.h"
 #include "client/solve_command.h"
 #include "client/viewfactors_command.h"
 
 int main(int argc, char** argv) {
-#ifdef RADFLUX_WITH_SERVICE
-  if (radflux::cli::IsServiceVerb(radflux::cli::FindVerb(argc, argv))) {
-    std::fprintf(stderr, "radflux: %s\n", radflux::cli::ExecServiceBinary(argv).c_str());
-    return 2;
-  }
-#endif
   spdlog::set_level(spdlog::level::warn);
   CLI::App app{"radflux: radiosity solver (in-process, or client of radfluxd)", "radflux"};
   app.require_subcommand(1);
