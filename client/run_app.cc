@@ -1,6 +1,9 @@
 #include "client/run_app.h"
 
 #include <cstdio>
+#include <string>
+
+#include "client/service_dispatch.h"
 
 namespace radflux::cli {
 
@@ -8,7 +11,13 @@ int RunApp(CLI::App& app, int argc, char** argv, const int& exit_code) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);   // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    const std::string verb(FindVerb(argc, argv));
+    if (app.get_subcommands().empty() && !verb.empty()) {  // CLI11 would say one is required
+      std::fprintf(stderr, "radflux: unknown verb '%s' (`radflux --help` lists them)\n",
+                   verb.c_str());
+      return 2;
+    }
     std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
     return 2;
   }

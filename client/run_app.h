@@ -7,7 +7,8 @@
 namespace radflux::cli {
 
 // 0 after --help; 2 with one line `radflux: ...` on stderr for a command line CLI11
-// refuses; otherwise `exit_code` as the command's callback set it.
+// refuses (naming the verb when it is not one of `app`'s); otherwise `exit_code` as the command's
+// callback set it.
 int RunApp(CLI::App& app, int argc, char** argv, const int& exit_code);
 
 }  // namespace radflux::cli
