@@ -33,7 +33,7 @@ FINE = {
 }
 RUNS = {
     "cornell": [("uniform_%d" % n, ["--patches", str(n)]) for n in (1000, 4000, 8000, 16000, 32000, 64000)]
-    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (1000, 4000)]
+    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (1000, 2000, 3000, 4000, 8000, 16000)]
     + [("adaptive_t%s_p%d" % (t, p), ["--patches", "1000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
        for t in ("0.1", "0.2") for p in (2, 3, 4)]
     + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4", "1e-5")]
