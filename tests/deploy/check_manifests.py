@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Checks deploy/: every YAML manifest parses, references only the image the Dockerfile
 builds and the port radfluxd serves on, uses only flags radfluxd has, and only Secret keys
-the Secret defines. Usage: check_manifests.py REPO_ROOT RADFLUXD"""
+the Secret defines, and the runtime image installs the Debian package of every shared library
+the executables load (ldd, plus Embree, which the clients dlopen). Usage:
+check_manifests.py REPO_ROOT RADFLUXD [EXECUTABLE...]   (the other executables the image carries)"""
 import glob
 import os
 import re
@@ -10,7 +12,7 @@ import sys
 
 import yaml
 
-root, radfluxd = sys.argv[1], sys.argv[2]
+root, radfluxd, executables = sys.argv[1], sys.argv[2], sys.argv[3:]
 deploy = os.path.join(root, "deploy")
 errors = []
 
@@ -43,6 +45,36 @@ if not re.search(r"--target radflux radflux-local radflux-service radfluxd", doc
 for sibling in ("radflux-local", "radflux-service"):
     if f"/usr/local/bin/{sibling}" not in dockerfile.split("COPY --from=build")[-1]:
         fail(f"the runtime image must carry {sibling} next to radflux")
+# debian:12-slim has these already (apt needs them).
+BASE_PACKAGES = {"libc6", "libgcc-s1", "libstdc++6", "zlib1g"}
+
+
+def package_of(path):
+    """The Debian package that installed a shared library (dpkg knows it under /lib or
+    /usr/lib), or None."""
+    real = os.path.realpath(path)
+    for candidate in {real, real.replace("/usr/lib/", "/lib/", 1), path}:
+        out = subprocess.run(["dpkg", "-S", candidate], capture_output=True, text=True).stdout
+        if out:
+            return out.split(":")[0]
+    return None
+
+
+def needed_packages(binaries):
+    libraries = set()
+    for binary in binaries:
+        out = subprocess.run(["ldd", binary], capture_output=True, text=True).stdout
+        libraries |= set(re.findall(r"=> (/\S+)", out))
+    return {package_of(lib) or f"(no package for {lib})" for lib in libraries}
+
+
+runtime = dockerfile.split("FROM debian:12-slim")[-1]
+installed = set(re.findall(r"\b(lib[a-z0-9.+-]+|zlib1g|ca-certificates)\b", runtime))
+embree = [p for p in ("/usr/lib/x86_64-linux-gnu/libembree3.so.3",) if os.path.exists(p)]
+for package in sorted(needed_packages([radfluxd, *executables, *embree]) - BASE_PACKAGES):
+    if package not in installed:
+        fail(f"the runtime image does not install {package}, which the executables load")
+
 exposed = {int(p) for p in re.findall(r"^EXPOSE\s+(\d+)", dockerfile, re.M)}
 if len(exposed) != 1:
     fail(f"Dockerfile must EXPOSE exactly one port: {exposed}")
@@ -121,4 +153,5 @@ if errors:
     print("\n".join(errors))
     sys.exit(1)
 print(f"deploy: {len(files)} manifests parse; image {image}, port {port}, "
-      f"{len(secret_keys)} secret keys, flags checked against radfluxd --help")
+      f"{len(secret_keys)} secret keys, flags checked against radfluxd --help, "
+      f"runtime libraries of {1 + len(executables)} executables installed")
