@@ -12,6 +12,7 @@
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
   CLI::App app{"radflux: radiosity solver (in-process, or client of radfluxd)", "radflux"};
+  app.set_version_flag("--version", "radflux " RADFLUX_VERSION);
   app.require_subcommand(1);
 #ifdef RADFLUX_WITH_SERVICE
   app.footer(

@@ -14,6 +14,7 @@
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
   CLI::App app{"radflux service verbs: the client of radfluxd", "radflux"};
+  app.set_version_flag("--version", "radflux " RADFLUX_VERSION);
   app.require_subcommand(1);
   int exit_code = 0;
   radflux::cli::AddServiceCommands(app, exit_code);

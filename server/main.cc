@@ -112,8 +112,10 @@ int Serve(const Flags& flags) {
   const char* tls = flags.tls_cert.empty()        ? "off"
                     : flags.tls_client_ca.empty() ? "on"
                                                   : "on, client certificates required";
-  spdlog::info("serving on {}:{} (data {}, {} job(s) at once, tls {}, token {})", host, port,
-               flags.data_dir, flags.manager.jobs, tls, flags.token.empty() ? "off" : "on");
+  spdlog::info("radfluxd " RADFLUX_VERSION
+               " serving on {}:{} (data {}, {} job(s) at once, tls {}, token {})",
+               host, port, flags.data_dir, flags.manager.jobs, tls,
+               flags.token.empty() ? "off" : "on");
 
   std::thread signals([&] {
     const int signal = WaitForShutdownSignal();
@@ -157,6 +159,7 @@ int main(int argc, char** argv) {
   spdlog::cfg::load_env_levels();  // SPDLOG_LEVEL=debug: per-step timings of every job
 
   CLI::App app{"radfluxd: the radflux radiosity solver service"};
+  app.set_version_flag("--version", "radfluxd " RADFLUX_VERSION);
   Flags flags;
   app.add_option("--listen", flags.listen,
                  "HOST:PORT to serve on (port 0 = any free port); required unless --worker");

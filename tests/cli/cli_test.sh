@@ -50,6 +50,7 @@ expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
 expect_error "unknown solver" "solver" solve "$cornell" --solver magic
 printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
 expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$tmp/bad.obj"
+"$radflux" --version | grep -qx "radflux [0-9]*\.[0-9]*\.[0-9]*" || fail "--version prints 'radflux X.Y.Z'"
 expect_error "unknown verb" "unknown verb 'solv'" solv "$cornell"
 expect_error "no verb" "A subcommand is required"
 expect_error "cg cannot stream" "memory-limit" solve "$cornell" --memory-limit 1M --solver cg
@@ -68,7 +69,7 @@ expect_missing_sibling_for() {
 expect_missing_sibling_for radflux-local solve "$cornell"
 expect_missing_sibling_for radflux-service --server 127.0.0.1:1 list
 
-checks=28
+checks=29
 # The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
 # command line reaches them, connection flags before or after the verb.
 if [ -x "$(dirname "$radflux")/radflux-service" ]; then
