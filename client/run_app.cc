@@ -13,7 +13,9 @@ int RunApp(CLI::App& app, int argc, char** argv, const int& exit_code) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     const std::string verb(FindVerb(argc, argv));
-    if (app.get_subcommands().empty() && !verb.empty()) {  // CLI11 would say one is required
+    // CLI11 reports a verb it does not know as a missing one.
+    if (dynamic_cast<const CLI::RequiredError*>(&e) && app.get_subcommands().empty() &&
+        !verb.empty()) {
       std::fprintf(stderr, "radflux: unknown verb '%s' (`radflux --help` lists them)\n",
                    verb.c_str());
       return 2;
