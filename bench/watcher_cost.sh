@@ -1,0 +1,59 @@
+#!/bin/bash
+# What 50 snapshot watchers cost a radfluxd, alternated between server binaries (issue 4).
+# For each SERVER a radfluxd pinned to CPU 0 (--threads 1 --jobs 1, loopback, debug log);
+# then RUNS rounds, each running for every server in turn one job with 0 watchers and one
+# with 50 (`radflux watch --snapshot-every $SNAP`, niced, pinned to CPU 1). A blocker job
+# runs first and is cancelled once every watcher has connected, so their start-up does not
+# land on the measured job. Per server, medians of the job thread's CPU and the whole
+# process's CPU while the job ran (the server's debug log), and of the paired "other
+# threads" extra: (process - job thread) with 50 watchers minus the same with 0.
+# Usage: bash bench/watcher_cost.sh RUNS SERVER...   (SERVER: a radfluxd binary)
+#   env: CLIENT (default build/release/client/radflux), JOB_PATCHES (8500),
+#        BLOCKER_PATCHES (30000), SNAP (1; 0 = no snapshots)
+set -eu
+RUNS=$1; shift; SERVERS=("$@")
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+R=${CLIENT:-$ROOT/build/release/client/radflux}; SCENE=$ROOT/scenes/cornell_box.obj
+D=$(mktemp -d); ADDRS=(); SPIDS=()
+trap 'kill ${SPIDS[@]} 2>/dev/null; rm -rf $D' EXIT
+for k in "${!SERVERS[@]}"; do
+  mkfifo "$D/out$k"
+  SPDLOG_LEVEL=debug taskset -c 0 "${SERVERS[$k]}" --listen 127.0.0.1:0 --data-dir "$D/data$k" \
+    --threads 1 --jobs 1 >"$D/out$k" 2>"$D/server$k.log" &
+  SPIDS+=($!); read -r line <"$D/out$k"; ADDRS+=("${line#radfluxd listening on }")
+done
+one() {  # SERVER_INDEX WATCHERS: prints "index watchers job_thread_ms process_ms"
+  local k=$1 n=$2 A=${ADDRS[$1]} pids=() blocker job
+  blocker=$("$R" submit "$SCENE" --patches "${BLOCKER_PATCHES:-30000}" --server "$A" 2>/dev/null | tail -1)
+  job=$("$R" submit "$SCENE" --patches "${JOB_PATCHES:-8500}" --server "$A" 2>/dev/null | tail -1)
+  rm -f "$D"/w_*.err
+  for ((w = 0; w < n; ++w)); do
+    taskset -c 1 nice -n 10 "$R" watch "$job" --server "$A" --snapshot-every "${SNAP:-1}" \
+      2>"$D/w_$w.err" >/dev/null &
+    pids+=($!)
+  done
+  while [ "$( (grep -l JOB_STATE_QUEUED "$D"/w_*.err 2>/dev/null || true) | wc -l)" -lt "$n" ]; do
+    sleep 0.05
+  done
+  "$R" cancel "$blocker" --server "$A" >/dev/null
+  "$R" watch "$job" --server "$A" >/dev/null 2>&1
+  for p in "${pids[@]}"; do wait "$p"; done
+  echo "$k $n $(grep "job $job: cpu ms" "$D/server$k.log" |
+    sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+)/\1 \2/')"
+}
+for i in $(seq "$RUNS"); do
+  for k in "${!SERVERS[@]}"; do one "$k" 0; one "$k" 50; done
+done >"$D/res.txt"
+python3 - "$D/res.txt" "${SERVERS[@]}" <<'PY'
+import statistics as st, sys
+rows = [l.split() for l in open(sys.argv[1])]
+for k, name in enumerate(sys.argv[2:]):
+    z = [(float(r[2]), float(r[3])) for r in rows if int(r[0]) == k and r[1] == "0"]
+    w = [(float(r[2]), float(r[3])) for r in rows if int(r[0]) == k and r[1] == "50"]
+    extra = [(b[1] - b[0]) - (a[1] - a[0]) for a, b in zip(z, w)]
+    share = [e / a[1] * 100 for e, a in zip(extra, z)]
+    print(f"{name}: job thread ms {st.median(x[0] for x in z):.1f} -> {st.median(x[0] for x in w):.1f}; "
+          f"process ms {st.median(x[1] for x in z):.1f} -> {st.median(x[1] for x in w):.1f}; "
+          f"other threads +{st.median(extra):.1f} ms ({', '.join(f'{e:.1f}' for e in sorted(extra))}), "
+          f"{st.median(share):.1f}% of the job's server CPU")
+PY
