@@ -43,7 +43,8 @@ RUNS = {
     "hall": [("uniform_%d" % n, ["--patches", str(n)]) for n in (5000, 12500, 25000, 50000, 100000)]
     + [("adaptive_t%s_p%d" % (t, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
        for t in ("0.1", "0.2") for p in (2, 3, 4)]
-    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e]) for e in ("1e-3", "1e-4", "1e-5")]
+    + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e])
+       for e in ("1e-3", "1e-4", "1e-5", "3e-6", "1e-6")]
     + [("uniform_k%d_%d" % (k, n), ["--patches", str(n), "--rays", str(k)]) for k in (16, 256) for n in (12500, 25000, 50000)]
     + [("adaptive_k%d_t0.1_p%d" % (k, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", "0.1",
                                            "--rays", str(k)]) for k in (16, 256) for p in (2, 3)],
