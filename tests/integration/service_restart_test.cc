@@ -4,23 +4,18 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "server/blob_file.h"
-#include "server/proto_convert.h"
 #include "server/stored_codec.h"
 #include "solver/pipeline.h"
-#include "tests/integration/server_process.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"
 
@@ -31,10 +26,6 @@ namespace fs = std::filesystem;
 using testing::ExpectBitIdentical;
 using testing::InProcess;
 using testing::KillDuringSolveAndResume;
-using testing::kMtl;
-using testing::kObj;
-using testing::ReadText;
-using testing::ServerProcess;
 using testing::SmallOptions;
 
 class ServiceRestartTest : public testing::ServiceFixture {};

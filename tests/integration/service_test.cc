@@ -2,28 +2,18 @@
 // port the server picks, with a fresh data directory.
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
-#include <sqlite3.h>
-#include <unistd.h>
 
-#include <array>
-#include <cmath>
 #include <condition_variable>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
-#include "server/blob_file.h"
 #include "server/proto_convert.h"
 #include "server/scene_hash.h"
-#include "server/stored_codec.h"
 #include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
-#include "tests/integration/server_process.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"
 
@@ -33,15 +23,12 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ExpectBitIdentical;
 using testing::InProcess;
-using testing::KillDuringSolveAndResume;
 using testing::kMtl;
 using testing::kObj;
 using testing::ReadText;
-using testing::ServerProcess;
+using testing::SmallOptions;
 
 class ServiceTest : public testing::ServiceFixture {};
-
-using testing::SmallOptions;
 
 TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
   StartServer();
