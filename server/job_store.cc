@@ -58,6 +58,24 @@ class Statement {
   int status_ = SQLITE_ERROR;
 };
 
+// While it lives (and `active`), the connection's commits skip their own fsync
+// (synchronous=NORMAL: they survive kill -9, not an OS crash); then FULL again, the store's
+// default. Held under the store's lock.
+class CommitsWithoutFsync {
+ public:
+  CommitsWithoutFsync(sqlite3* db, bool active) : db_(active ? db : nullptr) {
+    if (db_ != nullptr) sqlite3_exec(db_, "PRAGMA synchronous=NORMAL", nullptr, nullptr, nullptr);
+  }
+  ~CommitsWithoutFsync() {
+    if (db_ != nullptr) sqlite3_exec(db_, "PRAGMA synchronous=FULL", nullptr, nullptr, nullptr);
+  }
+  CommitsWithoutFsync(const CommitsWithoutFsync&) = delete;
+  CommitsWithoutFsync& operator=(const CommitsWithoutFsync&) = delete;
+
+ private:
+  sqlite3* const db_;
+};
+
 absl::Status SqlError(sqlite3* db, std::string_view what) {
   return absl::InternalError(
       absl::StrCat("job store: ", std::string(what), ": ", sqlite3_errmsg(db)));
@@ -166,9 +184,9 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job, bool sync) {
       return existing;
     }
   }
-  if (!sync) (void)Exec("PRAGMA synchronous=NORMAL");
   absl::Status inserted;
   {
+    const CommitsWithoutFsync unsynced(db_, !sync);
     Statement st(db_,
                  "INSERT INTO jobs(job_id, request_id, scene_sha256, state, job) "
                  "VALUES(?, ?, ?, ?, ?)");
@@ -182,7 +200,6 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job, bool sync) {
     st.BindBlob(5, job.SerializeAsString());
     if (!st.ok() || st.Step() != SQLITE_DONE) inserted = SqlError(db_, "create job");
   }
-  if (!sync) (void)Exec("PRAGMA synchronous=FULL");
   if (!inserted.ok()) return inserted;
   if (!sync) ++unsynced_commits_;
   std::error_code ec;
@@ -213,16 +230,15 @@ absl::Status JobStore::UpdateJob(const v1::Job& job, bool sync) {
   // is, with whatever was committed before it, here or (sync = false) in SyncCommits.
   const bool running = job.state() == v1::JOB_STATE_RUNNING;
   const bool deferred = !running && !sync;
-  if (running || deferred) (void)Exec("PRAGMA synchronous=NORMAL");
   absl::Status status;
   {
+    const CommitsWithoutFsync unsynced(db_, running || deferred);
     Statement st(db_, "UPDATE jobs SET state = ?, job = ? WHERE job_id = ?");
     st.BindInt(1, job.state());
     st.BindBlob(2, job.SerializeAsString());
     st.Bind(3, job.job_id());
     if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "update job");
   }
-  if (running || deferred) (void)Exec("PRAGMA synchronous=FULL");
   if (deferred && status.ok()) ++unsynced_commits_;
   return status;
 }
@@ -303,15 +319,11 @@ absl::StatusOr<std::vector<v1::Job>> JobStore::UncheckedResults() {
 
 absl::Status JobStore::MarkResultDurable(const std::string& job_id) {
   std::lock_guard lock(mu_);
-  (void)Exec("PRAGMA synchronous=NORMAL");
-  absl::Status status;
-  {
-    Statement st(db_, "INSERT OR IGNORE INTO durable_results(job_id) VALUES(?)");
-    st.Bind(1, job_id);
-    if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "mark result durable");
-  }
-  (void)Exec("PRAGMA synchronous=FULL");
-  return status;
+  const CommitsWithoutFsync unsynced(db_, true);
+  Statement st(db_, "INSERT OR IGNORE INTO durable_results(job_id) VALUES(?)");
+  st.Bind(1, job_id);
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "mark result durable");
+  return absl::OkStatus();
 }
 
 absl::Status JobStore::PutRowBlocks(const std::string& job_id, uint32_t name_index,
