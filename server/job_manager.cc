@@ -513,10 +513,9 @@ void JobManager::RunOne(const std::string& job_id) {
                   prepared.ok() ? "written" : "stored", MsBetween(put_start, remove_start),
                   MsBetween(remove_start, std::chrono::steady_clock::now()));
     if (put.ok()) {
-      // Written in place: its fsync now, beside the commit's. Stored atomically: fsynced.
+      // The result's fsync, beside the commit's (a no-op when it was stored atomically).
       std::future<absl::Status> synced =
-          prepared.ok() ? std::async(std::launch::async, [&] { return store_.SyncResult(job_id); })
-                        : std::async(std::launch::deferred, [] { return absl::OkStatus(); });
+          std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
       Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "", &synced);
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
