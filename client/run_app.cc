@@ -1,7 +1,7 @@
 #include "client/run_app.h"
 
 #include <cstdio>
-#include <string>
+#include <string_view>
 
 #include "client/service_dispatch.h"
 
@@ -12,13 +12,13 @@ int RunApp(CLI::App& app, int argc, char** argv, const int& exit_code) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    const std::string verb(FindVerb(argc, argv));
     // CLI11 reports a verb it does not know as a missing one.
-    if (dynamic_cast<const CLI::RequiredError*>(&e) && app.get_subcommands().empty() &&
-        !verb.empty()) {
-      std::fprintf(stderr, "radflux: unknown verb '%s' (`radflux --help` lists them)\n",
-                   verb.c_str());
-      return 2;
+    if (dynamic_cast<const CLI::RequiredError*>(&e) && app.get_subcommands().empty()) {
+      if (const std::string_view verb = FindVerb(argc, argv); !verb.empty()) {
+        std::fprintf(stderr, "radflux: unknown verb '%.*s' (`radflux --help` lists them)\n",
+                     static_cast<int>(verb.size()), verb.data());
+        return 2;
+      }
     }
     std::fprintf(stderr, "radflux: %s\n", e.what());  // one line, as for every other error
     return 2;
