@@ -1,11 +1,11 @@
 // Embree on demand: the client executables' own definitions of the Embree functions the
 // solver calls. Each loads libembree3 (and with it TBB) the first time one of them is called,
-// so `radflux submit` and the other service verbs exec radflux-service without loading it,
-// and a verb that renders nothing never does (~4 ms of a process start: bench/RESULTS.md,
-// "Service overhead (issue 4)"); `radflux solve` loads it at its first Embree call. The
-// executables link --as-needed, and the ctests `radflux_loads_embree_on_demand` and
-// `radflux-service_loads_embree_on_demand` check that they do not name libembree3: a solver
-// change that calls an Embree function missing here fails them.
+// so a service verb that renders nothing never does (~4 ms of a process start:
+// bench/RESULTS.md, "Service overhead (issue 4)"), and `radflux solve` loads it at its first
+// Embree call. radflux-local and radflux-service link --as-needed, and the ctests
+// `radflux-local_loads_embree_on_demand` and `radflux-service_loads_embree_on_demand` check
+// that they do not name libembree3: a solver change that calls an Embree function missing
+// here fails them.
 #include <dlfcn.h>
 #include <embree3/rtcore.h>
 

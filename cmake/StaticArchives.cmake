@@ -7,11 +7,11 @@
 # target of the build switches together, and only when every one of these libraries has its
 # archive, so no process ever holds two copies of abseil or OpenSSL. re2 stays shared: gRPC
 # finds it through pkg-config, as an interface target with no location of its own.
-option(RADFLUX_STATIC_GRPC "Link abseil, protobuf and gRPC statically" ON)
+option(RADFLUX_STATIC_GRPC "Link abseil, protobuf, gRPC, OpenSSL, c-ares and zlib statically" ON)
 
 # Points every imported (non-interface) target of this directory whose library is one of
-# abseil's, protobuf's, gRPC's, OpenSSL's, c-ares' or zlib's at the static archive of the same name, if all of them
-# have one (else changes nothing and says why).
+# those above at the static archive of the same name, if all of them have one (else changes
+# nothing and says why).
 function(radflux_use_static_grpc_archives)
   get_directory_property(targets IMPORTED_TARGETS)
   set(changes "")
