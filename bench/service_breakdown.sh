@@ -14,12 +14,11 @@ SERVER_LOG=${SERVER_LOG:-/tmp/radflux_breakdown_server.log}
 R=$BUILD/client/radflux; D=$BUILD/server/radfluxd
 SCENE=$(cd "$(dirname "$0")/.." && pwd)/scenes/cornell_box.obj
 DIR=$(mktemp -d /tmp/radflux_breakdown_XXXXXX)
-mkfifo $DIR/out
 export OMP_WAIT_POLICY=passive
-$D --listen 127.0.0.1:0 --data-dir $DIR/data --threads 2 --jobs 1 $EXTRA >$DIR/out 2>$DIR/server.log &
-PID=$!
+source "$(dirname "$0")/radfluxd_start.sh"
+start_radfluxd "$DIR" main $D --threads 2 --jobs 1 $EXTRA
+PID=$RADFLUXD_PID; ADDR=$RADFLUXD_ADDR
 trap 'kill $PID; wait $PID 2>/dev/null; rm -rf $DIR' EXIT
-read -r LINE <$DIR/out; ADDR=${LINE#radfluxd listening on }
 now() { date +%s.%N; }
 $R submit $SCENE --patches 8500 --server $ADDR --watch >/dev/null 2>&1  # warm-up, scene stored
 for i in $(seq $N); do
@@ -39,7 +38,7 @@ print(f"solve_wall {t[1]-t[0]:.3f} list_wall {t[2]-t[1]:.3f} submit_wall {t[3]-t
       f"rows {s['rows']:.3f} solve {s['solve']:.3f} | svc: mesh {r['mesh']:.3f} embree {r['embree']:.3f} rows {r['rows']:.3f} solve {r['solve']:.3f}")
 PY
 done
-cp $DIR/server.log "$SERVER_LOG"; grep -E "QUEUED|->" $DIR/server.log | tail -$((10*N)) > $DIR/phases.txt
+cp $DIR/server_main.log "$SERVER_LOG"; grep -E "QUEUED|->" $DIR/server_main.log | tail -$((10*N)) > $DIR/phases.txt
 python3 - $DIR/phases.txt <<'PY'
 import sys, re, datetime, collections
 rows = [l for l in open(sys.argv[1])]

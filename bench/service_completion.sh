@@ -12,10 +12,10 @@ N=$1; shift; SCENE=$(cd "$(dirname "$0")/.." && pwd)/scenes/cornell_box.obj
 D=$(mktemp -d /tmp/radflux_completion_XXXXXX); PIDS=(); ADDRS=()
 BUILDS=("$@")
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+source "$(dirname "$0")/radfluxd_start.sh"
 for k in "${!BUILDS[@]}"; do
-  mkfifo $D/out$k
-  SPDLOG_LEVEL=debug ${BUILDS[$k]}/server/radfluxd --listen 127.0.0.1:0 --data-dir $D/data$k --threads 2 --jobs 1 >$D/out$k 2>$D/log$k &
-  PIDS+=($!); read -r L <$D/out$k; ADDRS+=("${L#radfluxd listening on }")
+  start_radfluxd $D $k env SPDLOG_LEVEL=debug ${BUILDS[$k]}/server/radfluxd --threads 2 --jobs 1
+  PIDS+=($RADFLUXD_PID); ADDRS+=("$RADFLUXD_ADDR")
   ${BUILDS[$k]}/client/radflux submit $SCENE --patches 8500 --server ${ADDRS[$k]} --watch --report $D/r.json >/dev/null 2>&1
 done
 for i in $(seq $N); do for k in "${!BUILDS[@]}"; do
@@ -23,7 +23,7 @@ for i in $(seq $N); do for k in "${!BUILDS[@]}"; do
   echo "$J $t0 $t1" >> $D/runs$k
 done; done
 for p in "${PIDS[@]}"; do kill $p; done; wait 2>/dev/null || true
-for k in "${!BUILDS[@]}"; do python3 - $D/runs$k $D/log$k ${BUILDS[$k]} <<'PY'
+for k in "${!BUILDS[@]}"; do python3 - $D/runs$k $D/server_$k.log ${BUILDS[$k]} <<'PY'
 import sys, re, datetime, statistics
 def ts(l): return datetime.datetime.strptime(l[1:24], "%Y-%m-%d %H:%M:%S.%f").timestamp()
 log = open(sys.argv[2]).read().splitlines()

@@ -16,13 +16,11 @@ DIR=$(mktemp -d /tmp/radflux_fixed_XXXXXX)
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 PIDS=(); ADDRS=()
 trap 'for p in "${PIDS[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null; rm -rf "$DIR"' EXIT
+source "$(dirname "$0")/radfluxd_start.sh"
 for k in "${!BUILDS[@]}"; do
-  mkfifo "$DIR/out$k"
-  "${BUILDS[$k]}/server/radfluxd" --listen 127.0.0.1:0 --data-dir "$DIR/data$k" --threads 2 \
-    --jobs 1 >"$DIR/out$k" 2>"$DIR/server$k.log" &
-  PIDS+=($!)
-  read -r line <"$DIR/out$k"
-  ADDRS+=("${line#radfluxd listening on }")
+  start_radfluxd "$DIR" "$k" "${BUILDS[$k]}/server/radfluxd" --threads 2 --jobs 1
+  PIDS+=("$RADFLUXD_PID")
+  ADDRS+=("$RADFLUXD_ADDR")
   # Warm-up: the scene stored, the server's caches and the client's files warm.
   "${BUILDS[$k]}/client/radflux" submit "$SCENE" --patches 8500 --server "${ADDRS[$k]}" --watch \
     --report "$DIR/w.json" >/dev/null 2>&1

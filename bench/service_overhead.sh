@@ -40,18 +40,15 @@ PIDS=()
 trap 'for p in "${PIDS[@]}"; do kill "$p" 2>/dev/null || true; wait "$p" 2>/dev/null || true; done; rm -rf "$DIR"' EXIT
 # start_server NAME THREADS [taskset prefix...]: a radfluxd on its own data dir; sets
 # ADDR_<NAME> and PID_<NAME>.
+source "$(dirname "$0")/radfluxd_start.sh"
 start_server() {
   local name=$1 threads=$2
   shift 2
-  mkfifo "$DIR/out_$name"
-  SPDLOG_LEVEL=debug "$@" "$RADFLUXD" --listen 127.0.0.1:0 --data-dir "$DIR/data_$name" \
-    --threads "$threads" --jobs 1 >"$DIR/out_$name" 2>"$DIR/server_$name.log" &
-  local pid=$!
-  PIDS+=("$pid")
-  local line
-  read -r line <"$DIR/out_$name"
-  printf -v "ADDR_$name" '%s' "${line#radfluxd listening on }"
-  printf -v "PID_$name" '%s' "$pid"
+  start_radfluxd "$DIR" "$name" env SPDLOG_LEVEL=debug "$@" "$RADFLUXD" --threads "$threads" \
+    --jobs 1
+  PIDS+=("$RADFLUXD_PID")
+  printf -v "ADDR_$name" '%s' "$RADFLUXD_ADDR"
+  printf -v "PID_$name" '%s' "$RADFLUXD_PID"
 }
 start_server main $THREADS
 start_server pinned 1 taskset -c 0

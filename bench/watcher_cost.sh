@@ -16,11 +16,10 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 R=${CLIENT:-$ROOT/build/release/client/radflux}; SCENE=$ROOT/scenes/cornell_box.obj
 D=$(mktemp -d); ADDRS=(); SPIDS=()
 trap 'kill ${SPIDS[@]} 2>/dev/null; rm -rf $D' EXIT
+source "$(dirname "$0")/radfluxd_start.sh"
 for k in "${!SERVERS[@]}"; do
-  mkfifo "$D/out$k"
-  SPDLOG_LEVEL=debug taskset -c 0 "${SERVERS[$k]}" --listen 127.0.0.1:0 --data-dir "$D/data$k" \
-    --threads 1 --jobs 1 >"$D/out$k" 2>"$D/server$k.log" &
-  SPIDS+=($!); read -r line <"$D/out$k"; ADDRS+=("${line#radfluxd listening on }")
+  start_radfluxd "$D" "$k" env SPDLOG_LEVEL=debug taskset -c 0 "${SERVERS[$k]}" --threads 1 --jobs 1
+  SPIDS+=("$RADFLUXD_PID"); ADDRS+=("$RADFLUXD_ADDR")
 done
 one() {  # SERVER_INDEX WATCHERS: prints "index watchers job_thread_ms process_ms"
   local k=$1 n=$2 A=${ADDRS[$1]} pids=() blocker job
@@ -38,7 +37,7 @@ one() {  # SERVER_INDEX WATCHERS: prints "index watchers job_thread_ms process_m
   "$R" cancel "$blocker" --server "$A" >/dev/null
   "$R" watch "$job" --server "$A" >/dev/null 2>&1
   for p in "${pids[@]}"; do wait "$p"; done
-  echo "$k $n $(grep "job $job: cpu ms" "$D/server$k.log" |
+  echo "$k $n $(grep "job $job: cpu ms" "$D/server_$k.log" |
     sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+)/\1 \2/')"
 }
 for i in $(seq "$RUNS"); do
