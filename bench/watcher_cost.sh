@@ -6,7 +6,12 @@
 # runs first and is cancelled once every watcher has connected, so their start-up does not
 # land on the measured job. Per server, medians of the job thread's CPU and the whole
 # process's CPU while the job ran (the server's debug log), and of the paired "other
-# threads" extra: (process - job thread) with 50 watchers minus the same with 0.
+# threads" extra: (process - job thread) with 50 watchers minus the same with 0. The log's
+# window ends before the job's final event; "to the last watcher" also counts that event,
+# the last snapshot and the streams' teardown: the server's process CPU clock (less the job
+# thread's) from the
+# job's start to the end of its last watch stream (debug log), 50 watchers minus 0 (where
+# the bench's own watcher is the last).
 # Usage: bash bench/watcher_cost.sh RUNS SERVER...   (SERVER: a radfluxd binary)
 #   env: CLIENT (default build/release/client/radflux), JOB_PATCHES (8500),
 #        BLOCKER_PATCHES (30000), SNAP (1; 0 = no snapshots)
@@ -21,7 +26,7 @@ for k in "${!SERVERS[@]}"; do
   start_radfluxd "$D" "$k" env SPDLOG_LEVEL=debug taskset -c 0 "${SERVERS[$k]}" --threads 1 --jobs 1
   SPIDS+=("$RADFLUXD_PID"); ADDRS+=("$RADFLUXD_ADDR")
 done
-one() {  # SERVER_INDEX WATCHERS: prints "index watchers job_thread_ms process_ms"
+one() {  # SERVER_INDEX WATCHERS: "index watchers job_thread_ms process_ms to_last_watcher_ms"
   local k=$1 n=$2 A=${ADDRS[$1]} pids=() blocker job
   blocker=$("$R" submit "$SCENE" --patches "${BLOCKER_PATCHES:-30000}" --server "$A" 2>/dev/null | tail -1)
   job=$("$R" submit "$SCENE" --patches "${JOB_PATCHES:-8500}" --server "$A" 2>/dev/null | tail -1)
@@ -37,8 +42,11 @@ one() {  # SERVER_INDEX WATCHERS: prints "index watchers job_thread_ms process_m
   "$R" cancel "$blocker" --server "$A" >/dev/null
   "$R" watch "$job" --server "$A" >/dev/null 2>&1
   for p in "${pids[@]}"; do wait "$p"; done
+  sleep 0.2  # the server's log lines of the streams' ends
   echo "$k $n $(grep "job $job: cpu ms" "$D/server_$k.log" |
-    sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+)/\1 \2/')"
+    sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+), process clock at start ([0-9.]+)/\1 \2 \3/') $(
+    grep "job $job: watch ended" "$D/server_$k.log" | sed -E 's/.*process cpu clock //' |
+      sort -g | tail -1)"
 }
 for i in $(seq "$RUNS"); do
   for k in "${!SERVERS[@]}"; do one "$k" 0; one "$k" 50; done
@@ -47,12 +55,18 @@ python3 - "$D/res.txt" "${SERVERS[@]}" <<'PY'
 import statistics as st, sys
 rows = [l.split() for l in open(sys.argv[1])]
 for k, name in enumerate(sys.argv[2:]):
-    z = [(float(r[2]), float(r[3])) for r in rows if int(r[0]) == k and r[1] == "0"]
-    w = [(float(r[2]), float(r[3])) for r in rows if int(r[0]) == k and r[1] == "50"]
+    z = [(float(r[2]), float(r[3]), float(r[5]) - float(r[4]))
+         for r in rows if int(r[0]) == k and r[1] == "0"]
+    w = [(float(r[2]), float(r[3]), float(r[5]) - float(r[4]))
+         for r in rows if int(r[0]) == k and r[1] == "50"]
     extra = [(b[1] - b[0]) - (a[1] - a[0]) for a, b in zip(z, w)]
     share = [e / a[1] * 100 for e, a in zip(extra, z)]
+    whole = [(b[2] - b[0]) - (a[2] - a[0]) for a, b in zip(z, w)]
+    whole_share = [e / a[1] * 100 for e, a in zip(whole, z)]
     print(f"{name}: job thread ms {st.median(x[0] for x in z):.1f} -> {st.median(x[0] for x in w):.1f}; "
           f"process ms {st.median(x[1] for x in z):.1f} -> {st.median(x[1] for x in w):.1f}; "
           f"other threads +{st.median(extra):.1f} ms ({', '.join(f'{e:.1f}' for e in sorted(extra))}), "
-          f"{st.median(share):.1f}% of the job's server CPU")
+          f"{st.median(share):.1f}% of the job's server CPU; to the last watcher "
+          f"+{st.median(whole):.1f} ms ({', '.join(f'{e:.1f}' for e in sorted(whole))}), "
+          f"{st.median(whole_share):.1f}%")
 PY

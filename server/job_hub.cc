@@ -1,7 +1,7 @@
 #include "server/job_hub.h"
 
 #include <condition_variable>
-#include <deque>
+#include <map>
 #include <thread>
 #include <utility>
 
@@ -10,6 +10,7 @@
 namespace radflux {
 
 void JobHub::Publish(v1::JobEvent event) {
+  const bool terminal = IsTerminal(event.state());
   {
     std::lock_guard lock(mu_);
     event.set_sequence(base_ + events_.size() + 1);
@@ -17,7 +18,7 @@ void JobHub::Publish(v1::JobEvent event) {
     events_.push_back({event.sequence(), event.state(),
                        std::make_shared<const std::string>(event.SerializeAsString())});
   }
-  WakeAll();
+  WakeAll(terminal);
 }
 
 void JobHub::PublishSnapshot(SnapshotData snapshot) {
@@ -25,7 +26,7 @@ void JobHub::PublishSnapshot(SnapshotData snapshot) {
     std::lock_guard lock(mu_);
     snapshot_ = std::move(snapshot);
   }
-  WakeAll();
+  WakeAll(false);
 }
 
 void JobHub::Close() {
@@ -33,7 +34,7 @@ void JobHub::Close() {
     std::lock_guard lock(mu_);
     closed_ = true;
   }
-  WakeAll();
+  WakeAll(true);
 }
 
 bool JobHub::NextEvent(uint64_t after, HubEvent* out) const {
@@ -90,17 +91,19 @@ void JobHub::Unsubscribe(int id) {
 
 namespace {
 
-// One thread that runs the wakes of every hub, in the order they were scheduled.
+// One thread that runs the wakes of every hub, each when it is due (in the order they
+// were scheduled among those due at the same time).
 class Notifier {
  public:
+  using Clock = JobHub::Clock;
   static Notifier& Get() {
     static Notifier notifier;
     return notifier;
   }
-  void Post(std::shared_ptr<JobHub> hub, void (JobHub::*run)()) {
+  void Post(Clock::time_point due, std::function<void()> run) {
     {
       std::lock_guard lock(mu_);
-      queue_.emplace_back(std::move(hub), run);
+      queue_.emplace(due, std::move(run));
     }
     cv_.notify_one();
   }
@@ -115,43 +118,52 @@ class Notifier {
 
  private:
   Notifier() : thread_([this] { Loop(); }) {}
+  // Runs each round when due; at shutdown, the ones already due.
   void Loop() {
     for (;;) {
-      std::pair<std::shared_ptr<JobHub>, void (JobHub::*)()> next;
+      std::function<void()> next;
       {
         std::unique_lock lock(mu_);
-        cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-        if (queue_.empty()) return;
-        next = std::move(queue_.front());
-        queue_.pop_front();
+        for (;;) {
+          if (!queue_.empty() && queue_.begin()->first <= Clock::now()) break;
+          if (stopping_) return;
+          if (queue_.empty()) {
+            cv_.wait(lock);
+          } else {
+            cv_.wait_until(lock, queue_.begin()->first);
+          }
+        }
+        next = std::move(queue_.begin()->second);
+        queue_.erase(queue_.begin());
       }
-      ((*next.first).*next.second)();
+      next();
     }
   }
 
   std::mutex mu_;
   std::condition_variable cv_;
-  std::deque<std::pair<std::shared_ptr<JobHub>, void (JobHub::*)()>> queue_;
+  std::multimap<Clock::time_point, std::function<void()>> queue_;
   bool stopping_ = false;
   std::thread thread_;
 };
 
 }  // namespace
 
-void JobHub::WakeAll() {
+void JobHub::WakeAll(bool urgent) {
+  std::optional<Clock::time_point> due;
   {
     std::lock_guard lock(mu_);
-    if (wake_pending_ || subscribers_.empty()) return;
-    wake_pending_ = true;
+    if (subscribers_.empty()) return;
+    due = wakes_.Request(Clock::now(), urgent);
   }
-  Notifier::Get().Post(shared_from_this(), &JobHub::RunWakes);
+  if (due) Notifier::Get().Post(*due, [hub = shared_from_this(), due] { hub->RunWakes(*due); });
 }
 
-void JobHub::RunWakes() {
+void JobHub::RunWakes(Clock::time_point due) {
   std::vector<std::function<void()>> wakes;
   {
     std::lock_guard lock(mu_);
-    wake_pending_ = false;
+    if (!wakes_.Start(due, Clock::now())) return;  // replaced by a sooner round
     for (const auto& [id, wake] : subscribers_) wakes.push_back(wake);
   }
   for (const auto& wake : wakes) wake();

@@ -6,6 +6,7 @@
 // Thread-safe.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "radflux/v1/job.pb.h"
+#include "server/wake_schedule.h"
 #include "solver/core/bands.h"
 
 namespace radflux {
@@ -36,9 +38,17 @@ struct SnapshotData {
 
 class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
+  using Clock = std::chrono::steady_clock;
+  // Watchers are woken at most once per this interval by default, the job's end at once: a
+  // round of writes to N watchers costs the server about as much with one event as with
+  // several (each watcher's write, its TCP send and the thread wake-ups it causes), so
+  // events published close together share a round (bench/watcher_cost.sh).
+  static constexpr Clock::duration kWakeInterval = std::chrono::milliseconds(100);
+
   // `base`: the sequence number before the first event (see JobStore::NextHistoryBase).
-  explicit JobHub(std::string job_id, uint64_t base = 0)
-      : job_id_(std::move(job_id)), base_(base) {}
+  explicit JobHub(std::string job_id, uint64_t base = 0,
+                  Clock::duration wake_interval = kWakeInterval)
+      : job_id_(std::move(job_id)), base_(base), wakes_(wake_interval) {}
 
   // Appends `event` with the next sequence number and wakes the watchers.
   void Publish(v1::JobEvent event);
@@ -63,16 +73,19 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
 
   // `wake` is called after changes, until Unsubscribe(returned id): on the hub's notifier
   // thread (one for all hubs), never on the publisher's, so that a job never does its
-  // watchers' writes; changes made while a round of wakes is pending share that round.
-  // The hub must be owned by a shared_ptr.
+  // watchers' writes; changes made while a round of wakes is pending share that round. A
+  // round starts at once if the last one started at least `wake_interval` ago, else when it
+  // has; a terminal event or Close starts one at once. The hub must be owned by a shared_ptr.
   int Subscribe(std::function<void()> wake);
   void Unsubscribe(int id);
 
  private:
-  // Schedules a round of wakes on the notifier thread unless one is pending.
-  void WakeAll();
-  // The round of wakes itself (notifier thread).
-  void RunWakes();
+  // Schedules a round of wakes on the notifier thread (at once if `urgent`) unless one is
+  // pending that starts no later.
+  void WakeAll(bool urgent);
+  // The round of wakes scheduled for `due` (notifier thread); nothing if another round
+  // replaced it.
+  void RunWakes(Clock::time_point due);
 
   const std::string job_id_;
   const uint64_t base_;
@@ -80,7 +93,7 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
   std::vector<HubEvent> events_;  // events_[k].sequence == base_ + k + 1
   SnapshotData snapshot_;
   bool closed_ = false;
-  bool wake_pending_ = false;
+  WakeSchedule wakes_;
   int next_subscriber_ = 0;
   struct Encoded {
     std::shared_ptr<const std::vector<Rgb>> source;  // the snapshot it encodes

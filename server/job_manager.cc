@@ -2,7 +2,6 @@
 
 #include <openssl/rand.h>
 #include <spdlog/spdlog.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <future>
 
 #include "absl/strings/str_cat.h"
+#include "server/cpu_time.h"
 #include "server/job_runner.h"
 #include "server/proto_convert.h"
 #include "server/result_codec.h"
@@ -31,14 +31,6 @@ int64_t NowMs() {
 
 double MsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-// CPU milliseconds of `clock` (CLOCK_THREAD_CPUTIME_ID: the calling thread;
-// CLOCK_PROCESS_CPUTIME_ID: every thread of the server, ended ones included), ns resolution.
-double CpuMs(clockid_t clock) {
-  timespec t{};
-  clock_gettime(clock, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
 std::string NewJobId() {
@@ -480,11 +472,11 @@ void JobManager::RunOne(const std::string& job_id) {
   absl::StatusOr<EncodedResult> result = RunStoredJob(job, context);
   // What the job cost the server's CPU while it ran: its own thread (with --threads 1 all
   // of its rows and solve), and every thread of the process (OpenMP and helper threads,
-  // gRPC, watchers' writes, other calls); bench/service_overhead.sh compares them with and
-  // without watchers.
-  spdlog::debug("job {}: cpu ms job thread {:.2f}, process {:.2f}", job_id,
-                CpuMs(CLOCK_THREAD_CPUTIME_ID) - thread_cpu,
-                CpuMs(CLOCK_PROCESS_CPUTIME_ID) - process_cpu);
+  // gRPC, watchers' writes, other calls), and the process's clock when the job started;
+  // bench/watcher_cost.sh compares them with and without watchers.
+  spdlog::debug("job {}: cpu ms job thread {:.2f}, process {:.2f}, process clock at start {:.2f}",
+                job_id, CpuMs(CLOCK_THREAD_CPUTIME_ID) - thread_cpu,
+                CpuMs(CLOCK_PROCESS_CPUTIME_ID) - process_cpu, process_cpu);
   const absl::Status prepared = prepare.get();
   if (!prepared.ok()) {
     spdlog::warn("job {}: {} (the result is stored atomically instead)", job_id,

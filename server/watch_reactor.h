@@ -47,6 +47,7 @@ class WatchReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
   bool in_flight_ = false;
   bool finished_ = false;
   bool cancelled_ = false;
+  int messages_sent_ = 0;     // writes started
   grpc::ByteBuffer message_;  // a serialized v1::JobEvent
 };
 

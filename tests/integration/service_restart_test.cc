@@ -31,7 +31,8 @@ using testing::SmallOptions;
 class ServiceRestartTest : public testing::ServiceFixture {};
 
 TEST_F(ServiceRestartTest, KillNineDuringRowsThenRestartResumesWithIdenticalResult) {
-  StartServer({"--checkpoint-seconds", "0"});  // row blocks stored as soon as they are built
+  // Row blocks stored as soon as they are built, and slow enough to kill the job mid-rows.
+  StartServer({"--checkpoint-seconds", "0", "--testing-block-delay-ms", "20"});
   const std::string sha = UploadCornell();
   const v1::SolveOptions options = SmallOptions(1200, "jacobi");
   v1::Job job;

@@ -1,0 +1,17 @@
+// CpuMs: CPU time of the server's threads, for the debug log's cost lines (what a job and
+// its watchers cost; bench/watcher_cost.sh reads them).
+#pragma once
+
+#include <time.h>
+
+namespace radflux {
+
+// CPU milliseconds of `clock` (CLOCK_THREAD_CPUTIME_ID: the calling thread;
+// CLOCK_PROCESS_CPUTIME_ID: every thread of the server, ended ones included), ns resolution.
+inline double CpuMs(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace radflux
