@@ -163,7 +163,7 @@ void JobHub::RunWakes(Clock::time_point due) {
   std::vector<std::function<void()>> wakes;
   {
     std::lock_guard lock(mu_);
-    if (!wakes_.Start(due, Clock::now())) return;  // replaced by a sooner round
+    if (!wakes_.Start(due)) return;  // replaced by a sooner round
     for (const auto& [id, wake] : subscribers_) wakes.push_back(wake);
   }
   for (const auto& wake : wakes) wake();

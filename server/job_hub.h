@@ -39,10 +39,10 @@ struct SnapshotData {
 class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
   using Clock = std::chrono::steady_clock;
-  // Watchers are woken at most once per this interval by default, the job's end at once: a
-  // round of writes to N watchers costs the server about as much with one event as with
-  // several (each watcher's write, its TCP send and the thread wake-ups it causes), so
-  // events published close together share a round (bench/watcher_cost.sh).
+  // Watchers hear of a change at most this long after it by default, the job's end at once
+  // (WakeSchedule): a round of writes to N watchers costs the server about as much with one
+  // event as with several (each watcher's write, its TCP send and the thread wake-ups it
+  // causes), so the events of an interval share a round (bench/watcher_cost.sh).
   static constexpr Clock::duration kWakeInterval = std::chrono::milliseconds(100);
 
   // `base`: the sequence number before the first event (see JobStore::NextHistoryBase).
@@ -73,9 +73,8 @@ class JobHub : public std::enable_shared_from_this<JobHub> {
 
   // `wake` is called after changes, until Unsubscribe(returned id): on the hub's notifier
   // thread (one for all hubs), never on the publisher's, so that a job never does its
-  // watchers' writes; changes made while a round of wakes is pending share that round. A
-  // round starts at once if the last one started at least `wake_interval` ago, else when it
-  // has; a terminal event or Close starts one at once. The hub must be owned by a shared_ptr.
+  // watchers' writes. A round starts `wake_interval` after the first change it carries, a
+  // terminal event or Close at once (WakeSchedule). The hub must be owned by a shared_ptr.
   int Subscribe(std::function<void()> wake);
   void Unsubscribe(int id);
 

@@ -1,10 +1,10 @@
-// WakeSchedule: when a job hub's next round of watcher wakes is due. At most one round starts
-// per interval; an urgent request (the job's end) is due at once; a request while a round is
-// pending shares it unless it must start sooner. Pure logic on given times (the hub calls it
-// under its lock), so the policy is tested without clocks.
+// WakeSchedule: when a job hub's next round of watcher wakes is due. A change is due one
+// interval after it is made, and changes made while a round is pending share it, so rounds
+// start at most once per interval and each carries every change of its interval; an urgent
+// change (the job's end) is due at once. Pure logic on given times (the hub calls it under
+// its lock), so the policy is tested without clocks.
 #pragma once
 
-#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -18,21 +18,18 @@ class WakeSchedule {
   // A change at `now`: the due time of a round to schedule, or none if the pending one
   // starts no later.
   std::optional<Clock::time_point> Request(Clock::time_point now, bool urgent) {
-    Clock::time_point due = now;
-    if (!urgent && started_any_) due = std::max(now, last_start_ + interval_);
+    const Clock::time_point due = urgent ? now : now + interval_;
     if (pending_ && due_ <= due) return std::nullopt;
     pending_ = true;
     due_ = due;
     return due;
   }
 
-  // The round scheduled for `due` is to start at `now`: false if a sooner one replaced it
-  // (or already ran), true if it starts (and the interval runs from `now`).
-  bool Start(Clock::time_point due, Clock::time_point now) {
+  // Whether the round scheduled for `due` is the pending one, which then starts; false if a
+  // sooner one replaced it (or it already ran).
+  bool Start(Clock::time_point due) {
     if (!pending_ || due != due_) return false;
     pending_ = false;
-    started_any_ = true;
-    last_start_ = now;
     return true;
   }
 
@@ -40,8 +37,6 @@ class WakeSchedule {
   const Clock::duration interval_;
   bool pending_ = false;
   Clock::time_point due_;  // of the pending round
-  bool started_any_ = false;
-  Clock::time_point last_start_;  // of the last round
 };
 
 }  // namespace radflux

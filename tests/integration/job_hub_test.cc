@@ -8,6 +8,8 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <vector>
 
 namespace radflux {
 namespace {
@@ -15,50 +17,44 @@ namespace {
 using Clock = WakeSchedule::Clock;
 using std::chrono::milliseconds;
 
-TEST(WakeScheduleTest, AtMostOneRoundPerIntervalAndTheJobsEndAtOnce) {
+TEST(WakeScheduleTest, AChangeIsDueOneIntervalLaterAndTheJobsEndAtOnce) {
   WakeSchedule schedule(milliseconds(100));
   const Clock::time_point t0 = Clock::now();
-  EXPECT_EQ(schedule.Request(t0, false), t0) << "the first change: at once";
-  EXPECT_EQ(schedule.Request(t0 + milliseconds(1), false), std::nullopt) << "shares the pending";
-  EXPECT_TRUE(schedule.Start(t0, t0 + milliseconds(2)));
-  EXPECT_EQ(schedule.Request(t0 + milliseconds(10), false), t0 + milliseconds(102))
-      << "the next round waits for the interval from the last start";
-  EXPECT_EQ(schedule.Request(t0 + milliseconds(50), false), std::nullopt);
+  EXPECT_EQ(schedule.Request(t0, false), t0 + milliseconds(100));
+  EXPECT_EQ(schedule.Request(t0 + milliseconds(30), false), std::nullopt)
+      << "a change while a round is pending shares it";
   EXPECT_EQ(schedule.Request(t0 + milliseconds(60), true), t0 + milliseconds(60))
       << "the job's end does not wait";
-  EXPECT_FALSE(schedule.Start(t0 + milliseconds(102), t0 + milliseconds(102)))
-      << "the round it replaced does not run";
-  EXPECT_FALSE(schedule.Start(t0 + milliseconds(102), t0 + milliseconds(103)));
+  EXPECT_FALSE(schedule.Start(t0 + milliseconds(100))) << "the round it replaced does not run";
+  EXPECT_TRUE(schedule.Start(t0 + milliseconds(60)));
+  EXPECT_FALSE(schedule.Start(t0 + milliseconds(60))) << "a round runs once";
 }
 
-TEST(WakeScheduleTest, ARoundReplacedBeforeItRanDoesNotRunAndTheSoonerOneDoes) {
+TEST(WakeScheduleTest, RoundsStartAtMostOncePerInterval) {
   WakeSchedule schedule(milliseconds(100));
   const Clock::time_point t0 = Clock::now();
-  ASSERT_TRUE(schedule.Request(t0, false));
-  ASSERT_TRUE(schedule.Start(t0, t0));
-  ASSERT_EQ(schedule.Request(t0 + milliseconds(5), false), t0 + milliseconds(100));
-  ASSERT_EQ(schedule.Request(t0 + milliseconds(6), true), t0 + milliseconds(6));
-  EXPECT_TRUE(schedule.Start(t0 + milliseconds(6), t0 + milliseconds(7)));
-  EXPECT_FALSE(schedule.Start(t0 + milliseconds(100), t0 + milliseconds(100)));
-  EXPECT_EQ(schedule.Request(t0 + milliseconds(8), false), t0 + milliseconds(107))
-      << "the interval runs from the urgent round's start";
+  std::optional<Clock::time_point> pending;
+  std::vector<int> starts;                // ms
+  for (int ms = 0; ms < 1000; ms += 7) {  // a change every 7 ms, rounds run when due
+    const Clock::time_point now = t0 + milliseconds(ms);
+    if (pending && *pending <= now) {
+      ASSERT_TRUE(schedule.Start(*pending));
+      starts.push_back(ms);
+      pending.reset();
+    }
+    if (std::optional<Clock::time_point> due = schedule.Request(now, false)) pending = due;
+  }
+  EXPECT_EQ(starts, (std::vector<int>{105, 210, 315, 420, 525, 630, 735, 840, 945}))
+      << "a round at the first step one interval after the first change it carries";
 }
 
-TEST(WakeScheduleTest, ChangesAfterAQuietIntervalWakeAtOnce) {
-  WakeSchedule schedule(milliseconds(100));
-  const Clock::time_point t0 = Clock::now();
-  ASSERT_TRUE(schedule.Request(t0, false));
-  ASSERT_TRUE(schedule.Start(t0, t0));
-  EXPECT_EQ(schedule.Request(t0 + milliseconds(500), false), t0 + milliseconds(500));
-}
-
-TEST(WakeScheduleTest, ZeroIntervalWakesForEveryChangeAfterTheLastRound) {
+TEST(WakeScheduleTest, ZeroIntervalWakesAtOnce) {
   WakeSchedule schedule(milliseconds(0));
   const Clock::time_point t0 = Clock::now();
   for (int i = 0; i < 3; ++i) {
     const Clock::time_point t = t0 + milliseconds(i);
     ASSERT_EQ(schedule.Request(t, false), t);
-    ASSERT_TRUE(schedule.Start(t, t));
+    ASSERT_TRUE(schedule.Start(t));
   }
 }
 
@@ -98,19 +94,28 @@ uint64_t EventsVisible(const JobHub& hub) {
   return after;
 }
 
-TEST(JobHubTest, TheFirstChangeAndTheJobsEndWakeAtOnceWhateverTheInterval) {
+TEST(JobHubTest, TheJobsEndWakesAtOnceWithEveryChangeOfTheInterval) {
   auto hub = std::make_shared<JobHub>("job-hub", 0, std::chrono::hours(1));
   RoundCounter counter;
   const int id = hub->Subscribe(counter.Wake());
-  hub->Publish(Event(v1::JOB_STATE_RUNNING));
-  EXPECT_EQ(counter.WaitFor(1), 1) << "the first change wakes at once";
-  for (int i = 0; i < 5; ++i) hub->Publish(Event(v1::JOB_STATE_RUNNING));
+  for (int i = 0; i < 6; ++i) hub->Publish(Event(v1::JOB_STATE_RUNNING));  // due in an hour
   hub->PublishSnapshot({1, std::make_shared<const std::vector<Rgb>>(3, Rgb{})});
   hub->Publish(Event(v1::JOB_STATE_SUCCEEDED));
-  EXPECT_EQ(counter.WaitFor(2), 2) << "the final event does not wait for the interval";
-  EXPECT_EQ(EventsVisible(*hub), 7u) << "the round finds every event published before it";
+  EXPECT_EQ(counter.WaitFor(1), 1) << "the final event does not wait for the interval";
+  EXPECT_EQ(EventsVisible(*hub), 7u) << "its round finds every event published before it";
   hub->Close();
-  EXPECT_EQ(counter.WaitFor(3), 3) << "nor does Close";
+  EXPECT_EQ(counter.WaitFor(2), 2) << "nor does Close";
+  hub->Unsubscribe(id);
+}
+
+TEST(JobHubTest, ZeroIntervalWakesForEveryChange) {
+  auto hub = std::make_shared<JobHub>("job-hub", 0, std::chrono::milliseconds(0));
+  RoundCounter counter;
+  const int id = hub->Subscribe(counter.Wake());
+  for (int i = 1; i <= 3; ++i) {
+    hub->Publish(Event(v1::JOB_STATE_RUNNING));
+    EXPECT_EQ(counter.WaitFor(i), i);
+  }
   hub->Unsubscribe(id);
 }
 
