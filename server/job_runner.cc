@@ -30,9 +30,9 @@ double SecondsSince(Clock::time_point start) {
 
 bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
 
-// Watchers get at most one progress event per this interval (the newest): ten a second
-// for a progress bar; each costs the server one write per watcher.
-constexpr std::chrono::milliseconds kProgressInterval{100};
+// Watchers get at most one progress event per this interval (the newest): four a second
+// for a progress bar, one per round of the hub's writes (JobHub::kWakeInterval).
+constexpr std::chrono::milliseconds kProgressInterval{250};
 
 // Publishes a progress event of the running job (throttled).
 void PublishProgress(ProgressThrottle& throttle, v1::Phase phase, const v1::Progress& progress) {
