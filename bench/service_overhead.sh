@@ -63,7 +63,7 @@ print(s['mesh']+s['embree']+s['rows']+s['solve'], s['solve'])" "$1"
 
 # job_cpu NAME JOB: "job thread ms" and "process ms" of JOB from server NAME's debug log.
 job_cpu() {
-  grep "job $2: cpu ms" "$DIR/server_$1.log" | sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+)/\1 \2/'
+  grep "job $2: cpu ms" "$DIR/server_$1.log" | sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+).*/\1 \2/'
 }
 
 # watched_job PART RUN WATCHERS NAME [taskset prefix for the watchers...]: one measured
