@@ -68,12 +68,14 @@ double Visibility(const ElementTree& tree, std::span<const float> exposure, cons
   const uint32_t point_p = PatternSeed(pair, q.id, kReceiverPointStream);
   const uint32_t point_q = PatternSeed(pair, q.id, kSourcePointStream);
   const uint32_t s = static_cast<uint32_t>(sampling.samples);
+  const std::vector<Point2> points_p = MultiJitteredSamples(point_p, s);
+  const std::vector<Point2> points_q = MultiJitteredSamples(point_q, s);
   int facing = 0, seen = 0;
   for (uint32_t m = 0; m < s; ++m) {
     const Element& g = tree.nodes[Pick(FacesOf(p), sums_p, RandomFloat(m, pick_p))];
     const Element& f = tree.nodes[Pick(FacesOf(q), sums_q, RandomFloat(m, pick_q))];
-    const Vec3 x = SampleElementPoint(g, MultiJitteredSample(m, s, point_p));
-    const Vec3 y = SampleElementPoint(f, MultiJitteredSample(m, s, point_q));
+    const Vec3 x = SampleElementPoint(g, points_p[m]);
+    const Vec3 y = SampleElementPoint(f, points_q[m]);
     if (!(Dot(y - x, g.normal) > 0) || !(Dot(x - y, f.normal) > 0)) continue;
     ++facing;
     ++rays;

@@ -1,5 +1,7 @@
 #include "solver/hierarchical/exposure.h"
 
+#include <vector>
+
 #include "solver/core/sampling.h"
 
 namespace radflux {
@@ -8,11 +10,13 @@ double ExposedFraction(const Element& e, const PatchMesh& mesh, const RayCaster&
                        int samples, uint32_t pattern, double ray_epsilon) {
   const Frame frame = Frame::FromNormal(e.normal);
   const uint32_t direction_pattern = pattern ^ 0x9e3779b9u;
+  const uint32_t n = static_cast<uint32_t>(samples);
+  const std::vector<Point2> points = MultiJitteredSamples(pattern, n);
+  const std::vector<Point2> directions = MultiJitteredSamples(direction_pattern, n);
   int exposed = 0;
   for (int m = 0; m < samples; ++m) {
-    const Vec3 x = SampleElementPoint(e, MultiJitteredSample(m, samples, pattern));
-    const Vec3 d =
-        frame.ToWorld(SampleCosineHemisphere(MultiJitteredSample(m, samples, direction_pattern)));
+    const Vec3 x = SampleElementPoint(e, points[m]);
+    const Vec3 d = frame.ToWorld(SampleCosineHemisphere(directions[m]));
     const Hit hit = caster.Intersect({x + e.normal * ray_epsilon, d});
     if (hit.patch == kNoPatch || Dot(mesh.patches[hit.patch].normal, d) < 0) ++exposed;
   }

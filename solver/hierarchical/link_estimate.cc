@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "solver/core/sampling.h"
 #include "solver/formfactor/polygon_form_factor.h"
@@ -78,31 +79,35 @@ bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint
   const uint64_t pair = sampling.seed ^ (uint64_t{p_id} << 32);
   const uint32_t decision_pattern = PatternSeed(pair, q_id, kDecisionStream);
   const uint32_t value_pattern = PatternSeed(pair, q_id, kValueStream);
+  const uint32_t n = static_cast<uint32_t>(s);
+  const std::vector<Point2> points = MultiJitteredSamples(point_pattern, n);
+  const std::vector<Point2> decision_targets = MultiJitteredSamples(decision_pattern, n);
+  const std::vector<Point2> value_targets = MultiJitteredSamples(value_pattern, n);
   double unoccluded = 0, lo = 1, hi = 0, unoccluded_hi = 0;
   double kernel = 0, kernel_seen = 0;  // sum of cos cos / r^2 over value rays, and unblocked
   int visible = 0, blocked = 0;
   for (int m = 0; m < s; ++m) {
-    const Vec3 x = SampleElementPoint(p, MultiJitteredSample(m, s, point_pattern));
+    const Vec3 x = SampleElementPoint(p, points[m]);
     const double f = PointFormFactor(x, p, q, front);
     lo = std::min(lo, f);
     unoccluded_hi = std::max(unoccluded_hi, f);
     if (f <= 0) continue;
     unoccluded += f;
     const Vec3 origin = x + p.normal * sampling.ray_epsilon;
-    auto target = [&](uint32_t pattern) {
-      return front.Sample(MultiJitteredSample(m, s, pattern)) + q.normal * sampling.ray_epsilon;
+    auto target = [&](const std::vector<Point2>& targets) {
+      return front.Sample(targets[m]) + q.normal * sampling.ray_epsilon;
     };
     auto occluded = [&](const Vec3& y) {
       ++rays;
       return caster.Occluded({origin, y - origin, 0, 1 - 1e-6});
     };
-    if (occluded(target(decision_pattern))) {
+    if (occluded(target(decision_targets))) {
       ++blocked;
     } else {
       ++visible;
       hi = std::max(hi, f);
     }
-    const Vec3 y = target(value_pattern);
+    const Vec3 y = target(value_targets);
     const Vec3 d = y - origin;
     const double r2 = Dot(d, d);
     const double k = std::max(0.0, Dot(d, p.normal)) * std::max(0.0, -Dot(d, q.normal)) / (r2 * r2);
