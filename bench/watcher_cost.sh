@@ -9,9 +9,8 @@
 # threads" extra: (process - job thread) with 50 watchers minus the same with 0. The log's
 # window ends before the job's final event; "to the last watcher" also counts that event,
 # the last snapshot and the streams' teardown: the server's process CPU clock (less the job
-# thread's) from the
-# job's start to the end of its last watch stream (debug log), 50 watchers minus 0 (where
-# the bench's own watcher is the last).
+# thread's) from the job's start to the end of its last watch stream (debug log), 50
+# watchers minus 0 (where the bench's own watcher is the last).
 # Usage: bash bench/watcher_cost.sh RUNS SERVER...   (SERVER: a radfluxd binary)
 #   env: CLIENT (default build/release/client/radflux), JOB_PATCHES (8500),
 #        BLOCKER_PATCHES (30000), SNAP (1; 0 = no snapshots)
@@ -42,7 +41,10 @@ one() {  # SERVER_INDEX WATCHERS: "index watchers job_thread_ms process_ms to_la
   "$R" cancel "$blocker" --server "$A" >/dev/null
   "$R" watch "$job" --server "$A" >/dev/null 2>&1
   for p in "${pids[@]}"; do wait "$p"; done
-  sleep 0.2  # the server's log lines of the streams' ends
+  # The server logs each stream's end once it is done with it: wait for all n + 1.
+  until [ "$(grep -c "job $job: watch ended" "$D/server_$k.log")" -ge $((n + 1)) ]; do
+    sleep 0.02
+  done
   echo "$k $n $(grep "job $job: cpu ms" "$D/server_$k.log" |
     sed -E 's/.*job thread ([0-9.]+), process ([0-9.]+), process clock at start ([0-9.]+)/\1 \2 \3/') $(
     grep "job $job: watch ended" "$D/server_$k.log" | sed -E 's/.*process cpu clock //' |

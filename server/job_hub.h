@@ -38,12 +38,12 @@ struct SnapshotData {
 
 class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = WakeSchedule::Clock;
   // Watchers hear of a change at most this long after it by default, the job's end at once
   // (WakeSchedule): a round of writes to N watchers costs the server about as much with one
   // event as with several (each watcher's write, its TCP send and the thread wake-ups it
   // causes), so the events of an interval share a round (bench/watcher_cost.sh).
-  static constexpr Clock::duration kWakeInterval = std::chrono::milliseconds(250);
+  static constexpr std::chrono::milliseconds kWakeInterval{250};
 
   // `base`: the sequence number before the first event (see JobStore::NextHistoryBase).
   explicit JobHub(std::string job_id, uint64_t base = 0,

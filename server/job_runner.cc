@@ -30,9 +30,9 @@ double SecondsSince(Clock::time_point start) {
 
 bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
 
-// Watchers get at most one progress event per this interval (the newest): four a second
-// for a progress bar, one per round of the hub's writes (JobHub::kWakeInterval).
-constexpr std::chrono::milliseconds kProgressInterval{250};
+// Watchers get at most one progress event per round of the hub's writes (the newest): four
+// a second for a progress bar.
+constexpr auto kProgressInterval = JobHub::kWakeInterval;
 
 // Publishes a progress event of the running job (throttled).
 void PublishProgress(ProgressThrottle& throttle, v1::Phase phase, const v1::Progress& progress) {

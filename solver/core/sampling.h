@@ -10,7 +10,6 @@
 #include <numbers>
 #include <span>
 #include <utility>
-#include <vector>
 
 #include "solver/core/vec3.h"
 
@@ -54,12 +53,6 @@ Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p);
 // bit for bit, with the permutations within the strata computed once per stratum (about a
 // third fewer hashes at n = 4).
 void MultiJitteredSamples(uint32_t p, std::span<Point2> out);
-// The same, as a vector of n.
-inline std::vector<Point2> MultiJitteredSamples(uint32_t p, uint32_t n) {
-  std::vector<Point2> out(n);
-  MultiJitteredSamples(p, std::span<Point2>(out));
-  return out;
-}
 
 // One coordinate of the rotation below: u + shift wrapped back into [0, 1) for u, shift in
 // [0, 1) (in float, u + shift may round up to 1 exactly; then the result is 1). T is

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "solver/core/sampling.h"
@@ -68,8 +69,10 @@ double Visibility(const ElementTree& tree, std::span<const float> exposure, cons
   const uint32_t point_p = PatternSeed(pair, q.id, kReceiverPointStream);
   const uint32_t point_q = PatternSeed(pair, q.id, kSourcePointStream);
   const uint32_t s = static_cast<uint32_t>(sampling.samples);
-  const std::vector<Point2> points_p = MultiJitteredSamples(point_p, s);
-  const std::vector<Point2> points_q = MultiJitteredSamples(point_q, s);
+  std::vector<Point2> drawn(2 * size_t{s});
+  const std::span<Point2> points_p(drawn.data(), s), points_q(drawn.data() + s, s);
+  MultiJitteredSamples(point_p, points_p);
+  MultiJitteredSamples(point_q, points_q);
   int facing = 0, seen = 0;
   for (uint32_t m = 0; m < s; ++m) {
     const Element& g = tree.nodes[Pick(FacesOf(p), sums_p, RandomFloat(m, pick_p))];

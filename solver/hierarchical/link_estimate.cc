@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "solver/core/sampling.h"
@@ -79,10 +80,13 @@ bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint
   const uint64_t pair = sampling.seed ^ (uint64_t{p_id} << 32);
   const uint32_t decision_pattern = PatternSeed(pair, q_id, kDecisionStream);
   const uint32_t value_pattern = PatternSeed(pair, q_id, kValueStream);
-  const uint32_t n = static_cast<uint32_t>(s);
-  const std::vector<Point2> points = MultiJitteredSamples(point_pattern, n);
-  const std::vector<Point2> decision_targets = MultiJitteredSamples(decision_pattern, n);
-  const std::vector<Point2> value_targets = MultiJitteredSamples(value_pattern, n);
+  // The link's three sample sets, drawn at once (one allocation, strata permuted once).
+  std::vector<Point2> drawn(3 * static_cast<size_t>(s));
+  const std::span<Point2> points(drawn.data(), s), decision_targets(drawn.data() + s, s),
+      value_targets(drawn.data() + 2 * s, s);
+  MultiJitteredSamples(point_pattern, points);
+  MultiJitteredSamples(decision_pattern, decision_targets);
+  MultiJitteredSamples(value_pattern, value_targets);
   double unoccluded = 0, lo = 1, hi = 0, unoccluded_hi = 0;
   double kernel = 0, kernel_seen = 0;  // sum of cos cos / r^2 over value rays, and unblocked
   int visible = 0, blocked = 0;
@@ -94,7 +98,7 @@ bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint
     if (f <= 0) continue;
     unoccluded += f;
     const Vec3 origin = x + p.normal * sampling.ray_epsilon;
-    auto target = [&](const std::vector<Point2>& targets) {
+    auto target = [&](std::span<const Point2> targets) {
       return front.Sample(targets[m]) + q.normal * sampling.ray_epsilon;
     };
     auto occluded = [&](const Vec3& y) {

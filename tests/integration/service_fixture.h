@@ -146,11 +146,11 @@ inline v1::SolveOptions SmallOptions(int64_t patches, const std::string& solver)
 
 // Starts a job, kills the server (kill -9) once the solve has reported iteration 5 (the
 // server checkpoints every iteration and sleeps 100 ms after each, so the kill lands mid
-// solve although watchers hear of progress up to ~0.5 s late: 250 ms progress throttle, 250
-// ms rounds of writes), restarts it (no delay; both times with `extra` flags) and returns the
-// finished job's B. *first_iteration is the first solve iteration the restarted server reported: >=
-// 5 proves it resumed from the checkpoint of iteration 4 or later (iteration 5's may not be on disk
-// when the kill lands).
+// solve although watchers hear of progress up to ~0.5 s late: 250 ms progress throttle,
+// 250 ms rounds of writes), restarts it (no delay; both times with `extra` flags) and
+// returns the finished job's B. *first_iteration is the first solve iteration the restarted
+// server reported: >= 5 proves it resumed from the checkpoint of iteration 4 or later
+// (iteration 5's may not be on disk when the kill lands).
 inline std::vector<double> KillDuringSolveAndResume(ServiceFixture& t,
                                                     const v1::SolveOptions& options,
                                                     int* first_iteration, std::string* report,
