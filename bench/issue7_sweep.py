@@ -10,13 +10,20 @@ direct light plus one bounce of final gather into a fine uniform solve; see
 bench/field_error.cc): rms / l1 of B with each patch constant (what was solved), rms_smooth
 with per-vertex interpolation (what the picture shows). Also the older object-mean error
 (RMS over objects of the relative error of each object's area-weighted mean B) against the
-fine solve. Prints a Markdown table; every run's files stay in OUTDIR.
+fine solve. Prints a Markdown table; every run's files stay in OUTDIR, and its numbers in
+OUTDIR/runs.csv (a re-run replaces its row).
+
+    bench/issue7_sweep.py BUILD OUTDIR SCENE --plot
+
+draws OUTDIR/runs.csv (gnuplot): field rms against CPU seconds and against peak memory, one
+line per family of runs (uniform k 64, uniform analytic, adaptive, hierarchical, ...).
 """
 import argparse
 import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -43,8 +50,13 @@ RUNS = {
     "hall": [("uniform_%d" % n, ["--patches", str(n)]) for n in (5000, 12500, 25000, 50000, 100000)]
     + [("adaptive_t%s_p%d" % (t, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
        for t in ("0.1", "0.2") for p in (2, 3, 4)]
+    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (2000, 4000, 8000, 16000)]
     + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e])
        for e in ("1e-3", "1e-4", "1e-5", "3e-6", "1e-6")]
+    # Finer element floors (`--min-element-area`, default 2e-5 of the scene's area): the default
+    # stops the hall's leaves at ~23k whatever the epsilon.
+    + [("hierarchical_a%s_%s" % (a, e), ["--solver", "hierarchical", "--link-epsilon", e, "--min-element-area", a])
+       for a, e in (("5e-6", "1e-5"), ("5e-6", "3e-6"), ("5e-6", "1e-6"), ("2e-6", "1e-6"))]
     + [("uniform_k%d_%d" % (k, n), ["--patches", str(n), "--rays", str(k)]) for k in (16, 256) for n in (12500, 25000, 50000)]
     + [("adaptive_k%d_t0.1_p%d" % (k, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", "0.1",
                                            "--rays", str(k)]) for k in (16, 256) for p in (2, 3)],
@@ -80,13 +92,70 @@ def object_mean_error(run, ref):
     return math.sqrt(sum(e) / len(e))
 
 
+COLUMNS = ["name", "patches", "wall_s", "cpu_s", "peak_mb", "rms", "l1", "rms_smooth", "object_mean_error"]
+# A run's family (one line in the plots) from its name, with the legend it gets.
+FAMILIES = [
+    (r"uniform_\d+", "uniform, monte_carlo k 64 (the default)"),
+    (r"uniform_k16_\d+", "uniform, monte_carlo k 16"),
+    (r"uniform_k256_\d+", "uniform, monte_carlo k 256"),
+    (r"uniform_analytic_\d+", "uniform, analytic rows (n^2)"),
+    (r"adaptive_t0.1_p\d+", "adaptive, t 0.1"),
+    (r"adaptive_t0.2_p\d+", "adaptive, t 0.2"),
+    (r"adaptive_k16_t0.1_p\d+", "adaptive k 16, t 0.1"),
+    (r"adaptive_k256_t0.1_p\d+", "adaptive k 256, t 0.1"),
+    (r"hierarchical_[0-9.e-]+", "hierarchical"),
+    (r"hierarchical_a5e-6_[0-9.e-]+", "hierarchical, element floor 5e-6"),
+    (r"hierarchical_a2e-6_[0-9.e-]+", "hierarchical, element floor 2e-6"),
+]
+
+
+def save_row(path, row):
+    rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
+    rows = [r for r in rows if r["name"] != row["name"]] + [row]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+
+
+def plot(out, scene):
+    """Draws runs.csv: one gnuplot data block per family, sorted by CPU seconds."""
+    rows = list(csv.DictReader(open(os.path.join(out, "runs.csv"))))
+    data, curves = os.path.join(out, "runs.dat"), []
+    with open(data, "w") as f:
+        for pattern, title in FAMILIES:
+            family = sorted((r for r in rows if re.fullmatch(pattern, r["name"])), key=lambda r: float(r["cpu_s"]))
+            if not family:
+                continue
+            for r in family:
+                f.write(f"{r['cpu_s']} {r['peak_mb']} {r['rms']}\n")
+            f.write("\n\n")
+            curves.append(title)
+    for x, column, label in (("time", 1, "CPU seconds of radflux solve"), ("memory", 2, "peak RSS, MB")):
+        lines = [f"'{data}' index {i} using {column}:3 with linespoints title '{t}'" for i, t in enumerate(curves)]
+        script = f"""set terminal pngcairo size 1000,600 noenhanced
+set output '{os.path.join(out, f"field_error_{x}.png")}'
+set logscale xy
+set title '{scene}: speed against error (field rms, lower is better)'
+set xlabel '{label}'
+set ylabel 'field rms of B against the reference'
+set grid
+set key outside right
+plot {', '.join(lines)}
+"""
+        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("build")
     ap.add_argument("out")
     ap.add_argument("scene", choices=sorted(SCENES))
     ap.add_argument("--only", nargs="*", help="run only these names")
+    ap.add_argument("--plot", action="store_true", help="only draw OUTDIR/runs.csv")
     args = ap.parse_args()
+    if args.plot:
+        return plot(args.out, args.scene)
     os.makedirs(args.out, exist_ok=True)
     scene = SCENES[args.scene]
     field_error = os.path.join(args.build, "bench", "field_error")
@@ -106,9 +175,13 @@ def main():
         base = os.path.join(args.out, name)
         e = json.loads(subprocess.run([field_error, "compare", points, base + ".ply", base + ".csv"],
                                       check=True, capture_output=True, text=True).stdout)
+        object_error = object_mean_error(base + ".csv", fine + ".csv")
+        save_row(os.path.join(args.out, "runs.csv"),
+                 {"name": name, "patches": e["run_patches"], "wall_s": f"{wall:.2f}", "cpu_s": f"{cpu:.2f}",
+                  "peak_mb": f"{mb:.0f}", "rms": f"{e['rms']:.4f}", "l1": f"{e['l1']:.4f}",
+                  "rms_smooth": f"{e['rms_smooth']:.4f}", "object_mean_error": f"{object_error:.2e}"})
         print(f"| {name} | `{' '.join(flags)}` | {e['run_patches']} | {wall:.2f} | {cpu:.2f} | {mb:.0f} | "
-              f"{e['rms']:.4f} | {e['l1']:.4f} | {e['rms_smooth']:.4f} | "
-              f"{object_mean_error(base + '.csv', fine + '.csv'):.2e} |", flush=True)
+              f"{e['rms']:.4f} | {e['l1']:.4f} | {e['rms_smooth']:.4f} | {object_error:.2e} |", flush=True)
 
 
 if __name__ == "__main__":

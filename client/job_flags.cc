@@ -33,6 +33,9 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
                  "hierarchical: clusters above the faces (off: every pair of faces starts linked)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--min-element-area", f.min_element_area,
+                 "hierarchical: no element smaller than this fraction of the scene's area")
+      ->capture_default_str();
   app.add_option(
          "--adaptive-passes", f.adaptive_passes,
          "adaptive meshing: refinement passes after the first solve (rows by --form-factors)")
@@ -60,6 +63,7 @@ absl::StatusOr<JobOptions> ToJobOptions(const JobFlags& f) {
   o.hierarchical.enabled = f.solver == "hierarchical";
   o.hierarchical.link_epsilon = f.link_epsilon;
   o.hierarchical.clusters = f.clusters == "on";
+  o.hierarchical.min_area_fraction = f.min_element_area;
   o.adaptive.passes = f.adaptive_passes;
   o.adaptive.threshold = f.adaptive_threshold;
   o.solver.method = o.hierarchical.enabled ? SolverMethod::kJacobi : *ParseSolver(f.solver);

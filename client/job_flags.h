@@ -21,9 +21,10 @@ struct JobFlags {
   int max_iterations = 1000;
   int threads = 0;
   uint64_t seed = 1;
-  double link_epsilon = 1e-4;   // --solver hierarchical: BFA refinement threshold
-  std::string clusters = "on";  // --solver hierarchical: cluster hierarchy above the faces
-  int adaptive_passes = 0;      // adaptive meshing passes after the first solve
+  double link_epsilon = 1e-4;      // --solver hierarchical: BFA refinement threshold
+  std::string clusters = "on";     // --solver hierarchical: cluster hierarchy above the faces
+  double min_element_area = 2e-5;  // --solver hierarchical: smallest element / scene area
+  int adaptive_passes = 0;         // adaptive meshing passes after the first solve
   double adaptive_threshold = 0.1;
 };
 

@@ -85,6 +85,10 @@ absl::Status ValidateJobOptions(const JobOptions& o) {
                                 " needs them all in memory (use jacobi, gauss_seidel or auto)")),
            Require(o.spill.memory_limit == 0 || (!o.hierarchical.enabled && o.adaptive.passes == 0),
                    "--memory-limit applies to the plain solve, not hierarchical or adaptive"),
+           Require(o.hierarchical.link_epsilon > 0 && std::isfinite(o.hierarchical.link_epsilon),
+                   "--link-epsilon must be a finite number > 0"),
+           Require(o.hierarchical.min_area_fraction > 0 && o.hierarchical.min_area_fraction < 1,
+                   "--min-element-area must be in (0, 1)"),
            Require(o.spill.memory_limit > 0 || o.spill.directory.empty(),
                    "--spill-dir needs --memory-limit"),
        }) {

@@ -44,6 +44,7 @@ struct HierarchicalOptions {
   bool enabled = false;             // `radflux solve --solver hierarchical`
   double link_epsilon = 1e-4;       // BFA threshold, relative to the total emitted power
   double min_area_fraction = 2e-5;  // no element smaller than this fraction of total area
+                                    // (`--min-element-area`)
   int samples = 4;                  // points per receiver element (one shadow ray each)
   int max_passes = 6;               // refine-then-solve passes (stops early when stable)
   bool clusters = true;             // cluster hierarchy above the faces (`--clusters on|off`)

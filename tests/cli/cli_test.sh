@@ -53,6 +53,10 @@ expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$
 "$radflux" --version | grep -qx "radflux [0-9]*\.[0-9]*\.[0-9]*" || fail "--version prints 'radflux X.Y.Z'"
 expect_error "unknown verb" "unknown verb 'solv'" solv "$cornell"
 expect_error "no verb" "A subcommand is required"
+expect_error "element floor" "min-element-area must be in (0, 1)" solve "$cornell" \
+  --solver hierarchical --min-element-area 0
+expect_error "link epsilon" "link-epsilon must be" solve "$cornell" --solver hierarchical \
+  --link-epsilon -1
 expect_error "cg cannot stream" "memory-limit" solve "$cornell" --memory-limit 1M --solver cg
 expect_error "spill dir is a file" "cannot create a spill file in" solve "$cornell" --patches 300 -q \
   --memory-limit 1K --spill-dir "$tmp/c.csv"

@@ -4,6 +4,7 @@
 // area-weighted mean B (a measure that works across different meshes).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -48,9 +49,10 @@ class CornellRefinement : public ::testing::Test {
     delete scene_;
     delete reference_;
   }
-  static HierarchicalResult Hierarchical(double epsilon) {
+  static HierarchicalResult Hierarchical(double epsilon, double min_area_fraction = 2e-5) {
     HierarchicalOptions h;
     h.link_epsilon = epsilon;
+    h.min_area_fraction = min_area_fraction;
     SolverOptions s;
     s.tolerance = 1e-7;
     return *SolveHierarchical(*scene_, h, s);
@@ -71,6 +73,25 @@ TEST_F(CornellRefinement, HierarchicalErrorNeverIncreasesOverThreeEpsilons) {
   }
   EXPECT_LE(errors[1], errors[0]);
   EXPECT_LE(errors[2], errors[1]);
+}
+
+// `--min-element-area`: no leaf is smaller than the floor (a fraction of the scene's area),
+// and a 4x lower floor, at an epsilon the floor binds, gives more and smaller leaves.
+TEST_F(CornellRefinement, ElementFloorBoundsTheSmallestLeaf) {
+  double scene_area = 0;
+  for (const Patch& p : Hierarchical(1e-3).mesh.patches) scene_area += p.area;
+  std::vector<size_t> leaves;
+  std::vector<double> smallest;
+  for (double floor : {1e-3, 2.5e-4}) {
+    const HierarchicalResult r = Hierarchical(1e-5, floor);
+    double least = scene_area;
+    for (uint32_t l : r.leaves) least = std::min(least, r.tree.nodes[l].area);
+    EXPECT_GE(least, floor * scene_area * (1 - 1e-9)) << "floor " << floor;
+    leaves.push_back(r.leaves.size());
+    smallest.push_back(least);
+  }
+  EXPECT_GT(leaves[1], leaves[0]);
+  EXPECT_LT(smallest[1], smallest[0]);
 }
 
 TEST_F(CornellRefinement, AdaptiveErrorNeverIncreasesOverThreePasses) {
