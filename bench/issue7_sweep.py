@@ -16,7 +16,9 @@ OUTDIR/runs.csv (a re-run replaces its row).
     bench/issue7_sweep.py BUILD OUTDIR SCENE --plot
 
 draws OUTDIR/runs.csv (gnuplot): field rms against CPU seconds and against peak memory, one
-line per family of runs (uniform k 64, uniform analytic, adaptive, hierarchical, ...).
+line per family of runs (uniform k 64, uniform analytic, adaptive, hierarchical, ...), and
+prints each adaptive and hierarchical run's gain in time and memory over every uniform family
+at equal field rms (interpolated log-log; "-" outside the family's range).
 """
 import argparse
 import csv
@@ -50,7 +52,7 @@ RUNS = {
     "hall": [("uniform_%d" % n, ["--patches", str(n)]) for n in (5000, 12500, 25000, 50000, 100000)]
     + [("adaptive_t%s_p%d" % (t, p), ["--patches", "2000", "--adaptive-passes", str(p), "--adaptive-threshold", t])
        for t in ("0.1", "0.2") for p in (2, 3, 4)]
-    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (2000, 4000, 8000, 16000)]
+    + [("uniform_analytic_%d" % n, ["--patches", str(n), "--form-factors", "analytic"]) for n in (2000, 4000, 8000, 16000, 32000)]
     + [("hierarchical_%s" % e, ["--solver", "hierarchical", "--link-epsilon", e])
        for e in ("1e-3", "1e-4", "1e-5", "3e-6", "1e-6")]
     # Finer element floors (`--min-element-area`, default 2e-5 of the scene's area): the default
@@ -73,6 +75,8 @@ def solve(build, scene, out, name, flags):
     log = subprocess.run(cmd, capture_output=True, text=True)
     if log.returncode != 0:
         sys.exit(f"{name}: radflux failed:\n{log.stderr}")
+    with open(base + ".log", "w") as f:
+        f.write(log.stderr)
     wall, user, system, rss = open(timing).read().split()[-4:]
     return float(wall), float(user) + float(system), int(rss) / 1024, log.stderr
 
@@ -92,7 +96,10 @@ def object_mean_error(run, ref):
     return math.sqrt(sum(e) / len(e))
 
 
-COLUMNS = ["name", "patches", "wall_s", "cpu_s", "peak_mb", "rms", "l1", "rms_smooth", "object_mean_error"]
+COLUMNS = ["name", "patches", "wall_s", "cpu_s", "peak_mb", "rms", "l1", "rms_smooth", "object_mean_error", "leaves",
+           "links"]
+# Hierarchical runs log their leaf and link counts.
+LINKS = re.compile(r"(\d+) leaves -> \d+ conforming patches; (\d+) links")
 # A run's family (one line in the plots) from its name, with the legend it gets.
 FAMILIES = [
     (r"uniform_\d+", "uniform, monte_carlo k 64 (the default)"),
@@ -108,9 +115,12 @@ FAMILIES = [
     (r"hierarchical_a2e-6_[0-9.e-]+", "hierarchical, element floor 2e-6"),
 ]
 
+COLORS = ["#1f77b4", "#9ecae1", "#08519c", "#7f7f7f", "#2ca02c", "#98df8a", "#bcbd22", "#006d2c", "#d62728",
+          "#ff7f0e", "#8c564b"]
+
 
 def save_row(path, row):
-    rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
+    rows = list(csv.DictReader(open(path), restval="")) if os.path.exists(path) else []
     rows = [r for r in rows if r["name"] != row["name"]] + [row]
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, COLUMNS)
@@ -118,10 +128,40 @@ def save_row(path, row):
         w.writerows(rows)
 
 
+def at_rms(family, rms, column):
+    """The family's `column` at field rms `rms`, interpolated log-log between its two runs
+    around it; None outside their range."""
+    pts = sorted((float(r["rms"]), float(r[column])) for r in family)
+    for (e0, v0), (e1, v1) in zip(pts, pts[1:]):
+        if e0 <= rms <= e1:
+            t = 0 if e1 == e0 else math.log(rms / e0) / math.log(e1 / e0)
+            return math.exp(math.log(v0) + t * (math.log(v1) - math.log(v0)))
+    return None
+
+
+def equal_error_table(rows):
+    """Each adaptive and hierarchical run against the uniform families at its field rms:
+    how many times less CPU time and peak memory it takes (uniform / run)."""
+    families = {title: [r for r in rows if re.fullmatch(pattern, r["name"])] for pattern, title in FAMILIES}
+    baselines = [t for t in families if t.startswith("uniform") and families[t]]
+    print("| run | patches | field rms | CPU s | peak MB | " + " | ".join(f"{b}: time, memory" for b in baselines) + " |")
+    print("|---" * (5 + len(baselines)) + "|")
+    for r in rows:
+        if r["name"].startswith("uniform"):
+            continue
+        cells = []
+        for b in baselines:
+            t, m = at_rms(families[b], float(r["rms"]), "cpu_s"), at_rms(families[b], float(r["rms"]), "peak_mb")
+            cells.append("-" if t is None else f"{t / float(r['cpu_s']):.2g}x, {m / float(r['peak_mb']):.2g}x")
+        print(f"| {r['name']} | {r['patches']} | {r['rms']} | {r['cpu_s']} | {r['peak_mb']} | " + " | ".join(cells) + " |")
+
+
 def plot(out, scene):
     """Draws runs.csv: one gnuplot data block per family, sorted by CPU seconds."""
     rows = list(csv.DictReader(open(os.path.join(out, "runs.csv"))))
+    equal_error_table(rows)
     data, curves = os.path.join(out, "runs.dat"), []
+    rms = [float(r["rms"]) for r in rows]
     with open(data, "w") as f:
         for pattern, title in FAMILIES:
             family = sorted((r for r in rows if re.fullmatch(pattern, r["name"])), key=lambda r: float(r["cpu_s"]))
@@ -132,15 +172,18 @@ def plot(out, scene):
             f.write("\n\n")
             curves.append(title)
     for x, column, label in (("time", 1, "CPU seconds of radflux solve"), ("memory", 2, "peak RSS, MB")):
-        lines = [f"'{data}' index {i} using {column}:3 with linespoints title '{t}'" for i, t in enumerate(curves)]
-        script = f"""set terminal pngcairo size 1000,600 noenhanced
+        lines = [f"'{data}' index {i} using {column}:3 with linespoints lw 2 lc rgb '{COLORS[i % len(COLORS)]}' "
+                 f"title '{t}'" for i, t in enumerate(curves)]
+        script = f"""set terminal pngcairo size 900,600 noenhanced
 set output '{os.path.join(out, f"field_error_{x}.png")}'
 set logscale xy
 set title '{scene}: speed against error (field rms, lower is better)'
 set xlabel '{label}'
 set ylabel 'field rms of B against the reference'
-set grid
-set key outside right
+set yrange [{min(rms) / 1.1}:{max(rms) * 1.1}]
+set ytics (0.02, 0.03, 0.04, 0.05, 0.06, 0.08, 0.1, 0.12, 0.15, 0.2)
+set grid xtics ytics
+set key top right box opaque font ',9'
 plot {', '.join(lines)}
 """
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
@@ -171,7 +214,8 @@ def main():
     for name, flags in RUNS[args.scene]:
         if args.only and name not in args.only:
             continue
-        wall, cpu, mb, _ = solve(args.build, scene, args.out, name, flags)
+        wall, cpu, mb, log = solve(args.build, scene, args.out, name, flags)
+        counts = LINKS.search(log)
         base = os.path.join(args.out, name)
         e = json.loads(subprocess.run([field_error, "compare", points, base + ".ply", base + ".csv"],
                                       check=True, capture_output=True, text=True).stdout)
@@ -179,7 +223,8 @@ def main():
         save_row(os.path.join(args.out, "runs.csv"),
                  {"name": name, "patches": e["run_patches"], "wall_s": f"{wall:.2f}", "cpu_s": f"{cpu:.2f}",
                   "peak_mb": f"{mb:.0f}", "rms": f"{e['rms']:.4f}", "l1": f"{e['l1']:.4f}",
-                  "rms_smooth": f"{e['rms_smooth']:.4f}", "object_mean_error": f"{object_error:.2e}"})
+                  "rms_smooth": f"{e['rms_smooth']:.4f}", "object_mean_error": f"{object_error:.2e}",
+                  "leaves": counts[1] if counts else "", "links": counts[2] if counts else ""})
         print(f"| {name} | `{' '.join(flags)}` | {e['run_patches']} | {wall:.2f} | {cpu:.2f} | {mb:.0f} | "
               f"{e['rms']:.4f} | {e['l1']:.4f} | {e['rms_smooth']:.4f} | {object_error:.2e} |", flush=True)
 

@@ -21,10 +21,12 @@ struct JobFlags {
   int max_iterations = 1000;
   int threads = 0;
   uint64_t seed = 1;
-  double link_epsilon = 1e-4;      // --solver hierarchical: BFA refinement threshold
-  std::string clusters = "on";     // --solver hierarchical: cluster hierarchy above the faces
-  double min_element_area = 2e-5;  // --solver hierarchical: smallest element / scene area
-  int adaptive_passes = 0;         // adaptive meshing passes after the first solve
+  // --solver hierarchical: BFA refinement threshold, the cluster hierarchy above the faces, the
+  // smallest element as a fraction of the scene's area.
+  double link_epsilon = HierarchicalOptions{}.link_epsilon;
+  std::string clusters = "on";
+  double min_element_area = HierarchicalOptions{}.min_area_fraction;
+  int adaptive_passes = 0;  // adaptive meshing passes after the first solve
   double adaptive_threshold = 0.1;
 };
 

@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "absl/strings/str_format.h"
 #include "client/exit_status.h"
@@ -32,6 +35,28 @@ absl::Status WriteReport(const std::string& path, const nlohmann::json& report) 
   file.close();
   if (!file) return absl::InternalError("cannot write report file '" + path + "'");
   return absl::OkStatus();
+}
+
+// What hierarchical radiosity or adaptive meshing built, one line each (also in the report).
+std::vector<std::string> RefinementLines(const JobResult& result) {
+  std::vector<std::string> lines;
+  if (const std::optional<HierarchicalStats>& h = result.hierarchical) {
+    lines.push_back(absl::StrFormat(
+        "hierarchical: %d faces, %d clusters, %d elements, %d leaves -> %d conforming patches; "
+        "%d links (%.2f MB links, %.2f MB elements) from %d initial links; %d passes, %d "
+        "refine rounds, %d rays; refine %.3fs gather %.3fs",
+        h->roots, h->clusters, h->elements, h->leaves, h->patches, h->links, h->link_bytes / 1e6,
+        h->element_bytes / 1e6, h->initial_links, h->passes, h->refine_rounds, h->rays,
+        h->refine_seconds, h->solve_seconds));
+  }
+  for (size_t k = 0; k < result.adaptive_passes.size(); ++k) {
+    const AdaptivePass& p = result.adaptive_passes[k];
+    lines.push_back(absl::StrFormat(
+        "adaptive pass %d: %d patches (%d split), %d rows recomputed, %d entries, %.3fs, change "
+        "in B %.3e",
+        k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds, p.change_in_b));
+  }
+  return lines;
 }
 
 absl::Status RunSolve(const SolveArgs& args) {
@@ -66,6 +91,7 @@ absl::Status RunSolve(const SolveArgs& args) {
                       job.mesh.size(), result->RowNonZeros(), result->RowBytes() / 1e6,
                       result->solve.iterations, result->solve.residual, result->timings.mesh,
                       result->timings.embree, result->timings.rows, result->timings.solve));
+  for (const std::string& line : RefinementLines(*result)) progress.Line(line);
 
   const auto output_start = std::chrono::steady_clock::now();
   if (absl::Status s =

@@ -86,9 +86,14 @@ struct JobResult {
   SolveResult solve;
   JobTimings timings;
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
-  // by one or more patches): the energy balance of the system that was solved. The report
-  // uses it instead of System(), which pairs per-patch attributes with the rows.
-  std::optional<EnergyBalance> solved_balance;
+  // by one or more patches): the energy balance of the system that was solved, or why there
+  // is none (hierarchical: light moves along links, there are no rows). The report uses it
+  // instead of System(), which pairs per-patch attributes with the rows.
+  std::optional<absl::StatusOr<EnergyBalance>> solved_balance;
+  // What refinement built, for the report: hierarchical's elements and links (memory against
+  // n), adaptive meshing's passes.
+  std::optional<HierarchicalStats> hierarchical;
+  std::vector<AdaptivePass> adaptive_passes;
 
   // The system the rows and patches form, wherever the rows are.
   RadiositySystem System() const;

@@ -9,17 +9,60 @@ nlohmann::json BandsJson(const Rgb& c) { return {c[0], c[1], c[2]}; }
 
 nlohmann::json OptionsJson(const JobOptions& o) {
   const FormFactorOptions& f = o.form_factors;
-  return {{"patches", o.mesh.target_patches},
-          {"max_edge", o.mesh.max_edge},
-          {"form_factors", std::string(MethodName(f.method))},
-          {"rays", f.rays},
-          {"hemicube_res", f.hemicube_res},
-          {"samples", f.samples},
-          {"cutoff", f.cutoff},
-          {"seed", f.seed},
-          {"solver", std::string(SolverName(o.solver.method))},
-          {"tolerance", o.solver.tolerance},
-          {"max_iterations", o.solver.max_iterations}};
+  nlohmann::json options = {{"patches", o.mesh.target_patches},
+                            {"max_edge", o.mesh.max_edge},
+                            {"form_factors", std::string(MethodName(f.method))},
+                            {"rays", f.rays},
+                            {"hemicube_res", f.hemicube_res},
+                            {"samples", f.samples},
+                            {"cutoff", f.cutoff},
+                            {"seed", f.seed},
+                            {"solver", std::string(SolverName(o.solver.method))},
+                            {"tolerance", o.solver.tolerance},
+                            {"max_iterations", o.solver.max_iterations}};
+  if (o.hierarchical.enabled) {
+    options["solver"] = "hierarchical";
+    options["link_epsilon"] = o.hierarchical.link_epsilon;
+    options["clusters"] = o.hierarchical.clusters;
+    options["min_element_area"] = o.hierarchical.min_area_fraction;
+  }
+  if (o.adaptive.passes > 0) {
+    options["adaptive_passes"] = o.adaptive.passes;
+    options["adaptive_threshold"] = o.adaptive.threshold;
+  }
+  return options;
+}
+
+// Hierarchical radiosity's elements and links: its memory against n (leaves).
+nlohmann::json HierarchicalJson(const HierarchicalStats& s) {
+  return {{"faces", s.roots},
+          {"clusters", s.clusters},
+          {"elements", s.elements},
+          {"leaves", s.leaves},
+          {"patches", s.patches},
+          {"initial_links", s.initial_links},
+          {"links", s.links},
+          {"link_bytes", s.link_bytes},
+          {"element_bytes", s.element_bytes},
+          {"links_per_leaf", s.leaves > 0 ? double(s.links) / s.leaves : 0.0},
+          {"passes", s.passes},
+          {"refine_rounds", s.refine_rounds},
+          {"refine_seconds", s.refine_seconds},
+          {"gather_seconds", s.solve_seconds}};
+}
+
+// One entry per adaptive pass (0: the first solve on the coarse mesh).
+nlohmann::json AdaptiveJson(const std::vector<AdaptivePass>& passes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AdaptivePass& p : passes) {
+    out.push_back({{"patches", p.patches},
+                   {"split", p.split},
+                   {"rows_recomputed", p.rows_recomputed},
+                   {"entries_computed", p.entries_computed},
+                   {"seconds", p.seconds},
+                   {"change_in_b", p.change_in_b}});
+  }
+  return out;
 }
 
 nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
@@ -58,7 +101,7 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
                             : StreamEnergyBalance(result.System(), result.solve.radiosity);
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
-  return {
+  nlohmann::json report = {
       {"scene", scene_name},
       {"options", OptionsJson(options)},
       {"threads", threads},
@@ -88,6 +131,9 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
         {"residual_history", result.solve.residual_history}}},
       {"energy_balance", BalanceJson(balance)},
   };
+  if (result.hierarchical) report["hierarchical"] = HierarchicalJson(*result.hierarchical);
+  if (!result.adaptive_passes.empty()) report["adaptive"] = AdaptiveJson(result.adaptive_passes);
+  return report;
 }
 
 }  // namespace radflux

@@ -1,12 +1,10 @@
 #include "solver/hierarchical/hierarchical_job.h"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 
 #include "solver/formfactor/row_context.h"
-#include "solver/solve/energy_balance.h"
 #include "solver/scene/validation.h"
+#include "solver/solve/energy_balance.h"
 
 namespace radflux {
 namespace {
@@ -54,13 +52,6 @@ absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& opti
   if (!solved.ok()) return solved.status();
   const double seconds = Seconds(start);
   const HierarchicalStats& st = solved->stats;
-  spdlog::warn(
-      "hierarchical: {} roots, {} clusters, {} elements, {} leaves -> {} conforming patches; "
-      "{} links ({:.2f} MB links, {:.2f} MB elements) from {} initial links; {} passes, {} "
-      "refine rounds, {} rays; refine {:.3f}s gather {:.3f}s",
-      st.roots, st.clusters, st.elements, st.leaves, st.patches, st.links, st.link_bytes / 1e6,
-      st.element_bytes / 1e6, st.initial_links, st.passes, st.refine_rounds, st.rays,
-      st.refine_seconds, st.solve_seconds);
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job =
       PrepareFromMesh(std::move(scene), std::move(solved->mesh));
@@ -70,6 +61,9 @@ absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& opti
   result.form_factors.rows = result.form_factors.cols = n;
   result.form_factors.row_begin.assign(n + 1, 0);
   result.row_stats.rays = st.rays;
+  result.hierarchical = st;
+  result.solved_balance = absl::UnimplementedError(
+      "not computed for --solver hierarchical: light moves along links, there are no rows");
   result.solve = std::move(solved->solve);
   result.timings.rows = st.refine_seconds;
   result.timings.solve = st.solve_seconds;
@@ -88,10 +82,6 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   for (size_t k = 0; k < solved->passes.size(); ++k) {
     const AdaptivePass& p = solved->passes[k];
     rows_seconds += p.seconds;
-    spdlog::warn(
-        "adaptive pass {}: {} patches ({} split), {} rows recomputed, {} entries, "
-        "{:.3f}s, change in B {:.3e}",
-        k, p.patches, p.split, p.rows_recomputed, p.entries_computed, p.seconds, p.change_in_b);
   }
   // The rows stay per leaf (a leaf is shown by one or more patches of the conforming mesh;
   // expanding rows to those patches multiplied the entries ~20x); the balance is the leaf
@@ -107,6 +97,7 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   result.job = *std::move(job);
   result.form_factors = std::move(a.form_factors);
   result.solved_balance = balance;
+  result.adaptive_passes = a.passes;
   result.row_stats.rays = a.rays;
   result.solve = a.solve;
   result.solve.radiosity.resize(display.size());

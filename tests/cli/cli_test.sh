@@ -33,6 +33,16 @@ grep -q '"spilled_bytes"' "$tmp/s.json" || fail "report lacks spilled_bytes"
 head -1 "$tmp/vf.csv" | grep -q '^from,floor,ceiling,back_wall,red_wall' || fail "view-factor header"
 [ "$(wc -l <"$tmp/vf.csv")" -eq 9 ] || fail "view-factor rows (8 objects + header)"
 
+# The refining solvers report what they built: hierarchical its links, adaptive its passes.
+"$radflux" solve "$cornell" --solver hierarchical --link-epsilon 1e-3 --quiet --report "$tmp/h.json" ||
+  fail "hierarchical solve exited $?"
+grep -q '"links_per_leaf"' "$tmp/h.json" || fail "hierarchical report lacks its links"
+grep -q '"error": "not computed for --solver hierarchical' "$tmp/h.json" ||
+  fail "hierarchical report does not say why it has no energy balance"
+"$radflux" solve "$cornell" --patches 100 --adaptive-passes 1 --quiet --report "$tmp/a.json" ||
+  fail "adaptive solve exited $?"
+grep -q '"rows_recomputed"' "$tmp/a.json" || fail "adaptive report lacks its passes"
+
 # Bad input: non-zero exit and exactly one line naming the problem.
 expect_error() {
   local what=$1 pattern=$2
