@@ -186,10 +186,7 @@ bool RefineRound(const Context& c, ElementTree& tree, LinkSet& links, NodeState&
   }
   std::vector<NewLink> fresh = ComputeLinks(c, tree, state, pending, rays);
   kept.insert(kept.end(), fresh.begin(), fresh.end());
-  // Node ids order elements before clusters, as the slots do.
-  std::stable_sort(kept.begin(), kept.end(),
-                   [](const NewLink& x, const NewLink& y) { return x.receiver < y.receiver; });
-  links = Assemble(c, kept, tree.nodes.size());
+  links = Assemble(c, kept, tree.nodes.size());  // a stable counting sort by receiver
   return true;
 }
 
