@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <span>
 #include <utility>
 
+#include "absl/container/inlined_vector.h"
 #include "solver/core/vec3.h"
 
 namespace radflux {
@@ -53,6 +55,24 @@ Point2 MultiJitteredSample(uint32_t i, uint32_t n, uint32_t p);
 // bit for bit, with the permutations within the strata computed once per stratum (about a
 // third fewer hashes at n = 4).
 void MultiJitteredSamples(uint32_t p, std::span<Point2> out);
+
+// One set of n multi-jittered points per pattern, drawn at once into one buffer that stays
+// off the heap up to 64 points in all (a hierarchical link's sets): set k is pattern k's n
+// points, as MultiJitteredSamples draws them.
+template <size_t Sets>
+class MultiJitteredSets {
+ public:
+  MultiJitteredSets(const std::array<uint32_t, Sets>& patterns, size_t n)
+      : n_(n), points_(Sets * n) {
+    for (size_t k = 0; k < Sets; ++k)
+      MultiJitteredSamples(patterns[k], std::span<Point2>(points_.data() + k * n, n));
+  }
+  std::span<const Point2> operator[](size_t k) const { return {points_.data() + k * n_, n_}; }
+
+ private:
+  size_t n_;
+  absl::InlinedVector<Point2, 64> points_;
+};
 
 // One coordinate of the rotation below: u + shift wrapped back into [0, 1) for u, shift in
 // [0, 1) (in float, u + shift may round up to 1 exactly; then the result is 1). T is

@@ -69,10 +69,8 @@ double Visibility(const ElementTree& tree, std::span<const float> exposure, cons
   const uint32_t point_p = PatternSeed(pair, q.id, kReceiverPointStream);
   const uint32_t point_q = PatternSeed(pair, q.id, kSourcePointStream);
   const uint32_t s = static_cast<uint32_t>(sampling.samples);
-  std::vector<Point2> drawn(2 * size_t{s});
-  const std::span<Point2> points_p(drawn.data(), s), points_q(drawn.data() + s, s);
-  MultiJitteredSamples(point_p, points_p);
-  MultiJitteredSamples(point_q, points_q);
+  const MultiJitteredSets<2> drawn({point_p, point_q}, s);
+  const std::span<const Point2> points_p = drawn[0], points_q = drawn[1];
   int facing = 0, seen = 0;
   for (uint32_t m = 0; m < s; ++m) {
     const Element& g = tree.nodes[Pick(FacesOf(p), sums_p, RandomFloat(m, pick_p))];

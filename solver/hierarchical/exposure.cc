@@ -1,7 +1,6 @@
 #include "solver/hierarchical/exposure.h"
 
 #include <span>
-#include <vector>
 
 #include "solver/core/sampling.h"
 
@@ -11,11 +10,8 @@ double ExposedFraction(const Element& e, const PatchMesh& mesh, const RayCaster&
                        int samples, uint32_t pattern, double ray_epsilon) {
   const Frame frame = Frame::FromNormal(e.normal);
   const uint32_t direction_pattern = pattern ^ 0x9e3779b9u;
-  std::vector<Point2> drawn(2 * static_cast<size_t>(samples));
-  const std::span<Point2> points(drawn.data(), samples),
-      directions(drawn.data() + samples, samples);
-  MultiJitteredSamples(pattern, points);
-  MultiJitteredSamples(direction_pattern, directions);
+  const MultiJitteredSets<2> drawn({pattern, direction_pattern}, static_cast<size_t>(samples));
+  const std::span<const Point2> points = drawn[0], directions = drawn[1];
   int exposed = 0;
   for (int m = 0; m < samples; ++m) {
     const Vec3 x = SampleElementPoint(e, points[m]);

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <span>
-#include <vector>
 
 #include "solver/core/sampling.h"
 #include "solver/formfactor/polygon_form_factor.h"
@@ -82,13 +81,10 @@ bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint
   const uint64_t pair = sampling.seed ^ (uint64_t{p_id} << 32);
   const uint32_t decision_pattern = PatternSeed(pair, q_id, kDecisionStream);
   const uint32_t value_pattern = PatternSeed(pair, q_id, kValueStream);
-  // The link's three sample sets, drawn at once (one allocation, strata permuted once).
-  std::vector<Point2> drawn(3 * static_cast<size_t>(s));
-  const std::span<Point2> points(drawn.data(), s), decision_targets(drawn.data() + s, s),
-      value_targets(drawn.data() + 2 * s, s);
-  MultiJitteredSamples(point_pattern, points);
-  MultiJitteredSamples(decision_pattern, decision_targets);
-  MultiJitteredSamples(value_pattern, value_targets);
+  const MultiJitteredSets<3> drawn({point_pattern, decision_pattern, value_pattern},
+                                   static_cast<size_t>(s));
+  const std::span<const Point2> points = drawn[0], decision_targets = drawn[1],
+                                value_targets = drawn[2];
   double unoccluded = 0, lo = 1, hi = 0, unoccluded_hi = 0;
   double kernel = 0, kernel_seen = 0;  // sum of cos cos / r^2 over value rays, and unblocked
   int visible = 0, blocked = 0;

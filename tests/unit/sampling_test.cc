@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -93,6 +94,22 @@ TEST(Sampling, MultiJitteredSamplesAreTheSingleSamples) {
         const Point2 one = MultiJitteredSample(i, n, p);
         ASSERT_EQ(all[i].x, one.x) << n << " " << p << " " << i;
         ASSERT_EQ(all[i].y, one.y) << n << " " << p << " " << i;
+      }
+    }
+  }
+}
+
+// Several sets at once, within the inline buffer and beyond it: set k is pattern k's points.
+TEST(Sampling, MultiJitteredSetsAreEachPatternsSamples) {
+  for (uint32_t n : {1u, 4u, 16u, 21u, 40u}) {
+    const std::array<uint32_t, 3> patterns = {3u, 0x9e3779b9u, 11u};
+    const MultiJitteredSets<3> sets(patterns, n);
+    for (size_t k = 0; k < patterns.size(); ++k) {
+      ASSERT_EQ(sets[k].size(), n);
+      for (uint32_t i = 0; i < n; ++i) {
+        const Point2 one = MultiJitteredSample(i, n, patterns[k]);
+        ASSERT_EQ(sets[k][i].x, one.x) << n << " " << k << " " << i;
+        ASSERT_EQ(sets[k][i].y, one.y) << n << " " << k << " " << i;
       }
     }
   }
