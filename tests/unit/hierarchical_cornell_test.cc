@@ -78,12 +78,12 @@ TEST_F(CornellRefinement, HierarchicalErrorNeverIncreasesOverThreeEpsilons) {
 // `--min-element-area`: no leaf is smaller than the floor (a fraction of the scene's area),
 // and a 4x lower floor, at an epsilon the floor binds, gives more and smaller leaves.
 TEST_F(CornellRefinement, ElementFloorBoundsTheSmallestLeaf) {
-  double scene_area = 0;
-  for (const Patch& p : Hierarchical(1e-3).mesh.patches) scene_area += p.area;
   std::vector<size_t> leaves;
   std::vector<double> smallest;
   for (double floor : {1e-3, 2.5e-4}) {
     const HierarchicalResult r = Hierarchical(1e-5, floor);
+    double scene_area = 0;  // the conforming mesh covers every face once
+    for (const Patch& p : r.mesh.patches) scene_area += p.area;
     double least = scene_area;
     for (uint32_t l : r.leaves) least = std::min(least, r.tree.nodes[l].area);
     EXPECT_GE(least, floor * scene_area * (1 - 1e-9)) << "floor " << floor;
