@@ -71,7 +71,7 @@ def solve(build, scene, out, name, flags):
     timing = base + ".time"
     cmd = ["/usr/bin/time", "-f", "%e %U %S %M", "-o", timing, os.path.join(build, "client", "radflux"),
            "solve", scene, *flags, "--patch-values", base + ".csv", "--out", base + ".ply",
-           "--render", base + ".png"]
+           "--render", base + ".png", "--report", base + ".json"]
     log = subprocess.run(cmd, capture_output=True, text=True)
     if log.returncode != 0:
         sys.exit(f"{name}: radflux failed:\n{log.stderr}")
@@ -98,8 +98,6 @@ def object_mean_error(run, ref):
 
 COLUMNS = ["name", "patches", "wall_s", "cpu_s", "peak_mb", "rms", "l1", "rms_smooth", "object_mean_error", "leaves",
            "links"]
-# Hierarchical runs log their leaf and link counts.
-LINKS = re.compile(r"(\d+) leaves -> \d+ conforming patches; (\d+) links")
 # A run's family (one line in the plots) from its name, with the legend it gets.
 FAMILIES = [
     (r"uniform_\d+", "uniform, monte_carlo k 64 (the default)"),
@@ -139,11 +137,17 @@ def at_rms(family, rms, column):
     return None
 
 
-def equal_error_table(rows):
+def by_family(rows):
+    """Legend -> the family's runs sorted by CPU seconds, in FAMILIES' order, empty ones left out."""
+    families = {title: sorted((r for r in rows if re.fullmatch(pattern, r["name"])), key=lambda r: float(r["cpu_s"]))
+                for pattern, title in FAMILIES}
+    return {title: runs for title, runs in families.items() if runs}
+
+
+def equal_error_table(families, rows):
     """Each adaptive and hierarchical run against the uniform families at its field rms:
     how many times less CPU time and peak memory it takes (uniform / run)."""
-    families = {title: [r for r in rows if re.fullmatch(pattern, r["name"])] for pattern, title in FAMILIES}
-    baselines = [t for t in families if t.startswith("uniform") and families[t]]
+    baselines = [t for t in families if t.startswith("uniform")]
     print("| run | patches | field rms | CPU s | peak MB | " + " | ".join(f"{b}: time, memory" for b in baselines) + " |")
     print("|---" * (5 + len(baselines)) + "|")
     for r in rows:
@@ -159,18 +163,15 @@ def equal_error_table(rows):
 def plot(out, scene):
     """Draws runs.csv: one gnuplot data block per family, sorted by CPU seconds."""
     rows = list(csv.DictReader(open(os.path.join(out, "runs.csv"))))
-    equal_error_table(rows)
-    data, curves = os.path.join(out, "runs.dat"), []
+    families = by_family(rows)
+    equal_error_table(families, rows)
+    data, curves = os.path.join(out, "runs.dat"), list(families)
     rms = [float(r["rms"]) for r in rows]
     with open(data, "w") as f:
-        for pattern, title in FAMILIES:
-            family = sorted((r for r in rows if re.fullmatch(pattern, r["name"])), key=lambda r: float(r["cpu_s"]))
-            if not family:
-                continue
+        for family in families.values():
             for r in family:
                 f.write(f"{r['cpu_s']} {r['peak_mb']} {r['rms']}\n")
             f.write("\n\n")
-            curves.append(title)
     for x, column, label in (("time", 1, "CPU seconds of radflux solve"), ("memory", 2, "peak RSS, MB")):
         lines = [f"'{data}' index {i} using {column}:3 with linespoints lw 2 lc rgb '{COLORS[i % len(COLORS)]}' "
                  f"title '{t}'" for i, t in enumerate(curves)]
@@ -214,9 +215,9 @@ def main():
     for name, flags in RUNS[args.scene]:
         if args.only and name not in args.only:
             continue
-        wall, cpu, mb, log = solve(args.build, scene, args.out, name, flags)
-        counts = LINKS.search(log)
+        wall, cpu, mb, _ = solve(args.build, scene, args.out, name, flags)
         base = os.path.join(args.out, name)
+        hierarchical = json.load(open(base + ".json")).get("hierarchical", {})
         e = json.loads(subprocess.run([field_error, "compare", points, base + ".ply", base + ".csv"],
                                       check=True, capture_output=True, text=True).stdout)
         object_error = object_mean_error(base + ".csv", fine + ".csv")
@@ -224,7 +225,7 @@ def main():
                  {"name": name, "patches": e["run_patches"], "wall_s": f"{wall:.2f}", "cpu_s": f"{cpu:.2f}",
                   "peak_mb": f"{mb:.0f}", "rms": f"{e['rms']:.4f}", "l1": f"{e['l1']:.4f}",
                   "rms_smooth": f"{e['rms_smooth']:.4f}", "object_mean_error": f"{object_error:.2e}",
-                  "leaves": counts[1] if counts else "", "links": counts[2] if counts else ""})
+                  "leaves": hierarchical.get("leaves", ""), "links": hierarchical.get("links", "")})
         print(f"| {name} | `{' '.join(flags)}` | {e['run_patches']} | {wall:.2f} | {cpu:.2f} | {mb:.0f} | "
               f"{e['rms']:.4f} | {e['l1']:.4f} | {e['rms_smooth']:.4f} | {object_error:.2e} |", flush=True)
 
