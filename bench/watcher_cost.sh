@@ -41,8 +41,11 @@ one() {  # SERVER_INDEX WATCHERS: "index watchers job_thread_ms process_ms to_la
   "$R" cancel "$blocker" --server "$A" >/dev/null
   "$R" watch "$job" --server "$A" >/dev/null 2>&1
   for p in "${pids[@]}"; do wait "$p"; done
-  # The server logs each stream's end once it is done with it: wait for all n + 1.
+  # The server logs each stream's end once it is done with it: wait for all n + 1 (30 s at most).
+  local waited=0
   until [ "$(grep -c "job $job: watch ended" "$D/server_$k.log")" -ge $((n + 1)) ]; do
+    waited=$((waited + 1))
+    [ "$waited" -le 1500 ] || { echo "job $job: $((n + 1)) watch ends not logged in 30 s" >&2; exit 1; }
     sleep 0.02
   done
   echo "$k $n $(grep "job $job: cpu ms" "$D/server_$k.log" |
