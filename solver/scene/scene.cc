@@ -6,11 +6,16 @@
 
 namespace radflux {
 
+std::string Scene::FaceLocation(size_t f) const {
+  const Face& face = faces[f];
+  const std::string& file = face.source_file < files.size() ? files[face.source_file] : source;
+  return absl::StrCat(file, face.source_line > 0 ? absl::StrCat(":", face.source_line) : "");
+}
+
 std::string Scene::DescribeFace(size_t f) const {
   const Face& face = faces[f];
   const bool named = face.object < objects.size() && !objects[face.object].empty();
-  return absl::StrCat(source, face.source_line > 0 ? absl::StrCat(":", face.source_line) : "",
-                      " (face ", f,
+  return absl::StrCat(FaceLocation(f), " (face ", f,
                       named ? absl::StrCat(" of object '", objects[face.object], "'") : "", ")");
 }
 

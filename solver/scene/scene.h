@@ -11,6 +11,7 @@
 
 #include "solver/core/bands.h"
 #include "solver/core/vec3.h"
+#include "solver/scene/import_log.h"
 
 namespace radflux {
 
@@ -18,6 +19,7 @@ struct Material {
   std::string name;
   Rgb reflectance{};  // diffuse reflectance rho per band, in [0, 1)
   Rgb emission{};     // emitted radiosity E = pi * L_e, W/m^2 per band
+  bool two_sided = false;  // each face is two back-to-back patches, each lit from its side
 
   bool IsEmitter() const { return MaxComponent(emission) > 0; }
 };
@@ -28,15 +30,23 @@ struct Face {
   uint32_t object = 0;             // index into Scene::objects ('o' name)
   uint32_t group = 0;              // index into Scene::groups ('g' name)
   int source_line = 0;             // 1-based line in the source file, 0 if unknown
+  uint32_t source_file = 0;        // index into Scene::files (0: the main file, Scene::source)
 };
 
 struct Scene {
   std::string source;  // file name the scene came from, for messages
+  // Files the faces came from (includes, buffers), for messages; files[0] == source when
+  // non-empty. Empty: every face is from `source`.
+  std::vector<std::string> files;
   std::vector<Vec3> positions;
   std::vector<Face> faces;
   std::vector<Material> materials;
   std::vector<std::string> objects;
   std::vector<std::string> groups;
+  ImportLog import_log;  // what import fixed or left out, one entry per kind
+
+  // "file:line" of face f (the file alone when the line is unknown).
+  std::string FaceLocation(size_t f) const;
 
   // "file:line (object 'o', face k)" for messages about face f.
   std::string DescribeFace(size_t f) const;

@@ -1,0 +1,29 @@
+// How a scene file becomes a Scene: the import rules a user can set (issue 19). One struct
+// for every format (OBJ, glTF, MGF, STL, View3D), filled from the same CLI flags by
+// `radflux solve`, `radflux viewfactors` and `radflux submit`.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "solver/core/bands.h"
+
+namespace radflux {
+
+struct ImportOptions {
+  // Reflectance at or above this in a band is clamped to it (--max-reflectance).
+  double max_reflectance = 0.98;
+  // Refuse what the rules would fix (non-convex, non-planar, zero-area, Kd >= 1, ...) with
+  // file:line, as before issue 19 (--strict).
+  bool strict = false;
+  // Every OBJ face is two back-to-back patches, each lit from its own side (--two-sided).
+  bool two_sided = false;
+  // Materials made emitters: name -> emitted radiance L_e per band, W/(m^2 sr) (--emit).
+  std::vector<std::pair<std::string, Rgb>> emit;
+  // Segments around a full circle when MGF primitives (sph, cyl, cone, ring, torus) are
+  // tessellated (--curve-segments).
+  int curve_segments = 16;
+};
+
+}  // namespace radflux

@@ -1,0 +1,33 @@
+#include "solver/scene/load_scene.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "absl/strings/str_cat.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux {
+namespace {
+
+// The lower-case extension of `path` without its dot, "" if none.
+std::string Extension(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  const size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options) {
+  (void)options;
+  const std::string ext = Extension(path);
+  if (ext == "obj") return LoadObjFile(path);
+  return absl::InvalidArgumentError(
+      absl::StrCat(path, ": unknown scene format '", ext, "' (supported: .obj)"));
+}
+
+}  // namespace radflux
