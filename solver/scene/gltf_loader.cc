@@ -30,7 +30,10 @@ class SceneBuilder {
   Scene Take() { return std::move(scene_); }
 
  private:
-  absl::Status AddPrimitive(const MeshInstance& instance, size_t p, uint32_t object);
+  // `positions`: the first scene vertex of each POSITION accessor this instance has added
+  // (primitives sharing an accessor share its vertices).
+  absl::Status AddPrimitive(const MeshInstance& instance, size_t p, uint32_t object,
+                            std::map<int, std::pair<uint32_t, size_t>>& positions);
   absl::StatusOr<uint32_t> MaterialOf(int material, const std::string& where);
   // The primitive's vertices in scene space, appended to the scene; the index of the first.
   absl::StatusOr<uint32_t> AddPositions(int accessor, const Mat4& world, size_t& count);
@@ -83,13 +86,16 @@ absl::Status SceneBuilder::AddInstance(const MeshInstance& instance) {
                              : !mesh.name.empty() ? mesh.name
                                                   : absl::StrCat("node ", instance.node);
   const uint32_t object_id = InternName(scene_.objects, object_index_, object);
+  std::map<int, std::pair<uint32_t, size_t>> positions;  // accessor -> first vertex, count
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-    if (absl::Status added = AddPrimitive(instance, p, object_id); !added.ok()) return added;
+    absl::Status added = AddPrimitive(instance, p, object_id, positions);
+    if (!added.ok()) return added;
   }
   return absl::OkStatus();
 }
 
-absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, uint32_t object) {
+absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, uint32_t object,
+                                        std::map<int, std::pair<uint32_t, size_t>>& positions) {
   const tinygltf::Mesh& mesh = model_.meshes[instance.mesh];
   const tinygltf::Primitive& primitive = mesh.primitives[p];
   const std::string mesh_name =
@@ -108,9 +114,14 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
   }
   const auto position = primitive.attributes.find("POSITION");
   if (position == primitive.attributes.end()) return error("has no POSITION attribute");
-  size_t vertex_count = 0;
-  absl::StatusOr<uint32_t> first = AddPositions(position->second, instance.world, vertex_count);
-  if (!first.ok()) return error(first.status().message());
+  auto added = positions.find(position->second);
+  if (added == positions.end()) {
+    size_t count = 0;
+    absl::StatusOr<uint32_t> first = AddPositions(position->second, instance.world, count);
+    if (!first.ok()) return error(first.status().message());
+    added = positions.emplace(position->second, std::make_pair(*first, count)).first;
+  }
+  const auto [first, vertex_count] = added->second;
   std::vector<uint32_t> indices;
   if (primitive.indices >= 0 || primitive.indices < -1) {
     absl::StatusOr<std::vector<uint32_t>> read = ReadIndices(model_, primitive.indices);
@@ -133,7 +144,7 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
       mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
       mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
   prototype.group = InternName(scene_.groups, group_index_, group);
-  for (uint32_t& index : indices) index += *first;
+  for (uint32_t& index : indices) index += first;
   return AddTriangles(AssembleTriangles(primitive.mode, indices),
                       LinearDeterminant(instance.world) < 0, std::move(prototype), where);
 }

@@ -4,7 +4,9 @@
 // faces' fronts by reversing their winding). Faces are triangles, counter-clockwise seen
 // from the front, one object per node (its name, else its mesh's, else "node <i>") and one
 // group per mesh primitive (the mesh's name, else "mesh <i>"; " primitive <k>" added when
-// the mesh has several). Materials: see gltf_material.h. Point and line primitives, and
+// the mesh has several). Each node's vertices are its POSITION accessors' elements in
+// scene space, once per accessor however many of its primitives share one, in the order
+// first used. Materials: see gltf_material.h. Point and line primitives, and
 // triangles with a repeated vertex, are left out and counted in Scene::import_log. Faces
 // have no source line: messages name the mesh and primitive instead. The result is not yet
 // validated: see ValidateScene.
