@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/scene/gltf_loader.h"
+#include "solver/scene/mgf_loader.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -28,8 +29,9 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& op
   const std::string ext = Extension(path);
   if (ext == "obj") return LoadObjFile(path);
   if (ext == "gltf" || ext == "glb") return LoadGltfFile(path, options);
-  return absl::InvalidArgumentError(
-      absl::StrCat(path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb)"));
+  if (ext == "mgf") return LoadMgfFile(path, options);
+  return absl::InvalidArgumentError(absl::StrCat(
+      path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb, .mgf)"));
 }
 
 }  // namespace radflux
