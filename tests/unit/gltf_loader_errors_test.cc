@@ -169,8 +169,9 @@ TEST(GltfLoaderErrors, TooManyTrianglesAreRefusedBeforeMemoryRunsOut) {
             "big.glb: mesh 'Grass' primitive 0: the scene has more than 16777216 triangles");
 }
 
-// Found by the fuzzer: tinygltf parses nested JSON values recursively, and 200,000 nested
-// arrays in "extras" overflowed the stack.
+// A crash of the fuzz target (on a hand-made input; libFuzzer's inputs were too short to
+// reach it): tinygltf parses nested JSON values recursively, and 200,000 nested arrays in
+// "extras" overflowed the stack.
 TEST(GltfLoaderErrors, DeeplyNestedJsonIsRefusedNotRecursedInto) {
   const std::string deep = std::string(200000, '[') + std::string(200000, ']');
   EXPECT_EQ(Message(R"({"asset": {"version": "2.0"}, "extras": )" + deep + "}"),
