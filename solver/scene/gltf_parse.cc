@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <limits>
@@ -82,6 +83,35 @@ std::string OneLine(const std::string& text) {
   return absl::StrJoin(lines, "; ");
 }
 
+// The deepest nesting of arrays and objects in JSON `text` (strings skipped).
+int NestingDepth(absl::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+// The JSON text of `data`: all of it, or a GLB's JSON chunk (as far as `data` holds it).
+absl::string_view JsonText(const std::string& data, bool binary) {
+  if (!binary) return data;
+  if (data.size() < 20) return {};
+  uint32_t length;
+  std::memcpy(&length, data.data() + 12, 4);
+  return absl::string_view(data).substr(20, length);
+}
+
 absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std::string& name) {
   for (const std::string& extension : model.extensionsRequired) {
     if (std::find(std::begin(kReadableExtensions), std::end(kReadableExtensions), extension) ==
@@ -100,6 +130,12 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
   if (data.size() > std::numeric_limits<unsigned int>::max()) {
     return absl::InvalidArgumentError(absl::StrCat(name, ": larger than 4 GiB"));
   }
+  const bool binary = absl::StartsWith(data, "glTF");
+  // tinygltf reads nested JSON values recursively: deep nesting would overflow the stack.
+  if (NestingDepth(JsonText(data, binary)) > kMaxGltfJsonDepth) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, ": cannot parse glTF: JSON nested deeper than ", kMaxGltfJsonDepth, " levels"));
+  }
   FileAccess access{base_dir.value_or("")};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&FileExists, &ExpandFilePath, &ReadWholeFile, &WriteWholeFile, &access});
@@ -108,7 +144,6 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
   std::string err, warn;
   bool ok = false;
   try {
-    const bool binary = absl::StartsWith(data, "glTF");
     const auto size = static_cast<unsigned int>(data.size());
     ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
                                               reinterpret_cast<const unsigned char*>(data.data()),

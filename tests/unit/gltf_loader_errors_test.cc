@@ -156,6 +156,22 @@ TEST(GltfLoaderErrors, UnparsableInput) {
   EXPECT_NE(Message(Valid().Gltf("data.bin")).find("data.bin"), std::string::npos);
 }
 
+// Found by the fuzzer: tinygltf parses nested JSON values recursively, and 200,000 nested
+// arrays in "extras" overflowed the stack.
+TEST(GltfLoaderErrors, DeeplyNestedJsonIsRefusedNotRecursedInto) {
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  EXPECT_EQ(Message(R"({"asset": {"version": "2.0"}, "extras": )" + deep + "}"),
+            "bad.gltf: cannot parse glTF: JSON nested deeper than 64 levels");
+  GltfBuilder b = Valid();
+  b.json()["extras"] = Json::parse(std::string(100, '[') + std::string(100, ']'));
+  EXPECT_EQ(Message(b.Glb(), "bad.glb"), "bad.glb: cannot parse glTF: JSON nested deeper than 64 levels");
+  // Brackets inside strings do not count; 60 levels of real nesting are fine.
+  b = Valid();
+  b.json()["extras"] = {{"text", std::string(1000, '[') + "\\\"["},
+                        {"deep", Json::parse(std::string(60, '[') + std::string(60, ']'))}};
+  EXPECT_TRUE(LoadGltfData(b.Gltf(), "ok.gltf", {}).ok());
+}
+
 TEST(GltfLoaderErrors, ExternalFilesOutsideTheScenesDirectoryAreNotRead) {
   EXPECT_EQ(LoadGltfFile("/nonexistent/x.gltf", {}).status().code(), absl::StatusCode::kNotFound);
   const std::string dir = ::testing::TempDir();
