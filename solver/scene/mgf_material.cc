@@ -54,7 +54,8 @@ absl::StatusOr<T*> SelectNamed(std::map<std::string, T>& table,
   T value = fresh;
   if (words.size() == 4) {
     auto it = table.find(words[3]);
-    if (it == table.end()) return Error(entity, absl::StrCat("template '", words[3], "' is not defined"));
+    if (it == table.end())
+      return Error(entity, absl::StrCat("template '", words[3], "' is not defined"));
     value = it->second;
   }
   T& slot = table[words[1]];
@@ -64,8 +65,8 @@ absl::StatusOr<T*> SelectNamed(std::map<std::string, T>& table,
 
 }  // namespace
 
-Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state,
-                            ImportLog& log, const std::string& where) {
+Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state, ImportLog& log,
+                            const std::string& where) {
   Material m;
   m.name = name;
   m.two_sided = state.two_sided;
@@ -79,7 +80,8 @@ Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& sta
   }
   if (state.rs > 0) {
     log.Add("mgf_specular_reflection_left_out",
-            "MGF materials with a specular reflection part (rs) left out of the diffuse solve", where);
+            "MGF materials with a specular reflection part (rs) left out of the diffuse solve",
+            where);
   }
   if (state.ts > 0) {
     log.Add("mgf_specular_transmission_left_out",

@@ -28,21 +28,21 @@ namespace radflux {
 
 // One MGF material's values as the file sets them.
 struct MgfMaterialState {
-  double rd = 0;                      // diffuse reflectance (photopic), [0, 1]
-  double td = 0;                      // diffuse transmittance, [0, 1]
-  double ed = 0;                      // diffuse emittance, lm/m^2
-  double rs = 0, rs_roughness = 0;    // specular reflectance and its roughness
-  double ts = 0, ts_roughness = 0;    // specular transmittance and its roughness
+  double rd = 0;                    // diffuse reflectance (photopic), [0, 1]
+  double td = 0;                    // diffuse transmittance, [0, 1]
+  double ed = 0;                    // diffuse emittance, lm/m^2
+  double rs = 0, rs_roughness = 0;  // specular reflectance and its roughness
+  double ts = 0, ts_roughness = 0;  // specular transmittance and its roughness
   MgfColor rd_color, td_color, ed_color, rs_color, ts_color;  // colour in force at each
-  bool two_sided = true;              // sides 2 (MGF default) or 1
+  bool two_sided = true;                                      // sides 2 (MGF default) or 1
 
   bool operator==(const MgfMaterialState&) const = default;
 };
 
 // The radflux material for `state` named `name`; what it leaves out is counted in `log`
 // with location `where`.
-Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state,
-                            ImportLog& log, const std::string& where);
+Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state, ImportLog& log,
+                            const std::string& where);
 
 class MgfMaterialContext {
  public:

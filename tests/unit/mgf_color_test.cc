@@ -18,8 +18,10 @@ TEST(MgfColor, PrimariesMapToSingleBands) {
   for (int c = 0; c < 3; ++c) {
     const Rgb rgb = XyYToLinearRgb(primaries[c], 0.5);
     for (int b = 0; b < 3; ++b) {
-      if (b == c) EXPECT_GT(rgb[b], 0.1);
-      else EXPECT_NEAR(rgb[b], 0, 1e-12);
+      if (b == c)
+        EXPECT_GT(rgb[b], 0.1);
+      else
+        EXPECT_NEAR(rgb[b], 0, 1e-12);
     }
   }
 }
@@ -82,8 +84,12 @@ TEST(MgfColor, MixAddsTristimulusValues) {
 TEST(MgfMaterial, ConversionOfValuesAndLeftOutParts) {
   MgfMaterialContext ctx;
   for (const std::vector<std::string>& w :
-       std::vector<std::vector<std::string>>{{"m", "lamp", "="}, {"rd", "0.25"}, {"ed", "179"},
-                                             {"sides", "1"}, {"rs", "0.1", "0.05"}, {"td", "0.2"}}) {
+       std::vector<std::vector<std::string>>{{"m", "lamp", "="},
+                                             {"rd", "0.25"},
+                                             {"ed", "179"},
+                                             {"sides", "1"},
+                                             {"rs", "0.1", "0.05"},
+                                             {"td", "0.2"}}) {
     ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
   }
   Scene scene;
@@ -109,9 +115,14 @@ TEST(MgfMaterial, ConversionOfValuesAndLeftOutParts) {
 
 TEST(MgfMaterial, ColourOfEachComponentIsTheOneInForceThen) {
   MgfMaterialContext ctx;
-  for (const std::vector<std::string>& w : std::vector<std::vector<std::string>>{
-           {"c", "red", "="}, {"cxy", "0.64", "0.33"}, {"m", "x", "="}, {"c", "red"},
-           {"rd", "0.2"}, {"c"}, {"ed", "358"}}) {
+  for (const std::vector<std::string>& w :
+       std::vector<std::vector<std::string>>{{"c", "red", "="},
+                                             {"cxy", "0.64", "0.33"},
+                                             {"m", "x", "="},
+                                             {"c", "red"},
+                                             {"rd", "0.2"},
+                                             {"c"},
+                                             {"ed", "358"}}) {
     ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
   }
   Scene scene;

@@ -65,6 +65,16 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
   EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights");
 }
 
+TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {
+  // examp1.mgf says `sides 1` in every material; corridor.mgf never says, so MGF's default
+  // (two-sided) holds.
+  absl::StatusOr<Scene> examp1 = LoadScene(kDir + "examp1.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadScene(kDir + "corridor.mgf", ImportOptions{});
+  ASSERT_TRUE(examp1.ok() && corridor.ok());
+  for (const Material& m : examp1->materials) EXPECT_FALSE(m.two_sided) << m.name;
+  for (const Material& m : corridor->materials) EXPECT_TRUE(m.two_sided) << m.name;
+}
+
 TEST(MgfRenderPark, MaterialLibrariesLoadThroughIncludes) {
   // Materials/test.mgf includes the five libraries and uses OakWood from realobj.mgf.
   absl::StatusOr<Scene> scene = LoadScene(kDir + "Materials/test.mgf", ImportOptions{});
