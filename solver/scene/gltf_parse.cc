@@ -17,11 +17,14 @@
 namespace radflux {
 namespace {
 
-// Extensions a file may require: what they change is read (emissive strength), makes no
-// difference to a diffuse solve, or is handled by the accessor reader (quantized positions).
-constexpr const char* kReadableExtensions[] = {
-    "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform",
-    "KHR_materials_specular",          "KHR_materials_ior",     "KHR_materials_unlit"};
+// Extensions a file may require and still load right: the material extensions (a diffuse
+// solve reads base colour and emission only; emissive strength is read), texture transforms
+// (textures are not read) and quantized vertex attributes (the accessor reader handles any
+// component type). Compressed geometry (Draco, meshopt) is refused.
+bool Readable(const std::string& extension) {
+  return absl::StartsWith(extension, "KHR_materials_") || extension == "KHR_texture_transform" ||
+         extension == "KHR_mesh_quantization";
+}
 
 // Fs callbacks' user data: the directory external files may come from ("" for none).
 struct FileAccess {
@@ -114,8 +117,7 @@ absl::string_view JsonText(const std::string& data, bool binary) {
 
 absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std::string& name) {
   for (const std::string& extension : model.extensionsRequired) {
-    if (std::find(std::begin(kReadableExtensions), std::end(kReadableExtensions), extension) ==
-        std::end(kReadableExtensions)) {
+    if (!Readable(extension)) {
       return absl::InvalidArgumentError(absl::StrCat(
           name, ": requires glTF extension '", extension, "', which radflux does not read"));
     }

@@ -142,6 +142,12 @@ TEST(GltfLoaderErrors, RequiredExtensionNotRead) {
   EXPECT_EQ(Message(b.Gltf()),
             "bad.gltf: requires glTF extension 'KHR_draco_mesh_compression', which radflux does "
             "not read");
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {"EXT_meshopt_compression"};
+  EXPECT_NE(Message(b.Gltf()).find("'EXT_meshopt_compression'"), std::string::npos);
+  // Material extensions and quantized attributes change nothing a diffuse solve reads.
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {
+      "KHR_materials_clearcoat", "KHR_mesh_quantization", "KHR_texture_transform"};
+  EXPECT_TRUE(LoadGltfData(b.Gltf(), "ok.gltf", {}).ok());
 }
 
 TEST(GltfLoaderErrors, UnparsableInput) {

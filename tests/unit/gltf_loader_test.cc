@@ -177,6 +177,28 @@ TEST(GltfLoader, InterleavedPositionsWithByteStride) {
   EXPECT_EQ(FacePolygon(*scene, scene->faces[0]), (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
 }
 
+TEST(GltfLoader, QuantizedPositions) {
+  // KHR_mesh_quantization: normalized shorts map 32767 to 1 and -32768 to -1; plain unsigned
+  // bytes are their values.
+  GltfBuilder b;
+  const int shorts = b.AddAccessor(
+      b.AddView(GltfBuilder::Bytes(std::vector<int16_t>{0, 0, 0, 32767, 0, 0, 0, -32768, 0, 0, 0, 0})),
+      5122, 3, "VEC3");
+  b.json()["accessors"][shorts]["normalized"] = true;
+  const int bytes = b.AddAccessor(
+      b.AddView(GltfBuilder::Bytes(std::vector<uint8_t>{0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0})), 5121, 3,
+      "VEC3");
+  b.json()["bufferViews"][1]["byteStride"] = 4;  // each element padded to 4 bytes
+  b.SetScene({b.AddNode({{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(shorts),
+                                                    GltfBuilder::Primitive(bytes)})}})});
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {"KHR_mesh_quantization"};
+  absl::StatusOr<Scene> scene = Load(b);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->faces.size(), 2u);
+  EXPECT_EQ(FacePolygon(*scene, scene->faces[0]), (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, -1, 0}}));
+  EXPECT_EQ(FacePolygon(*scene, scene->faces[1]), (std::vector<Vec3>{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}));
+}
+
 TEST(GltfLoader, MirroringTransformKeepsTheFrontFacingTheSameWay) {
   // Mirroring x (and, nested, a second mirror that cancels it) keeps the triangle facing +z,
   // as the spec's winding rule for a negative determinant requires.
