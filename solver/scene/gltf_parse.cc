@@ -118,8 +118,8 @@ absl::string_view JsonText(const std::string& data, bool binary) {
 absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std::string& name) {
   for (const std::string& extension : model.extensionsRequired) {
     if (!Readable(extension)) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          name, ": requires glTF extension '", extension, "', which radflux does not read"));
+      return absl::InvalidArgumentError(absl::StrCat(name, ": requires glTF extension '", extension,
+                                                     "', which radflux does not read"));
     }
   }
   return absl::OkStatus();
@@ -147,11 +147,11 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
   bool ok = false;
   try {
     const auto size = static_cast<unsigned int>(data.size());
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                              reinterpret_cast<const unsigned char*>(data.data()),
-                                              size, access.base_dir)
-                : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size,
-                                             access.base_dir);
+    ok = binary
+             ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                           reinterpret_cast<const unsigned char*>(data.data()),
+                                           size, access.base_dir)
+             : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size, access.base_dir);
   } catch (const std::exception& e) {
     err = e.what();
     ok = false;
