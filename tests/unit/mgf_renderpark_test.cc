@@ -1,10 +1,11 @@
-// RenderPark's MGF scenes (../shared/scenes/renderpark/) load through LoadScene: the face
-// counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
+// RenderPark's MGF scenes (../shared/scenes/renderpark/) as the MGF loader reads them
+// (before the import rules): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
 // primitives at 16 segments), emitters present, and what the conversion left out logged.
 #include <string>
 
 #include "gtest/gtest.h"
 #include "solver/scene/load_scene.h"
+#include "solver/scene/mgf_loader.h"
 
 namespace radflux {
 namespace {
@@ -41,7 +42,7 @@ TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
       {"salon/classroom.mgf", 5250, 26, 632, 24},
   };
   for (const Expected& e : scenes) {
-    absl::StatusOr<Scene> scene = LoadScene(kDir + e.file, ImportOptions{});
+    absl::StatusOr<Scene> scene = LoadMgfFile(kDir + e.file, ImportOptions{});
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->faces.size(), e.faces) << e.file;
     EXPECT_EQ(scene->materials.size(), e.materials) << e.file;
@@ -52,7 +53,7 @@ TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
 }
 
 TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
-  absl::StatusOr<Scene> corridor = LoadScene(kDir + "corridor.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
   ASSERT_TRUE(corridor.ok());
   ASSERT_TRUE(Logged(*corridor, "mgf_specular_reflection_left_out"));
   for (const ImportFixup& f : corridor->import_log.fixups()) {
@@ -65,11 +66,18 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
   EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights");
 }
 
+TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {
+  absl::StatusOr<Scene> scene = LoadScene(kDir + "cube.mgf", ImportOptions{});
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_EQ(scene->source, kDir + "cube.mgf");
+  EXPECT_GT(EmitterFaces(*scene), 0u);
+}
+
 TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {
   // examp1.mgf says `sides 1` in every material; corridor.mgf never says, so MGF's default
   // (two-sided) holds.
-  absl::StatusOr<Scene> examp1 = LoadScene(kDir + "examp1.mgf", ImportOptions{});
-  absl::StatusOr<Scene> corridor = LoadScene(kDir + "corridor.mgf", ImportOptions{});
+  absl::StatusOr<Scene> examp1 = LoadMgfFile(kDir + "examp1.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
   ASSERT_TRUE(examp1.ok() && corridor.ok());
   for (const Material& m : examp1->materials) EXPECT_FALSE(m.two_sided) << m.name;
   for (const Material& m : corridor->materials) EXPECT_TRUE(m.two_sided) << m.name;
@@ -77,7 +85,7 @@ TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {
 
 TEST(MgfRenderPark, MaterialLibrariesLoadThroughIncludes) {
   // Materials/test.mgf includes the five libraries and uses OakWood from realobj.mgf.
-  absl::StatusOr<Scene> scene = LoadScene(kDir + "Materials/test.mgf", ImportOptions{});
+  absl::StatusOr<Scene> scene = LoadMgfFile(kDir + "Materials/test.mgf", ImportOptions{});
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_EQ(scene->files.size(), 6u);
   EXPECT_EQ(scene->faces.size(), 2u);
