@@ -60,9 +60,7 @@ absl::Status MgfInterpreter::RunFile(FileRun& run, int depth, bool include_frame
     if (!include_frame) return absl::OkStatus();
     const XfFrame& include = xf_.back();
     if (absl::Status tick = Tick(include.path, include.line); !tick.ok()) return tick;
-    absl::StatusOr<bool> again = StepXf();
-    if (!again.ok()) return Locate(include.path, include.line, again.status());
-    if (!*again) return absl::OkStatus();
+    if (!StepXf()) return absl::OkStatus();
   }
 }
 
@@ -80,9 +78,7 @@ absl::Status MgfInterpreter::Execute(FileRun& run, size_t& pc, int depth) {
       return Locate(run.path, s.line,
                     Invalid("'xf' ends a transform but none is open in this file"));
     }
-    absl::StatusOr<bool> again = StepXf();
-    if (!again.ok()) return Locate(run.path, s.line, again.status());
-    pc = *again ? xf_.back().start_pc : pc + 1;
+    pc = StepXf() ? xf_.back().start_pc : pc + 1;
     return absl::OkStatus();
   }
   ++pc;
@@ -153,32 +149,31 @@ absl::Status MgfInterpreter::Include(const FileRun& run, const MgfStatement& s, 
 
 absl::Status MgfInterpreter::PushXf(const std::vector<std::string>& args, size_t start_pc,
                                     const std::string& path, int line) {
-  absl::StatusOr<std::vector<long long>> counts = XfArrayCounts(args);
-  if (!counts.ok()) return counts.status();
-  XfFrame frame{args, *counts, std::vector<long long>(counts->size(), 0), {}, start_pc, path, line};
-  absl::StatusOr<Affine> own = ParseXf(args, frame.indices);
-  if (!own.ok()) return own.status();
-  frame.total = own->Then(Transform());
+  absl::StatusOr<XfProgram> program = ParseXfProgram(args);
+  if (!program.ok()) return program.status();
+  XfFrame frame{*std::move(program), {}, {}, start_pc, path, line};
+  frame.indices.assign(frame.program.array_counts.size(), 0);
+  frame.total = frame.program.Evaluate(frame.indices).Then(Transform());
   xf_.push_back(std::move(frame));
   ++epoch_;
   return absl::OkStatus();
 }
 
-absl::StatusOr<bool> MgfInterpreter::StepXf() {
+bool MgfInterpreter::StepXf() {
   XfFrame& frame = xf_.back();
   ++epoch_;
-  size_t d = frame.counts.size();
+  const std::vector<long long>& counts = frame.program.array_counts;
+  size_t d = counts.size();
   while (d-- > 0) {
-    if (++frame.indices[d] < frame.counts[d]) break;
+    if (++frame.indices[d] < counts[d]) break;
     frame.indices[d] = 0;
   }
   if (d == static_cast<size_t>(-1)) {
     xf_.pop_back();
     return false;
   }
-  absl::StatusOr<Affine> own = ParseXf(frame.args, frame.indices);
-  if (!own.ok()) return own.status();
-  frame.total = own->Then(xf_.size() > 1 ? xf_[xf_.size() - 2].total : Affine());
+  const Affine enclosing = xf_.size() > 1 ? xf_[xf_.size() - 2].total : Affine();
+  frame.total = frame.program.Evaluate(frame.indices).Then(enclosing);
   return true;
 }
 

@@ -35,11 +35,11 @@ class MgfInterpreter {
     size_t xf_base = 0;  // transform depth when the file started (its own frames lie above)
   };
   struct XfFrame {
-    std::vector<std::string> args;
-    std::vector<long long> counts, indices;  // array sizes and the current element
-    Affine total;                            // this frame then every enclosing one
-    size_t start_pc = 0;                     // where an array element starts again
-    std::string path;                        // where the xf (or i) statement is
+    XfProgram program;               // the parsed arguments
+    std::vector<long long> indices;  // the current element of each array
+    Affine total;                    // this frame then every enclosing one
+    size_t start_pc = 0;             // where an array element starts again
+    std::string path;                // where the xf (or i) statement is
     int line = 0;
   };
   struct Vertex {
@@ -56,7 +56,7 @@ class MgfInterpreter {
   absl::Status PushXf(const std::vector<std::string>& args, size_t start_pc,
                       const std::string& path, int line);
   // Advances the top frame's array; true when it starts another element, false when popped.
-  absl::StatusOr<bool> StepXf();
+  bool StepXf();
   absl::Status Object(const std::vector<std::string>& words);
   absl::Status VertexStatement(const std::vector<std::string>& words);
   absl::StatusOr<Vertex*> FindVertex(const std::string& name);

@@ -49,26 +49,28 @@ TEST(MgfLoader, FacesVerticesAndNestedObjects) {
 
 TEST(MgfTransform, OperationsApplyInTheOrderWritten) {
   auto apply = [](std::vector<std::string> args, Vec3 p) {
-    absl::StatusOr<Affine> a =
-        ParseXf(args, std::vector<long long>(XfArrayCounts(args)->size(), 0));
-    EXPECT_TRUE(a.ok()) << a.status();
-    return a->Apply(p);
+    absl::StatusOr<XfProgram> xf = ParseXfProgram(args);
+    EXPECT_TRUE(xf.ok()) << xf.status();
+    return xf->Evaluate(std::vector<long long>(xf->array_counts.size(), 0)).Apply(p);
   };
   ExpectNear(apply({"-t", "1", "2", "3", "-rz", "90"}, {1, 0, 0}), {-2, 2, 3});
   ExpectNear(apply({"-rz", "90", "-t", "1", "2", "3"}, {1, 0, 0}), {1, 3, 3});
   ExpectNear(apply({"-rx", "90"}, {0, 1, 0}), {0, 0, 1});
   ExpectNear(apply({"-ry", "90"}, {0, 0, 1}), {1, 0, 0});
   ExpectNear(apply({"-s", "2", "-t", "1", "0", "0"}, {1, 1, 1}), {3, 2, 2});
+  ExpectNear(apply({"-sy", "3"}, {1, 1, 1}), {1, 3, 1});
   ExpectNear(apply({"-t", "1", "0", "0", "-i", "3", "-t", "0", "1", "0"}, {0, 0, 0}), {1, 3, 0});
-  absl::StatusOr<Affine> element =
-      ParseXf({"-t", "-21", "0", "0", "-a", "15", "-t", "3", "0", "0"}, {4});
-  ASSERT_TRUE(element.ok());
-  ExpectNear(element->Apply({0, 0, 0}), {-9, 0, 0});
-  EXPECT_TRUE(ParseXf({"-my"}, {})->Mirrors());
-  EXPECT_FALSE(ParseXf({"-q"}, {}).ok());
-  EXPECT_FALSE(ParseXf({"-t", "1", "2"}, {}).ok());
-  EXPECT_FALSE(ParseXf({"-s", "0"}, {}).ok());
-  EXPECT_FALSE(XfArrayCounts({"-a", "0"}).ok());
+  absl::StatusOr<XfProgram> array =
+      ParseXfProgram({"-t", "-21", "0", "0", "-a", "15", "-t", "3", "0", "0"});
+  ASSERT_TRUE(array.ok());
+  EXPECT_EQ(array->array_counts, std::vector<long long>{15});
+  ExpectNear(array->Evaluate({4}).Apply({0, 0, 0}), {-9, 0, 0});
+  EXPECT_TRUE(ParseXfProgram({"-my"})->Evaluate({}).Mirrors());
+  EXPECT_FALSE(ParseXfProgram({"-q"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-t", "1", "2"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-s", "0"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-a", "0"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-i", "-1"}).ok());
 }
 
 TEST(MgfLoader, TransformAppliesWhereTheVertexIsUsedInnerFirst) {
