@@ -1,39 +1,101 @@
 #include "client/viewfactors_command.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <memory>
 
+#include "absl/strings/match.h"
+#include "absl/strings/str_format.h"
 #include "client/exit_status.h"
 #include "client/job_flags.h"
-#include "solver/formfactor/surface_view_factors.h"
-#include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
+#include "solver/formfactor/view_factor_job.h"
+#include "solver/scene/load_scene.h"
+#include "solver/scene/vs3_loader.h"
 
 namespace radflux::cli {
 namespace {
 
 struct ViewFactorArgs {
-  std::string scene, by = "object", output;
+  std::string scene, by = "object", output, format = "csv", svf, integration = "auto";
+  double min_vf = 0;
+  PairIntegration pairs;
+  uint64_t memory_limit = 0;
+  bool quiet = false;
+  bool form_factors_given = false;  // --form-factors on the command line: auto means patches
   JobFlags job;
 };
 
+// The scene; a .vs3 file's control record also sets the enclosure adjustment.
+absl::StatusOr<Scene> LoadViewFactorScene(const std::string& path, ViewFactorJobOptions& options) {
+  if (!absl::EndsWithIgnoreCase(path, ".vs3")) return LoadScene(path, ImportOptions{});
+  absl::StatusOr<Vs3Model> model = LoadVs3File(path);
+  if (!model.ok()) return model.status();
+  if (model->control.emittances) {
+    return absl::InvalidArgumentError(
+        path + ": C emit=1 asks for View3D's interchange factors with emissivities, which "
+               "radflux does not compute; set emit=0 for view factors");
+  }
+  options.enclosure = model->control.enclosure;
+  return std::move(model->scene);
+}
+
+void PrintReport(const ViewFactorReport& r) {
+  if (r.adaptive) {
+    const SurfaceRowsStats& s = *r.adaptive;
+    std::fprintf(stderr,
+                 "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
+                 "adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
+                 "pairs traced with %llu segments; cull %.2f s, rows %.2f s\n",
+                 static_cast<unsigned long long>(s.pairs.culled),
+                 static_cast<unsigned long long>(s.pairs.one_point),
+                 static_cast<unsigned long long>(s.pairs.adaptive),
+                 static_cast<unsigned long long>(s.pairs.evaluations),
+                 static_cast<unsigned long long>(s.blockers),
+                 static_cast<unsigned long long>(s.traced_pairs),
+                 static_cast<unsigned long long>(s.segments), s.cull_seconds, s.rows_seconds);
+  }
+  std::fprintf(stderr,
+               "viewfactors: %zu surfaces (%zu patches); mesh %.2f s, embree %.2f s, rows %.2f s "
+               "(%llu rays), adjust+write %.2f s\n",
+               r.surfaces, r.patches, r.mesh_seconds, r.embree_seconds, r.rows_seconds,
+               static_cast<unsigned long long>(r.rays), r.write_seconds);
+  if (!r.enclosure) return;
+  const EnclosureAdjustment& e = *r.enclosure;
+  for (const auto& [when, err] : {std::pair{"before", e.before}, std::pair{"after", e.after}}) {
+    std::fprintf(stderr,
+                 "enclosure %s adjustment: max |1 - sum F| %.3g, rms %.3g, max reciprocity %.3g\n",
+                 when, err.max_closure, err.rms_closure, err.max_reciprocity);
+  }
+  if (!e.converged) std::fprintf(stderr, "enclosure: not converged in %d sweeps\n", e.sweeps);
+}
+
 absl::Status RunViewFactors(const ViewFactorArgs& args) {
-  absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
-  if (!options.ok()) return options.status();
-  absl::StatusOr<Scene> scene = LoadObjFile(args.scene);
-  if (!scene.ok()) return scene.status();
-  absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(*std::move(scene), *options);
+  ViewFactorJobOptions options;
+  absl::StatusOr<JobOptions> job = ToJobOptions(args.job);
   if (!job.ok()) return job.status();
-  RowContext context = (*job)->rows;
-  context.needs_row.assign(context.needs_row.size(), 1);  // every surface, black ones too
-  context.emitter.assign(context.emitter.size(), 0);      // a view factor is geometry only
-  absl::StatusOr<FormFactorResult> rows = BuildFormFactors(context, options->form_factors);
-  if (!rows.ok()) return rows.status();
-  const SurfaceGrouping by = args.by == "group"  ? SurfaceGrouping::kGroup
-                             : args.by == "face" ? SurfaceGrouping::kFace
-                                                 : SurfaceGrouping::kObject;
-  return WriteViewFactorsCsv(args.output,
-                             AggregateViewFactors((*job)->scene, (*job)->mesh, rows->matrix, by));
+  options.job = *job;
+  options.by = args.by == "group"  ? SurfaceGrouping::kGroup
+               : args.by == "face" ? SurfaceGrouping::kFace
+                                   : SurfaceGrouping::kObject;
+  options.integration = args.integration == "adaptive"  ? ViewFactorIntegration::kAdaptive
+                        : args.integration == "patches" ? ViewFactorIntegration::kPatches
+                        : args.form_factors_given       ? ViewFactorIntegration::kPatches
+                                                        : ViewFactorIntegration::kAuto;
+  options.surface_rows.integration = args.pairs;
+  options.surface_rows.threads = options.job.form_factors.threads;
+  options.surface_rows.memory_limit = args.memory_limit;
+  options.surface_rows.progress = !args.quiet && isatty(2);
+  options.output.format = *ParseViewFactorFormat(args.format);
+  options.output.path = args.output;
+  options.output.min_vf = args.min_vf;
+  options.output.svf_path = args.svf;
+  absl::StatusOr<Scene> scene = LoadViewFactorScene(args.scene, options);
+  if (!scene.ok()) return scene.status();
+  absl::StatusOr<ViewFactorReport> report = RunViewFactorJob(*std::move(scene), options);
+  if (!report.ok()) return report.status();
+  PrintReport(*report);
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -41,15 +103,47 @@ absl::Status RunViewFactors(const ViewFactorArgs& args) {
 void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ViewFactorArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "viewfactors", "Surface-to-surface view factors between named surfaces, as CSV");
-  cmd->add_option("SCENE", args->scene, "scene file (Wavefront OBJ with MTL)")->required();
+      "viewfactors", "Surface-to-surface view factors between named surfaces (no emitter needed)");
+  cmd->add_option("SCENE", args->scene, "scene file (.obj, .gltf, .glb, .mgf, .stl, .vs3)")
+      ->required();
   cmd->add_option("--by", args->by, "what a surface is")
       ->check(CLI::IsMember({"object", "group", "face"}))
       ->capture_default_str();
-  cmd->add_option("-o,--output", args->output, "view-factor CSV to write")->required();
+  cmd->add_option("-o,--output", args->output, "view-factor file to write")->required();
+  cmd->add_option("--format", args->format,
+                  "csv (dense, named), sparse (i j F dropped; uDALES vfsparse.inp), view3d "
+                  "(View3D's text output)")
+      ->check(CLI::IsMember({"csv", "sparse", "view3d"}))
+      ->capture_default_str();
+  cmd->add_option("--min-vf", args->min_vf,
+                  "sparse: leave out F below this; each line's 4th column is its row's dropped sum")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--svf", args->svf, "also write sky view factors 1 - sum_j F_ij, one per line");
+  cmd->add_option("--integration", args->integration,
+                  "auto (adaptive when every surface is one face and --form-factors is not "
+                  "given), adaptive (per surface pair: exact inner integral, one point when far, "
+                  "refined where the estimate moves, visibility only where the shaft holds "
+                  "geometry) or patches (form-factor rows of the patch mesh)")
+      ->check(CLI::IsMember({"auto", "adaptive", "patches"}))
+      ->capture_default_str();
+  cmd->add_option("--vf-tolerance", args->pairs.tolerance,
+                  "adaptive: relative change below which a triangle is not refined")
+      ->check(CLI::Range(1e-9, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--far-ratio", args->pairs.far_ratio,
+                  "adaptive: one point when distance / the surface's diameter is at least this")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  cmd->add_option("--memory-limit", args->memory_limit,
+                  "adaptive: at most this many bytes of rows in flight (e.g. 64M); rows are "
+                  "written as they finish")
+      ->transform(CLI::AsSizeValue(false));
+  cmd->add_flag("--quiet,-q", args->quiet, "no progress output");
   AddJobFlags(*cmd, args->job);
-  cmd->callback(
-      [args, &exit_code] { exit_code = ReportStatus("viewfactors", RunViewFactors(*args)); });
+  cmd->callback([args, cmd, &exit_code] {
+    args->form_factors_given = cmd->count("--form-factors") > 0;
+    exit_code = ReportStatus("viewfactors", RunViewFactors(*args));
+  });
 }
 
 }  // namespace radflux::cli

@@ -99,7 +99,7 @@ absl::Status ValidateJobOptions(const JobOptions& o) {
 
 absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
   if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
-  if (absl::Status s = ValidateScene(scene); !s.ok()) return s;
+  if (absl::Status s = ValidateScene(scene, options.require_emitter); !s.ok()) return s;
   auto job = std::make_unique<PreparedJob>();
   job->scene = std::move(scene);
   auto start = std::chrono::steady_clock::now();

@@ -40,6 +40,7 @@ struct JobOptions {
   HierarchicalOptions hierarchical;  // enabled: RunJob solves hierarchically (issue 7)
   AdaptiveOptions adaptive;          // passes > 0: RunJob meshes adaptively (issue 7)
   RowSpillOptions spill;             // memory_limit > 0: rows live in JobResult::row_store
+  bool require_emitter = true;       // false: view factors, geometry only (no light needed)
 };
 
 // Checks option values (ranges, hemicube resolution even, ...); INVALID_ARGUMENT names

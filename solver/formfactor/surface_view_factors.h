@@ -1,5 +1,6 @@
 // View factors between whole named surfaces, aggregated from patch rows (area-weighted):
 // F_ST = sum_{i in S} A_i sum_{j in T} F_ij / A_S. What radiative heat-transfer users want.
+// Obstruction-only faces (Face::obstruction) belong to no surface: they block, nothing more.
 #pragma once
 
 #include <string>
@@ -16,14 +17,13 @@ enum class SurfaceGrouping { kObject, kGroup, kFace };
 
 struct SurfaceViewFactors {
   std::vector<std::string> names;           // one per surface, in first-appearance order
+  std::vector<double> area;                 // m^2, one per surface
+  std::vector<double> emittance;            // 1 - reflectance (band 0) of its first face
   std::vector<std::vector<double>> factor;  // factor[s][t] = F from surface s to t
 };
 
-// `rows` must hold a row for every patch (build with needs_row all set).
+// `rows` must hold a row for every patch that is not on an obstruction face.
 SurfaceViewFactors AggregateViewFactors(const Scene& scene, const PatchMesh& mesh,
                                         const CsrMatrix& rows, SurfaceGrouping by);
-
-// Header `from,NAME1,NAME2,...`, then one row per surface.
-absl::Status WriteViewFactorsCsv(const std::string& path, const SurfaceViewFactors& factors);
 
 }  // namespace radflux

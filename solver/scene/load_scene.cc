@@ -7,6 +7,8 @@
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/mgf_loader.h"
 #include "solver/scene/obj_loader.h"
+#include "solver/scene/stl_loader.h"
+#include "solver/scene/vs3_loader.h"
 
 namespace radflux {
 namespace {
@@ -30,8 +32,14 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& op
   if (ext == "obj") return LoadObjFile(path);
   if (ext == "gltf" || ext == "glb") return LoadGltfFile(path, options);
   if (ext == "mgf") return LoadMgfFile(path, options);
-  return absl::InvalidArgumentError(absl::StrCat(
-      path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb, .mgf)"));
+  if (ext == "stl") return LoadStlFile(path);
+  if (ext == "vs3") {
+    absl::StatusOr<Vs3Model> model = LoadVs3File(path);
+    if (!model.ok()) return model.status();
+    return std::move(model->scene);
+  }
+  return absl::InvalidArgumentError(absl::StrCat(path, ": unknown scene format '", ext,
+                                                 "' (supported: .obj, .gltf, .glb, .mgf, .stl, .vs3)"));
 }
 
 }  // namespace radflux

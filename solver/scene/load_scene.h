@@ -11,7 +11,7 @@
 
 namespace radflux {
 
-// The scene in `path` (.obj, .gltf, .glb, .mgf; the extension picks the format,
+// The scene in `path` (.obj, .gltf, .glb, .mgf, .stl, .vs3; the extension picks the format,
 // case-insensitively).
 // INVALID_ARGUMENT for an unknown extension, naming the ones supported. The result is not
 // yet validated: see ValidateScene.

@@ -31,6 +31,7 @@ struct Face {
   uint32_t group = 0;              // index into Scene::groups ('g' name)
   int source_line = 0;             // 1-based line in the source file, 0 if unknown
   uint32_t source_file = 0;        // index into Scene::files (0: the main file, Scene::source)
+  bool obstruction = false;  // blocks light but has no view factors (View3D 'O' surface)
 };
 
 struct Scene {

@@ -68,7 +68,7 @@ absl::Status ValidateFace(const Scene& scene, size_t f) {
 
 }  // namespace
 
-absl::Status ValidateScene(const Scene& scene) {
+absl::Status ValidateScene(const Scene& scene, bool require_emitter) {
   if (scene.faces.empty()) return absl::InvalidArgumentError(scene.source + ": empty scene (no faces)");
   bool has_emitter = false;
   std::vector<bool> checked(scene.materials.size(), false);  // only materials in use matter
@@ -82,7 +82,7 @@ absl::Status ValidateScene(const Scene& scene) {
     if (absl::Status s = ValidateFace(scene, f); !s.ok()) return s;
     has_emitter = has_emitter || scene.materials[scene.faces[f].material].IsEmitter();
   }
-  if (!has_emitter) {
+  if (require_emitter && !has_emitter) {
     return absl::InvalidArgumentError(scene.source +
                                       ": no emitter (no face's material has Ke > 0)");
   }

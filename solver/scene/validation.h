@@ -13,6 +13,8 @@ inline constexpr double kPlanarityTolerance = 1e-3;
 // A face whose area is below this fraction of its longest edge squared is degenerate.
 inline constexpr double kDegenerateAreaTolerance = 1e-9;
 
-absl::Status ValidateScene(const Scene& scene);
+// Checks every face and the materials in use; with `require_emitter` (a light solve) also that
+// some face emits. View factors are geometry only and pass false.
+absl::Status ValidateScene(const Scene& scene, bool require_emitter = true);
 
 }  // namespace radflux

@@ -1,0 +1,59 @@
+#include "solver/formfactor/shaft_visibility.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace radflux {
+namespace {
+
+constexpr size_t kMaxSamplePoints = 8;
+
+size_t SamplePoints(const SurfaceShape& s, Vec3 (&out)[kMaxSamplePoints]) {
+  const size_t n = std::min(s.polygon.size(), kMaxSamplePoints);
+  for (size_t k = 0; k < n; ++k) out[k] = (s.centroid + s.polygon[k]) * 0.5;
+  return n;
+}
+
+}  // namespace
+
+bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k) {
+  const double da = Dot(a - k.centroid, k.normal), db = Dot(b - k.centroid, k.normal);
+  if ((da > 0) == (db > 0) || da == 0 || db == 0) return false;  // not crossing its plane
+  const Vec3 q = a + (b - a) * (da / (da - db));
+  const size_t n = k.polygon.size();
+  for (size_t e = 0; e < n; ++e) {
+    const Vec3& p = k.polygon[e];
+    if (Dot(Cross(k.polygon[(e + 1) % n] - p, q - p), k.normal) < 0) return false;
+  }
+  return true;
+}
+
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
+                       std::span<const SurfaceShape* const> blockers, uint64_t& segments) {
+  Vec3 pi[kMaxSamplePoints], pj[kMaxSamplePoints];
+  const size_t ni = SamplePoints(i, pi), nj = SamplePoints(j, pj);
+  double seen = 0, total = 0;
+  for (size_t a = 0; a < ni; ++a) {
+    for (size_t b = 0; b < nj; ++b) {
+      const Vec3 d = pj[b] - pi[a];
+      const double r2 = Dot(d, d);
+      const double w = r2 > 0 ? std::max(0.0, Dot(d, i.normal)) *
+                                    std::max(0.0, -Dot(d, j.normal)) / (r2 * r2)
+                              : 0;
+      if (w <= 0) continue;
+      ++segments;
+      total += w;
+      bool blocked = false;
+      for (const SurfaceShape* k : blockers) {
+        if (SegmentHitsSurface(pi[a], pj[b], *k)) {
+          blocked = true;
+          break;
+        }
+      }
+      if (!blocked) seen += w;
+    }
+  }
+  return total > 0 ? seen / total : 1.0;
+}
+
+}  // namespace radflux

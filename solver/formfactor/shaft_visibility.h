@@ -1,0 +1,23 @@
+// The visible fraction of a surface pair whose shaft may hold blockers (shaft_cull.h):
+// segments between points on i and points on j (each point halfway between the polygon's
+// centroid and one of its vertices), each tested exactly against the candidate blockers'
+// polygons, weighted by the form-factor kernel cos cos / r^2 so that the fraction is
+// consistent where visibility varies across the pair.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "solver/formfactor/surface_pair_integrator.h"
+
+namespace radflux {
+
+// Whether the open segment from a to b crosses the convex polygon of k.
+bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
+
+// The kernel-weighted fraction of segments from i to j that no shape in `blockers` crosses,
+// in [0, 1]; adds the segments tested to `segments`.
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
+                       std::span<const SurfaceShape* const> blockers, uint64_t& segments);
+
+}  // namespace radflux

@@ -1,0 +1,43 @@
+// View-factor rows between whole surfaces, one face each (issue 23's per-pair integration):
+// each pair is integrated as it needs (surface_pair_integrator.h); only pairs whose shaft may
+// hold a blocker (shaft_cull.h) are tested for visibility (shaft_visibility.h), so an
+// unobstructed pair costs no segment at all. Rows are computed in parallel, a block at a
+// time, and handed to the sink in order: memory is one block of rows, whatever n.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "solver/formfactor/surface_pair_integrator.h"
+
+namespace radflux {
+
+struct SurfaceRowsOptions {
+  PairIntegration integration;
+  int threads = 0;                   // 0 = all cores
+  uint64_t memory_limit = 0;         // bytes for rows in flight; 0 = 64 rows per thread
+  bool progress = false;             // print rows done and ETA to stderr
+};
+
+struct SurfaceRowsStats {
+  PairCounts pairs;
+  uint64_t blockers = 0;          // surfaces that can block anything (shaft_cull.h filter 1)
+  uint64_t traced_pairs = 0;      // pairs whose shaft may hold a blocker
+  uint64_t segments = 0;          // visibility segments tested
+  double cull_seconds = 0, rows_seconds = 0;
+  void Merge(const SurfaceRowsStats& o);
+};
+
+// Called with rows 0, 1, ..., rows-1 in order; each has one value per radiating surface.
+using SurfaceRowSink = std::function<absl::Status(std::span<const double> row)>;
+
+// Rows of F between the first `radiating` shapes; the shapes after them only block (View3D's
+// obstruction surfaces). Stops at the first sink error and returns it.
+absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t radiating,
+                              const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
+                              SurfaceRowsStats& stats);
+
+}  // namespace radflux

@@ -1,0 +1,157 @@
+#include "solver/formfactor/view_factor_job.h"
+
+#include <chrono>
+#include <map>
+
+#include "solver/scene/validation.h"
+
+namespace radflux {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+ViewFactorSurfaces MakeSurfaces(std::vector<std::string> names, std::vector<double> area,
+                                std::vector<double> emittance, const ViewFactorJobOptions& o) {
+  ViewFactorSurfaces surfaces;
+  surfaces.names = std::move(names);
+  surfaces.area = std::move(area);
+  surfaces.emittance = std::move(emittance);
+  surfaces.enclosure = o.enclosure;
+  surfaces.emittances = o.emittances_flag;
+  return surfaces;
+}
+
+// Writes a dense matrix, freeing each row once written.
+absl::Status WriteDense(std::vector<std::vector<double>>& factor, ViewFactorSurfaces surfaces,
+                        const ViewFactorOutput& output) {
+  absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
+      ViewFactorWriter::Open(output, std::move(surfaces));
+  if (!writer.ok()) return writer.status();
+  for (std::vector<double>& row : factor) {
+    if (absl::Status s = (*writer)->WriteRow(row); !s.ok()) return s;
+    std::vector<double>().swap(row);
+  }
+  return (*writer)->Close();
+}
+
+// The surfaces when each is one face: the radiating faces' shapes in order, then the
+// obstruction faces'; nullopt when some surface has several faces.
+struct FaceSurfaces {
+  std::vector<SurfaceShape> shapes;
+  size_t radiating = 0;
+  std::vector<std::string> names;
+  std::vector<double> emittance;
+};
+
+std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by) {
+  FaceSurfaces out;
+  std::map<uint32_t, int> faces_per_name;
+  std::vector<SurfaceShape> obstructions;
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    const Face& face = scene.faces[f];
+    SurfaceShape shape = MakeSurfaceShape(FacePolygon(scene, face));
+    if (face.obstruction) {
+      obstructions.push_back(std::move(shape));
+      continue;
+    }
+    const uint32_t name = by == SurfaceGrouping::kGroup ? face.group : face.object;
+    if (by != SurfaceGrouping::kFace && ++faces_per_name[name] > 1) return std::nullopt;
+    out.names.push_back(by == SurfaceGrouping::kFace    ? "face" + std::to_string(f)
+                        : by == SurfaceGrouping::kGroup ? scene.groups[name]
+                                                        : scene.objects[name]);
+    out.emittance.push_back(1 - scene.materials[face.material].reflectance[0]);
+    out.shapes.push_back(std::move(shape));
+  }
+  out.radiating = out.shapes.size();
+  for (SurfaceShape& s : obstructions) out.shapes.push_back(std::move(s));
+  return out;
+}
+
+absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
+                                             const ViewFactorJobOptions& options) {
+  ViewFactorReport report;
+  report.surfaces = surfaces.radiating;
+  std::vector<double> area;
+  for (size_t k = 0; k < surfaces.radiating; ++k) area.push_back(surfaces.shapes[k].area);
+  ViewFactorSurfaces out = MakeSurfaces(surfaces.names, area, surfaces.emittance, options);
+  SurfaceRowsStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  if (options.enclosure) {  // the adjustment needs the whole matrix
+    std::vector<std::vector<double>> factor;
+    absl::Status built = BuildSurfaceRows(
+        surfaces.shapes, surfaces.radiating, options.surface_rows,
+        [&](std::span<const double> row) {
+          factor.emplace_back(row.begin(), row.end());
+          return absl::OkStatus();
+        },
+        stats);
+    if (!built.ok()) return built;
+    report.enclosure = AdjustEnclosure(factor, area);
+    if (absl::Status s = WriteDense(factor, std::move(out), options.output); !s.ok()) return s;
+  } else {
+    absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
+        ViewFactorWriter::Open(options.output, std::move(out));
+    if (!writer.ok()) return writer.status();
+    absl::Status built = BuildSurfaceRows(
+        surfaces.shapes, surfaces.radiating, options.surface_rows,
+        [&](std::span<const double> row) { return (*writer)->WriteRow(row); }, stats);
+    if (!built.ok()) return built;
+    if (absl::Status s = (*writer)->Close(); !s.ok()) return s;
+  }
+  report.rows_seconds = stats.rows_seconds + stats.cull_seconds;
+  report.write_seconds = SecondsSince(start) - report.rows_seconds;
+  report.rays = stats.segments;
+  report.patches = surfaces.shapes.size();
+  report.adaptive = stats;
+  return report;
+}
+
+absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOptions& options) {
+  JobOptions job_options = options.job;
+  job_options.require_emitter = false;
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(std::move(scene), job_options);
+  if (!job.ok()) return job.status();
+  const PreparedJob& prepared = **job;
+  ViewFactorReport report;
+  report.patches = prepared.mesh.size();
+  report.mesh_seconds = prepared.mesh_seconds;
+  report.embree_seconds = prepared.embree_seconds;
+  RowContext context = prepared.rows;
+  for (uint32_t p = 0; p < prepared.mesh.size(); ++p) {  // every surface, black ones too
+    context.needs_row[p] = !prepared.scene.faces[prepared.mesh.patches[p].face].obstruction;
+  }
+  context.emitter.assign(context.emitter.size(), 0);  // a view factor is geometry only
+  absl::StatusOr<FormFactorResult> rows = BuildFormFactors(context, options.job.form_factors);
+  if (!rows.ok()) return rows.status();
+  report.rows_seconds = rows->seconds;
+  report.rays = rows->stats.rays;
+  const auto start = std::chrono::steady_clock::now();
+  SurfaceViewFactors f = AggregateViewFactors(prepared.scene, prepared.mesh, rows->matrix, options.by);
+  report.surfaces = f.names.size();
+  if (options.enclosure) report.enclosure = AdjustEnclosure(f.factor, f.area);
+  ViewFactorSurfaces out = MakeSurfaces(f.names, f.area, f.emittance, options);
+  if (absl::Status s = WriteDense(f.factor, std::move(out), options.output); !s.ok()) return s;
+  report.write_seconds = SecondsSince(start);
+  return report;
+}
+
+}  // namespace
+
+absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene,
+                                                  const ViewFactorJobOptions& options) {
+  if (options.integration != ViewFactorIntegration::kPatches) {
+    if (absl::Status s = ValidateScene(scene, /*require_emitter=*/false); !s.ok()) return s;
+    std::optional<FaceSurfaces> surfaces = SurfacesOfOneFace(scene, options.by);
+    if (surfaces) return RunAdaptive(*std::move(surfaces), options);
+    if (options.integration == ViewFactorIntegration::kAdaptive) {
+      return absl::InvalidArgumentError(
+          scene.source + ": --integration adaptive needs every surface to be one face (use "
+                         "--by face, or --integration patches)");
+    }
+  }
+  return RunPatches(std::move(scene), options);
+}
+
+}  // namespace radflux

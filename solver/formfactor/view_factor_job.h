@@ -1,0 +1,44 @@
+// `radflux viewfactors` as a library call: scene -> patches -> rows -> surface view factors
+// -> (enclosure adjustment) -> the output files. Geometry only: no emitter, no materials
+// needed (a material's reflectance gives only View3D's emittance column, 1 - rho).
+#pragma once
+
+#include <optional>
+
+#include "absl/status/statusor.h"
+#include "solver/formfactor/enclosure_adjust.h"
+#include "solver/formfactor/surface_rows.h"
+#include "solver/formfactor/surface_view_factors.h"
+#include "solver/formfactor/view_factor_writer.h"
+#include "solver/pipeline.h"
+
+namespace radflux {
+
+// How pairs are integrated: per surface pair as each needs (surface_rows.h; needs every
+// surface to be one face), or from patch rows (the form-factor options, any scene).
+enum class ViewFactorIntegration { kAuto, kAdaptive, kPatches };
+
+struct ViewFactorJobOptions {
+  ViewFactorIntegration integration = ViewFactorIntegration::kAuto;  // auto: adaptive when
+                                                                     // every surface is one face
+  SurfaceRowsOptions surface_rows;  // adaptive's options
+  JobOptions job;  // patches: meshing and form-factor options (solver options are not used)
+  SurfaceGrouping by = SurfaceGrouping::kObject;
+  bool enclosure = false;  // adjust for closure and reciprocity (View3D's encl=1)
+  bool emittances_flag = false;  // View3D header's emit flag (from a .vs3 C record)
+  ViewFactorOutput output;
+};
+
+struct ViewFactorReport {
+  size_t surfaces = 0, patches = 0;
+  uint64_t rays = 0;
+  std::optional<SurfaceRowsStats> adaptive;  // set when pairs were integrated adaptively
+  double mesh_seconds = 0, embree_seconds = 0, rows_seconds = 0, write_seconds = 0;
+  std::optional<EnclosureAdjustment> enclosure;  // set when options.enclosure
+};
+
+// Computes the view factors of `scene` between its surfaces (options.by) and writes them.
+// INVALID_ARGUMENT for a bad scene or options (file:line), errors naming the output file.
+absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene, const ViewFactorJobOptions& options);
+
+}  // namespace radflux

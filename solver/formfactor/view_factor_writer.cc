@@ -1,0 +1,149 @@
+#include "solver/formfactor/view_factor_writer.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+
+namespace radflux {
+namespace {
+
+std::string CsvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+absl::StatusOr<std::FILE*> OpenFile(const std::string& path, const char* kind) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("cannot write ", kind, " file '", path, "': ", std::strerror(errno)));
+  }
+  return f;
+}
+
+// Closes `f` (if open); INTERNAL naming `path` when any write to it failed.
+absl::Status CloseFile(std::FILE*& f, const std::string& path) {
+  if (f == nullptr) return absl::OkStatus();
+  const bool failed = std::ferror(f) != 0;
+  const bool close_failed = std::fclose(f) != 0;
+  f = nullptr;
+  if (failed || close_failed) return absl::InternalError(absl::StrCat("writing '", path, "' failed"));
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+std::optional<ViewFactorFormat> ParseViewFactorFormat(std::string_view name) {
+  if (name == "csv") return ViewFactorFormat::kCsv;
+  if (name == "sparse") return ViewFactorFormat::kSparse;
+  if (name == "view3d") return ViewFactorFormat::kView3d;
+  return std::nullopt;
+}
+
+absl::StatusOr<std::unique_ptr<ViewFactorWriter>> ViewFactorWriter::Open(
+    const ViewFactorOutput& output, ViewFactorSurfaces surfaces) {
+  std::unique_ptr<ViewFactorWriter> writer(new ViewFactorWriter(output, std::move(surfaces)));
+  absl::StatusOr<std::FILE*> file = OpenFile(output.path, "view-factor");
+  if (!file.ok()) return file.status();
+  writer->file_ = *file;
+  if (!output.svf_path.empty()) {
+    absl::StatusOr<std::FILE*> svf = OpenFile(output.svf_path, "sky-view-factor");
+    if (!svf.ok()) return svf.status();
+    writer->svf_ = *svf;
+    std::fputs("# sky view factors\n", writer->svf_);
+  }
+  if (absl::Status s = writer->WriteHeader(); !s.ok()) return s;
+  return writer;
+}
+
+ViewFactorWriter::~ViewFactorWriter() {
+  if (file_ != nullptr) std::fclose(file_);
+  if (svf_ != nullptr) std::fclose(svf_);
+}
+
+absl::Status ViewFactorWriter::WriteHeader() {
+  const size_t n = surfaces_.names.size();
+  if (output_.format == ViewFactorFormat::kCsv) {
+    std::fputs("from", file_);
+    for (const std::string& name : surfaces_.names) absl::FPrintF(file_, ",%s", CsvField(name));
+    std::fputc('\n', file_);
+  } else if (output_.format == ViewFactorFormat::kView3d) {
+    std::string header = absl::StrFormat("radflux 3.2 0 %d %d %d", surfaces_.enclosure ? 1 : 0,
+                                         surfaces_.emittances ? 1 : 0, n);
+    header.resize(std::max<size_t>(header.size(), 30), ' ');  // View3D pads to 30 characters
+    absl::FPrintF(file_, "%s\n", header);
+    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %g" : "%g", surfaces_.area[k]);
+    std::fputc('\n', file_);
+  }
+  return absl::OkStatus();
+}
+
+void ViewFactorWriter::WriteSparseRow(std::span<const double> row) {
+  double dropped = 0, total = 0;
+  size_t largest = 0;
+  bool any_kept = false;
+  for (size_t j = 0; j < row.size(); ++j) {
+    total += row[j];
+    if (row[j] > row[largest]) largest = j;
+    if (row[j] > 0 && row[j] < output_.min_vf) dropped += row[j];
+    any_kept = any_kept || (row[j] > 0 && row[j] >= output_.min_vf);
+  }
+  if (total <= 0) return;  // sees nothing: no line
+  if (!any_kept) dropped -= row[largest];  // keep the largest entry (see the header)
+  for (size_t j = 0; j < row.size(); ++j) {
+    const bool kept = row[j] > 0 && (row[j] >= output_.min_vf || (!any_kept && j == largest));
+    if (kept) absl::FPrintF(file_, "%d %d %.8g %.8g\n", rows_ + 1, j + 1, row[j], dropped);
+  }
+}
+
+absl::Status ViewFactorWriter::WriteRow(std::span<const double> row) {
+  const size_t n = surfaces_.names.size();
+  if (row.size() != n || rows_ >= n) {
+    return absl::InternalError(absl::StrCat("view-factor row ", rows_ + 1, " of ", row.size(),
+                                            " values for ", n, " surfaces"));
+  }
+  switch (output_.format) {
+    case ViewFactorFormat::kCsv:
+      std::fputs(CsvField(surfaces_.names[rows_]).c_str(), file_);
+      for (double f : row) absl::FPrintF(file_, ",%.9g", f);
+      std::fputc('\n', file_);
+      break;
+    case ViewFactorFormat::kSparse:
+      WriteSparseRow(row);
+      break;
+    case ViewFactorFormat::kView3d:
+      for (size_t j = 0; j < n; ++j) absl::FPrintF(file_, j ? " %.6f" : "%.6f", row[j]);
+      std::fputc('\n', file_);
+      break;
+  }
+  if (svf_ != nullptr) {
+    double sum = 0;
+    for (double f : row) sum += f;
+    absl::FPrintF(svf_, "%.6f\n", std::max(0.0, 1 - sum));
+  }
+  ++rows_;
+  return absl::OkStatus();
+}
+
+absl::Status ViewFactorWriter::Close() {
+  const size_t n = surfaces_.names.size();
+  if (file_ != nullptr && output_.format == ViewFactorFormat::kView3d) {
+    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %.3f" : "%.3f", surfaces_.emittance[k]);
+    std::fputc('\n', file_);
+  }
+  absl::Status file = CloseFile(file_, output_.path);
+  absl::Status svf = CloseFile(svf_, output_.svf_path);
+  if (!file.ok()) return file;
+  if (!svf.ok()) return svf;
+  if (rows_ != n) {
+    return absl::InternalError(absl::StrCat(output_.path, ": ", rows_, " of ", n, " rows written"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace radflux

@@ -1,0 +1,134 @@
+// Per-pair view-factor integration (surface_pair_integrator.h) against Howell's closed forms,
+// shaft culling (shaft_cull.h) and exact visibility (shaft_visibility.h), and whole rows
+// (surface_rows.h): reciprocity, closure, and no visibility work for unobstructed pairs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "howell_closed_forms.h"
+#include "solver/formfactor/shaft_cull.h"
+#include "solver/formfactor/shaft_visibility.h"
+#include "solver/formfactor/surface_rows.h"
+
+namespace radflux {
+namespace {
+
+SurfaceShape Square(Vec3 origin, Vec3 u, Vec3 v) {
+  return MakeSurfaceShape({origin, origin + u, origin + u + v, origin + v});
+}
+
+double Exact(const SurfaceShape& i, const SurfaceShape& j, double tolerance = 1e-6) {
+  PairIntegration o;
+  o.tolerance = tolerance;
+  o.max_depth = 10;
+  PairCounts counts;
+  return UnoccludedViewFactor(i, j, o, counts);
+}
+
+TEST(SurfacePair, ParallelDirectlyOpposedRectanglesMatchHowellC11) {
+  for (double c : {0.1, 0.5, 1.0, 4.0}) {
+    const SurfaceShape a = Square({0, 0, 0}, {1, 0, 0}, {0, 2, 0});   // faces +z
+    const SurfaceShape b = Square({0, 0, c}, {0, 2, 0}, {1, 0, 0});   // faces -z
+    const double exact = testing::ParallelRectangles(1, 2, c);
+    EXPECT_NEAR(Exact(a, b), exact, 2e-5 * exact) << "c = " << c;
+    EXPECT_NEAR(Exact(b, a), exact, 2e-5 * exact) << "c = " << c;
+  }
+}
+
+TEST(SurfacePair, PerpendicularRectanglesWithCommonEdgeMatchHowellC14) {
+  for (auto [w, h, l] : {std::array{1.0, 1.0, 1.0}, std::array{0.5, 2.0, 1.0}, std::array{3.0, 1.0, 0.5}}) {
+    const SurfaceShape floor = Square({0, 0, 0}, {w, 0, 0}, {0, l, 0});   // faces +z
+    const SurfaceShape wall = Square({0, 0, 0}, {0, l, 0}, {0, 0, h});    // faces +x
+    const double exact = testing::PerpendicularRectangles(w, h, l);
+    EXPECT_NEAR(Exact(floor, wall), exact, 1e-4 * exact) << w << " " << h << " " << l;
+  }
+}
+
+// Coaxial discs meshed as regular 64-gons: the polygons' own view factor is the discs' to
+// within the area lost to the chords (about (pi/64)^2 / 3 of each disc).
+TEST(SurfacePair, CoaxialPolygonDiscsMatchHowellC41) {
+  const int n = 64;
+  std::vector<Vec3> lower, upper;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * std::numbers::pi * k / n;
+    lower.push_back({std::cos(t), std::sin(t), 0});
+    upper.push_back({0.5 * std::cos(-t), 0.5 * std::sin(-t), 1});
+  }
+  const double exact = testing::CoaxialDiscs(1, 0.5, 1);
+  EXPECT_NEAR(Exact(MakeSurfaceShape(lower), MakeSurfaceShape(upper), 1e-4), exact, 5e-3 * exact);
+}
+
+TEST(SurfacePair, FarPairsTakeOnePointAndBackToBackPairsAreCulled) {
+  const SurfaceShape a = Square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const SurfaceShape far = Square({0, 0, 20}, {0, 1, 0}, {1, 0, 0});
+  const SurfaceShape behind = Square({0, 0, -1}, {1, 0, 0}, {0, 1, 0});
+  PairCounts counts;
+  const double f = UnoccludedViewFactor(a, far, PairIntegration{}, counts);
+  EXPECT_EQ(counts.one_point, 1u);
+  EXPECT_EQ(counts.evaluations, 1u);
+  EXPECT_NEAR(f, testing::ParallelRectangles(1, 1, 20), 1e-3 * f);
+  EXPECT_EQ(UnoccludedViewFactor(a, behind, PairIntegration{}, counts), 0);
+  EXPECT_EQ(counts.culled, 1u);
+}
+
+TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
+  const SurfaceShape a = Square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});      // faces +z
+  const SurfaceShape b = Square({0, 0, 2}, {0, 1, 0}, {1, 0, 0});      // faces -z
+  const SurfaceShape middle = Square({0.25, 0.25, 1}, {0.5, 0, 0}, {0, 0.5, 0});
+  const SurfaceShape aside = Square({3, 0, 1}, {0.5, 0, 0}, {0, 0.5, 0});
+  EXPECT_TRUE(ShaftMayHold(a, b, middle));
+  EXPECT_FALSE(ShaftMayHold(a, b, aside));
+  const SurfaceShape* blockers[] = {&middle};
+  uint64_t segments = 0;
+  // Every sample segment (points halfway to the corners) crosses the middle square.
+  EXPECT_EQ(VisibleFraction(a, b, blockers, segments), 0.0);
+  EXPECT_EQ(segments, 16u);
+  EXPECT_TRUE(SegmentHitsSurface({0.5, 0.5, 0}, {0.5, 0.5, 2}, middle));
+  EXPECT_FALSE(SegmentHitsSurface({0.1, 0.1, 0}, {0.1, 0.1, 2}, middle));
+}
+
+// A closed cube room of 3 x 3 squares per wall: every row sums to 1 (closure), A_i F_ij =
+// A_j F_ji (reciprocity), and with nothing inside no pair is traced.
+TEST(SurfaceRows, ClosedRoomRowsCloseAndAreReciprocal) {
+  std::vector<SurfaceShape> shapes;
+  const int n = 3;
+  const Vec3 x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  struct Wall { Vec3 origin, u, v; };  // u x v points into the room
+  for (const Wall& w : {Wall{{0, 0, 0}, x, y}, Wall{{0, 0, 1}, y, x}, Wall{{0, 0, 0}, z, x},
+                        Wall{{0, 1, 0}, x, z}, Wall{{0, 0, 0}, y, z}, Wall{{1, 0, 0}, z, y}}) {
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) {
+        shapes.push_back(Square(w.origin + w.u * (a / double(n)) + w.v * (b / double(n)),
+                                w.u / n, w.v / n));
+      }
+    }
+  }
+  SurfaceRowsOptions options;
+  options.integration.tolerance = 1e-5;
+  std::vector<std::vector<double>> f;
+  SurfaceRowsStats stats;
+  ASSERT_TRUE(BuildSurfaceRows(shapes, shapes.size(), options,
+                               [&](std::span<const double> row) {
+                                 f.emplace_back(row.begin(), row.end());
+                                 return absl::OkStatus();
+                               },
+                               stats)
+                  .ok());
+  ASSERT_EQ(f.size(), shapes.size());
+  EXPECT_EQ(stats.blockers, 0u);
+  EXPECT_EQ(stats.traced_pairs, 0u);
+  EXPECT_EQ(stats.segments, 0u);
+  for (size_t i = 0; i < f.size(); ++i) {
+    double sum = 0;
+    for (size_t j = 0; j < f.size(); ++j) {
+      sum += f[i][j];
+      EXPECT_NEAR(f[i][j] * shapes[i].area, f[j][i] * shapes[j].area, 2e-4 * f[i][j] + 1e-9);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-3) << "row " << i;
+  }
+}
+
+}  // namespace
+}  // namespace radflux

@@ -1,0 +1,147 @@
+// View-factor outputs (solver/formfactor/view_factor_writer.h) read back: sparse lines plus
+// the dropped column give every row's sum, SVF = max(0, 1 - sum), View3D's text layout; and
+// the enclosure adjustment (enclosure_adjust.h) reaches closure and reciprocity.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "solver/formfactor/enclosure_adjust.h"
+#include "solver/formfactor/view_factor_writer.h"
+
+namespace radflux {
+namespace {
+
+const std::vector<std::vector<double>> kRows = {
+    {0.0, 0.5, 0.004, 0.2},     // two entries kept, 0.004 dropped
+    {0.3, 0.0, 0.001, 0.002},   // one kept
+    {0.003, 0.002, 0.0, 0.001}, // none >= 0.01: its largest (0.003) is kept
+    {0.0, 0.0, 0.0, 0.0},       // sees nothing: no line
+};
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string Write(ViewFactorFormat format, double min_vf, const std::string& svf = "") {
+  const std::string path = testing::TempDir() + "/vf_out.txt";
+  const ViewFactorOutput output{format, path, min_vf, svf};
+  const ViewFactorSurfaces surfaces{
+      {"a", "b,c", "d", "e"}, {1, 2, 0.5, 4}, {0.9, 0.999, 1, 0.5}, false, false};
+  absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
+      ViewFactorWriter::Open(output, surfaces);
+  EXPECT_TRUE(writer.ok()) << writer.status();
+  for (const auto& row : kRows) EXPECT_TRUE((*writer)->WriteRow(row).ok());
+  EXPECT_TRUE((*writer)->Close().ok());
+  return ReadAll(path);
+}
+
+TEST(ViewFactorOutput, SparseLinesPlusDroppedColumnGiveEveryRowSum) {
+  std::istringstream lines(Write(ViewFactorFormat::kSparse, 0.01));
+  std::map<int, double> sum, dropped;
+  std::map<int, int> count;
+  int i, j, previous = 0;
+  double f, d;
+  while (lines >> i >> j >> f >> d) {
+    EXPECT_GE(i, previous);  // rows ascending
+    previous = i;
+    sum[i] += f;
+    dropped[i] = d;
+    ++count[i];
+  }
+  EXPECT_EQ(count, (std::map<int, int>{{1, 2}, {2, 1}, {3, 1}}));
+  for (int row = 1; row <= 3; ++row) {
+    double full = 0;
+    for (double v : kRows[row - 1]) full += v;
+    EXPECT_NEAR(sum[row] + dropped[row], full, 1e-9) << row;
+  }
+  EXPECT_NEAR(dropped[3], 0.003, 1e-12);  // 0.002 + 0.001; the largest, 0.003, is kept
+}
+
+TEST(ViewFactorOutput, SkyViewFactorIsOneMinusRowSum) {
+  const std::string svf = testing::TempDir() + "/svf.txt";
+  Write(ViewFactorFormat::kCsv, 0, svf);
+  std::istringstream lines(ReadAll(svf));
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "# sky view factors");
+  for (const auto& row : kRows) {
+    double value, sum = 0;
+    for (double v : row) sum += v;
+    ASSERT_TRUE(lines >> value);
+    EXPECT_NEAR(value, 1 - sum, 1e-6);
+  }
+  double extra;
+  EXPECT_FALSE(lines >> extra);
+}
+
+TEST(ViewFactorOutput, View3dTextLayout) {
+  std::istringstream lines(Write(ViewFactorFormat::kView3d, 0));
+  std::string header, areas, row, emit;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "radflux 3.2 0 0 0 4           ");  // 30 characters, as View3D pads
+  std::getline(lines, areas);
+  EXPECT_EQ(areas, "1 2 0.5 4");
+  std::getline(lines, row);
+  EXPECT_EQ(row, "0.000000 0.500000 0.004000 0.200000");
+  for (int k = 0; k < 3; ++k) std::getline(lines, row);
+  EXPECT_EQ(row, "0.000000 0.000000 0.000000 0.000000");
+  std::getline(lines, emit);
+  EXPECT_EQ(emit, "0.900 0.999 1.000 0.500");
+  EXPECT_FALSE(std::getline(lines, row));
+}
+
+TEST(ViewFactorOutput, CsvIsDenseAndNamed) {
+  std::istringstream lines(Write(ViewFactorFormat::kCsv, 0));
+  std::string header, first;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "from,a,\"b,c\",d,e");
+  std::getline(lines, first);
+  EXPECT_EQ(first, "a,0,0.5,0.004,0.2");
+}
+
+TEST(ViewFactorOutput, UnwritableFileIsNamed) {
+  absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer = ViewFactorWriter::Open(
+      {ViewFactorFormat::kCsv, "/nonexistent-dir/x.csv", 0, ""}, {{"a"}, {1}, {1}, false, false});
+  ASSERT_FALSE(writer.ok());
+  EXPECT_NE(writer.status().message().find("/nonexistent-dir/x.csv"), std::string::npos);
+}
+
+// The unit cube's six faces: F to the opposite face 0.19982 (Howell C-11, a = b = c = 1),
+// to each adjacent face (1 - 0.19982) / 4. Perturbed by a few percent, then adjusted.
+TEST(EnclosureAdjust, ReachesClosureAndReciprocityAndStaysNearTheTruth) {
+  const double opposite = 0.1998243, adjacent = (1 - opposite) / 4;
+  std::vector<std::vector<double>> f(6, std::vector<double>(6));
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      if (i == j) continue;
+      const double exact = (i / 2 == j / 2) ? opposite : adjacent;  // faces 2k, 2k+1 opposite
+      f[i][j] = exact * (1 + 0.03 * std::sin(7.0 * i + 3.0 * j));
+    }
+  }
+  const std::vector<double> area(6, 1.0);
+  EnclosureAdjustment a = AdjustEnclosure(f, area);
+  EXPECT_GT(a.before.max_closure, 1e-3);
+  EXPECT_GT(a.before.max_reciprocity, 1e-3);
+  EXPECT_TRUE(a.converged);
+  EXPECT_LT(a.after.max_closure, 1e-7);
+  EXPECT_LT(a.after.max_reciprocity, 1e-12);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(f[i][i], 0);
+    for (int j = 0; j < 6; ++j) {
+      if (i != j) {
+        EXPECT_NEAR(f[i][j], (i / 2 == j / 2) ? opposite : adjacent, 0.01);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace radflux
