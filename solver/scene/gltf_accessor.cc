@@ -48,7 +48,8 @@ absl::StatusOr<Span> Locate(const tinygltf::Model& model, int index, int compone
   }
   const size_t component = ComponentBytes(accessor.componentType);
   if (component == 0) return AccessorError(index, "unknown componentType");
-  if (accessor.bufferView < 0 || static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
+  if (accessor.bufferView < 0 ||
+      static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
     return AccessorError(index, "has no valid bufferView");
   }
   const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];

@@ -78,7 +78,8 @@ absl::StatusOr<uint32_t> SceneBuilder::MaterialOf(int material, const std::strin
     return static_cast<uint32_t>(default_material_);
   }
   if (static_cast<size_t>(material) >= model_.materials.size()) {
-    return absl::InvalidArgumentError(absl::StrCat(where, ": material ", material, " does not exist"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(where, ": material ", material, " does not exist"));
   }
   if (!noted_[material]) {
     noted_[material] = true;
@@ -106,8 +107,8 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
                                         std::map<int, std::pair<uint32_t, size_t>>& positions) {
   const tinygltf::Mesh& mesh = model_.meshes[instance.mesh];
   const tinygltf::Primitive& primitive = mesh.primitives[p];
-  const std::string mesh_name =
-      mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : absl::StrCat("mesh '", mesh.name, "'");
+  const std::string mesh_name = mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh)
+                                                  : absl::StrCat("mesh '", mesh.name, "'");
   const std::string where = absl::StrCat(name_, ": ", mesh_name, " primitive ", p);
   const auto error = [&](absl::string_view what) {
     return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
@@ -140,9 +141,9 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
   Face prototype;
   prototype.material = *material;
   prototype.object = object;
-  const std::string group = absl::StrCat(
-      mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
-      mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
+  const std::string group =
+      absl::StrCat(mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
+                   mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
   prototype.group = InternName(scene_.groups, group_index_, group);
   for (uint32_t& index : *indices) index += first;
   return AddTriangles(AssembleTriangles(primitive.mode, *indices),
@@ -151,8 +152,8 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
 
 absl::Status SceneBuilder::ChargeTriangles(const tinygltf::Primitive& primitive,
                                            size_t vertex_count, const std::string& where) {
-  const bool indexed = primitive.indices >= 0 &&
-                       static_cast<size_t>(primitive.indices) < model_.accessors.size();
+  const bool indexed =
+      primitive.indices >= 0 && static_cast<size_t>(primitive.indices) < model_.accessors.size();
   const uint64_t drawn = TriangleCount(
       primitive.mode, indexed ? model_.accessors[primitive.indices].count : vertex_count);
   triangles_ += std::min(drawn, kMaxGltfTriangles + 1);  // no wrap-around for absurd counts
@@ -216,8 +217,8 @@ absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, 
       continue;
     }
     Face face = prototype;
-    face.vertices = flip ? std::vector<uint32_t>{v[0], v[2], v[1]}
-                         : std::vector<uint32_t>{v[0], v[1], v[2]};
+    face.vertices =
+        flip ? std::vector<uint32_t>{v[0], v[2], v[1]} : std::vector<uint32_t>{v[0], v[1], v[2]};
     scene_.faces.push_back(std::move(face));
   }
   if (dropped > 0) {

@@ -34,22 +34,28 @@ std::string Message(const std::string& data, const std::string& name = "bad.gltf
   return message;
 }
 
-TEST(GltfLoaderErrors, ValidFileLoads) { EXPECT_TRUE(LoadGltfData(Valid().Gltf(), "ok.gltf", {}).ok()); }
+TEST(GltfLoaderErrors, ValidFileLoads) {
+  EXPECT_TRUE(LoadGltfData(Valid().Gltf(), "ok.gltf", {}).ok());
+}
 
 TEST(GltfLoaderErrors, IndexOutOfRangeNamesMeshAndPrimitive) {
   GltfBuilder b = Valid();
-  b.json()["accessors"][1]["bufferView"] = b.AddView(GltfBuilder::Bytes(std::vector<uint32_t>{0, 1, 7}));
-  EXPECT_EQ(Message(b.Gltf()), "bad.gltf: mesh 'Chair' primitive 0: index 7 out of range (3 vertices)");
+  b.json()["accessors"][1]["bufferView"] =
+      b.AddView(GltfBuilder::Bytes(std::vector<uint32_t>{0, 1, 7}));
+  EXPECT_EQ(Message(b.Gltf()),
+            "bad.gltf: mesh 'Chair' primitive 0: index 7 out of range (3 vertices)");
 }
 
 TEST(GltfLoaderErrors, AccessorPastTheEndOfItsView) {
   GltfBuilder b = Valid();
   b.json()["accessors"][0]["count"] = 4;
-  EXPECT_EQ(Message(b.Gltf()),
-            "bad.gltf: mesh 'Chair' primitive 0: accessor 0: reaches past the end of its bufferView");
+  EXPECT_EQ(
+      Message(b.Gltf()),
+      "bad.gltf: mesh 'Chair' primitive 0: accessor 0: reaches past the end of its bufferView");
   b.json()["accessors"][0]["count"] = uint64_t{1} << 62;  // stride * count overflows 64 bits
-  EXPECT_EQ(Message(b.Gltf()),
-            "bad.gltf: mesh 'Chair' primitive 0: accessor 0: reaches past the end of its bufferView");
+  EXPECT_EQ(
+      Message(b.Gltf()),
+      "bad.gltf: mesh 'Chair' primitive 0: accessor 0: reaches past the end of its bufferView");
 }
 
 TEST(GltfLoaderErrors, ViewPastTheEndOfItsBuffer) {
@@ -117,13 +123,15 @@ TEST(GltfLoaderErrors, BadTransformsAndMaterials) {
   b = Valid();
   b.json()["nodes"][0]["rotation"] = {0, 0, 0, 0};
   b.json()["nodes"][0]["name"] = "Arm";
-  EXPECT_EQ(Message(b.Gltf()), "bad.gltf: node 'Arm': rotation quaternion is zero");
+  EXPECT_EQ(Message(b.Gltf()),
+            "bad.gltf: node 'Arm': rotation quaternion has zero (or overflowing) length");
   b = Valid();
   b.json()["materials"] = {{{"name", "m"}, {"emissiveFactor", {1, 1}}}};
   EXPECT_NE(Message(b.Gltf()).find("emissiveFactor"), std::string::npos);  // tinygltf's check
   b = Valid();
-  b.json()["materials"] = {{{"name", "m"},
-                            {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}}}}};
+  b.json()["materials"] = {
+      {{"name", "m"},
+       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}}}}};
   EXPECT_NE(Message(b.Gltf()).find("emissiveStrength must be finite and >= 0"), std::string::npos);
 }
 
@@ -142,6 +150,12 @@ TEST(GltfLoaderErrors, RequiredExtensionNotRead) {
   EXPECT_EQ(Message(b.Gltf()),
             "bad.gltf: requires glTF extension 'KHR_draco_mesh_compression', which radflux does "
             "not read");
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {"EXT_meshopt_compression"};
+  EXPECT_NE(Message(b.Gltf()).find("'EXT_meshopt_compression'"), std::string::npos);
+  // Material extensions and quantized attributes change nothing a diffuse solve reads.
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {
+      "KHR_materials_clearcoat", "KHR_mesh_quantization", "KHR_texture_transform"};
+  EXPECT_TRUE(LoadGltfData(b.Gltf(), "ok.gltf", {}).ok());
 }
 
 TEST(GltfLoaderErrors, UnparsableInput) {
@@ -178,7 +192,8 @@ TEST(GltfLoaderErrors, DeeplyNestedJsonIsRefusedNotRecursedInto) {
             "bad.gltf: cannot parse glTF: JSON nested deeper than 64 levels");
   GltfBuilder b = Valid();
   b.json()["extras"] = Json::parse(std::string(100, '[') + std::string(100, ']'));
-  EXPECT_EQ(Message(b.Glb(), "bad.glb"), "bad.glb: cannot parse glTF: JSON nested deeper than 64 levels");
+  EXPECT_EQ(Message(b.Glb(), "bad.glb"),
+            "bad.glb: cannot parse glTF: JSON nested deeper than 64 levels");
   // Brackets inside strings do not count; 60 levels of real nesting are fine.
   b = Valid();
   b.json()["extras"] = {{"text", std::string(1000, '[') + "\\\"["},
