@@ -9,8 +9,10 @@
 // - two_sided = `sides 2` (the MGF default); `sides 1` is one-sided.
 // - The specular reflection `rs`, specular transmission `ts` and diffuse transmission `td`
 //   are read and checked but a diffuse solve has no place for them: each material that has
-//   one is counted in the scene's import log (one line per kind). Bands made negative by a
-//   colour outside the RGB gamut are set to 0 and counted too.
+//   one is counted in the scene's import log (one line per kind).
+// - A colour outside the RGB gamut (a negative band) is moved toward the neutral colour at
+//   the same luminance until its lowest band is 0, so rd and ed keep their meaning; such
+//   materials are counted too. (Bands above 1 are left to the import rules' clamp.)
 #pragma once
 
 #include <cstdint>

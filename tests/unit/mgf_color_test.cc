@@ -2,6 +2,8 @@
 // black bodies to chromaticity, and the material conversion (rd, ed, sides, rs/ts/td).
 #include "solver/scene/mgf_color.h"
 
+#include <algorithm>
+
 #include "gtest/gtest.h"
 #include "solver/scene/mgf_material.h"
 
@@ -132,6 +134,25 @@ TEST(MgfMaterial, ColourOfEachComponentIsTheOneInForceThen) {
   EXPECT_NEAR(m.reflectance[2], 0, 1e-12);
   for (int b = 0; b < 3; ++b) EXPECT_NEAR(m.emission[b], 2.0, 1e-12);
   EXPECT_TRUE(m.two_sided);  // the MGF default, sides 2
+}
+
+TEST(MgfMaterial, OutOfGamutColourKeepsItsLuminance) {
+  // corridor.mgf's "groen": x = 0, y = 0.38, far outside the RGB gamut.
+  MgfMaterialContext ctx;
+  for (const std::vector<std::string>& w : std::vector<std::vector<std::string>>{
+           {"m", "groen", "="}, {"c"}, {"cxy", "0", "0.38"}, {"rd", "0.3"}}) {
+    ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
+  }
+  Scene scene;
+  const Material& m = scene.materials[ctx.Intern(scene, "c.mgf:3")];
+  double y = 0;
+  const MgfColor c = LinearRgbToXyY(m.reflectance, &y);
+  EXPECT_NEAR(y, 0.3, 1e-12);
+  EXPECT_NEAR(*std::min_element(m.reflectance.begin(), m.reflectance.end()), 0, 1e-12);
+  EXPECT_GT(m.reflectance[1], m.reflectance[0]);  // still green
+  EXPECT_LT(c.x, 1.0 / 3);
+  ASSERT_EQ(scene.import_log.fixups().size(), 1u);
+  EXPECT_EQ(scene.import_log.fixups()[0].kind, "mgf_colour_out_of_gamut");
 }
 
 TEST(MgfMaterial, BadValuesAreErrors) {
