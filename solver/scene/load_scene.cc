@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "absl/strings/str_cat.h"
+#include "solver/scene/import_rules.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -20,14 +21,22 @@ std::string Extension(const std::string& path) {
   return ext;
 }
 
-}  // namespace
-
-absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options) {
-  (void)options;
+// The scene in `path` as its format's loader reads it, before the import rules.
+absl::StatusOr<Scene> LoadByExtension(const std::string& path, const ImportOptions& options) {
+  (void)options;  // the MGF loader reads curve_segments
   const std::string ext = Extension(path);
   if (ext == "obj") return LoadObjFile(path);
   return absl::InvalidArgumentError(
       absl::StrCat(path, ": unknown scene format '", ext, "' (supported: .obj)"));
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options) {
+  absl::StatusOr<Scene> scene = LoadByExtension(path, options);
+  if (!scene.ok()) return scene.status();
+  if (absl::Status s = ApplyImportRules(options, *scene); !s.ok()) return s;
+  return scene;
 }
 
 }  // namespace radflux
