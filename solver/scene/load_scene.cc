@@ -4,7 +4,9 @@
 #include <cctype>
 
 #include "absl/strings/str_cat.h"
+#include "solver/scene/gltf_loader.h"
 #include "solver/scene/import_rules.h"
+#include "solver/scene/mgf_loader.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -23,11 +25,12 @@ std::string Extension(const std::string& path) {
 
 // The scene in `path` as its format's loader reads it, before the import rules.
 absl::StatusOr<Scene> LoadByExtension(const std::string& path, const ImportOptions& options) {
-  (void)options;  // the MGF loader reads curve_segments
   const std::string ext = Extension(path);
   if (ext == "obj") return LoadObjFile(path);
-  return absl::InvalidArgumentError(
-      absl::StrCat(path, ": unknown scene format '", ext, "' (supported: .obj)"));
+  if (ext == "gltf" || ext == "glb") return LoadGltfFile(path, options);
+  if (ext == "mgf") return LoadMgfFile(path, options);
+  return absl::InvalidArgumentError(absl::StrCat(
+      path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb, .mgf)"));
 }
 
 }  // namespace

@@ -1,0 +1,167 @@
+#include "solver/scene/gltf_parse.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+
+namespace radflux {
+namespace {
+
+// Extensions a file may require: what they change is read (emissive strength), makes no
+// difference to a diffuse solve, or is handled by the accessor reader (quantized positions).
+constexpr const char* kReadableExtensions[] = {
+    "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform",
+    "KHR_materials_specular",          "KHR_materials_ior",     "KHR_materials_unlit"};
+
+// Fs callbacks' user data: the directory external files may come from ("" for none).
+struct FileAccess {
+  std::string base_dir;
+};
+
+// Whether `path` is inside the scene's directory: under base_dir, no ".." component.
+bool UnderBaseDir(const std::string& path, const FileAccess& access) {
+  if (access.base_dir.empty() || !absl::StartsWith(path, access.base_dir)) return false;
+  for (absl::string_view part : absl::StrSplit(path, '/')) {
+    if (part == "..") return false;
+  }
+  return true;
+}
+
+bool FileExists(const std::string& path, void* user_data) {
+  struct stat info;
+  return UnderBaseDir(path, *static_cast<FileAccess*>(user_data)) &&
+         stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+}
+
+std::string ExpandFilePath(const std::string& path, void*) { return path; }
+
+bool ReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user_data) {
+  struct stat info;
+  if (!UnderBaseDir(path, *static_cast<FileAccess*>(user_data)) || stat(path.c_str(), &info) != 0) {
+    *err = "not readable here";
+    return false;
+  }
+  if (static_cast<uint64_t>(info.st_size) > kMaxGltfExternalBytes) {
+    *err = absl::StrCat("larger than ", kMaxGltfExternalBytes, " bytes");
+    return false;
+  }
+  std::ifstream file(path, std::ios::binary);
+  out->resize(static_cast<size_t>(info.st_size));
+  if (!file.read(reinterpret_cast<char*>(out->data()), info.st_size)) {
+    *err = "read failed";
+    return false;
+  }
+  return true;
+}
+
+bool WriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                    void*) {
+  *err = "radflux does not write glTF files while loading";
+  return false;
+}
+
+// Images are kept as tinygltf found them (not decoded): only material factors are used.
+bool KeepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                        const unsigned char*, int, void*) {
+  return true;
+}
+
+// tinygltf's messages (several lines, trailing newlines) as one line.
+std::string OneLine(const std::string& text) {
+  std::vector<std::string> lines = absl::StrSplit(text, absl::ByAnyChar("\r\n"), absl::SkipEmpty());
+  return absl::StrJoin(lines, "; ");
+}
+
+// The deepest nesting of arrays and objects in JSON `text` (strings skipped).
+int NestingDepth(absl::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+// The JSON text of `data`: all of it, or a GLB's JSON chunk (as far as `data` holds it).
+absl::string_view JsonText(const std::string& data, bool binary) {
+  if (!binary) return data;
+  if (data.size() < 20) return {};
+  uint32_t length;
+  std::memcpy(&length, data.data() + 12, 4);
+  return absl::string_view(data).substr(20, length);
+}
+
+absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std::string& name) {
+  for (const std::string& extension : model.extensionsRequired) {
+    if (std::find(std::begin(kReadableExtensions), std::end(kReadableExtensions), extension) ==
+        std::end(kReadableExtensions)) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          name, ": requires glTF extension '", extension, "', which radflux does not read"));
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::string& name,
+                                          const std::optional<std::string>& base_dir) {
+  if (data.size() > std::numeric_limits<unsigned int>::max()) {
+    return absl::InvalidArgumentError(absl::StrCat(name, ": larger than 4 GiB"));
+  }
+  const bool binary = absl::StartsWith(data, "glTF");
+  // tinygltf reads nested JSON values recursively: deep nesting would overflow the stack.
+  if (NestingDepth(JsonText(data, binary)) > kMaxGltfJsonDepth) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, ": cannot parse glTF: JSON nested deeper than ", kMaxGltfJsonDepth, " levels"));
+  }
+  FileAccess access{base_dir.value_or("")};
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&FileExists, &ExpandFilePath, &ReadWholeFile, &WriteWholeFile, &access});
+  loader.SetImageLoader(&KeepImageUndecoded, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    const auto size = static_cast<unsigned int>(data.size());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                              reinterpret_cast<const unsigned char*>(data.data()),
+                                              size, access.base_dir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size,
+                                             access.base_dir);
+  } catch (const std::exception& e) {
+    err = e.what();
+    ok = false;
+  }
+  if (!ok) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, ": cannot parse glTF: ", err.empty() ? "no reason given" : OneLine(err)));
+  }
+  if (absl::Status readable = RequiredExtensionsReadable(model, name); !readable.ok()) {
+    return readable;
+  }
+  return model;
+}
+
+}  // namespace radflux
