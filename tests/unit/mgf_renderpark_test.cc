@@ -1,10 +1,10 @@
-// RenderPark's MGF scenes (../shared/scenes/renderpark/) load through LoadScene: the face
-// counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
+// RenderPark's MGF scenes (../shared/scenes/renderpark/) load through the MGF loader (before
+// the import rules, which add the back-face twins of two-sided faces): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
 // primitives at 16 segments), emitters present, and what the conversion left out logged.
 #include <string>
 
 #include "gtest/gtest.h"
-#include "solver/scene/load_scene.h"
+#include "solver/scene/mgf_loader.h"
 
 namespace radflux {
 namespace {
@@ -41,7 +41,7 @@ TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
       {"salon/classroom.mgf", 5250, 26, 632, 24},
   };
   for (const Expected& e : scenes) {
-    absl::StatusOr<Scene> scene = LoadScene(kDir + e.file, ImportOptions{});
+    absl::StatusOr<Scene> scene = LoadMgfFile(kDir + e.file, ImportOptions{});
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->faces.size(), e.faces) << e.file;
     EXPECT_EQ(scene->materials.size(), e.materials) << e.file;
@@ -52,7 +52,7 @@ TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
 }
 
 TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
-  absl::StatusOr<Scene> corridor = LoadScene(kDir + "corridor.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
   ASSERT_TRUE(corridor.ok());
   ASSERT_TRUE(Logged(*corridor, "mgf_specular_reflection_left_out"));
   for (const ImportFixup& f : corridor->import_log.fixups()) {
@@ -67,7 +67,7 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
 
 TEST(MgfRenderPark, MaterialLibrariesLoadThroughIncludes) {
   // Materials/test.mgf includes the five libraries and uses OakWood from realobj.mgf.
-  absl::StatusOr<Scene> scene = LoadScene(kDir + "Materials/test.mgf", ImportOptions{});
+  absl::StatusOr<Scene> scene = LoadMgfFile(kDir + "Materials/test.mgf", ImportOptions{});
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_EQ(scene->files.size(), 6u);
   EXPECT_EQ(scene->faces.size(), 2u);
