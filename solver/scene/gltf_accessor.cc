@@ -48,7 +48,8 @@ absl::StatusOr<Span> Locate(const tinygltf::Model& model, int index, int compone
   }
   const size_t component = ComponentBytes(accessor.componentType);
   if (component == 0) return AccessorError(index, "unknown componentType");
-  if (accessor.bufferView < 0 || static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
+  if (accessor.bufferView < 0 ||
+      static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
     return AccessorError(index, "has no valid bufferView");
   }
   const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
@@ -125,11 +126,15 @@ absl::StatusOr<std::vector<uint32_t>> ReadIndices(const tinygltf::Model& model, 
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
     return AccessorError(index, "indices must be unsigned byte, short or int");
   }
-  std::vector<uint32_t> indices;
-  indices.reserve(span->count);
-  for (size_t i = 0; i < span->count; ++i) {
-    indices.push_back(static_cast<uint32_t>(Component(*span, i, 0, false)));
-  }
+  std::vector<uint32_t> indices(span->count);
+  const auto copy = [&](auto zero) {
+    for (size_t i = 0; i < span->count; ++i) {
+      indices[i] = Load<decltype(zero)>(span->data + i * span->stride);
+    }
+  };
+  if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) copy(uint8_t{0});
+  if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) copy(uint16_t{0});
+  if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) copy(uint32_t{0});
   return indices;
 }
 

@@ -1,5 +1,6 @@
 #include "solver/scene/gltf_loader.h"
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -35,6 +36,13 @@ class SceneBuilder {
   absl::Status AddPrimitive(const MeshInstance& instance, size_t p, uint32_t object,
                             std::map<int, std::pair<uint32_t, size_t>>& positions);
   absl::StatusOr<uint32_t> MaterialOf(int material, const std::string& where);
+  // Counts the triangles `primitive` draws against kMaxGltfTriangles, before any is made.
+  absl::Status ChargeTriangles(const tinygltf::Primitive& primitive, size_t vertex_count,
+                               const std::string& where);
+  // The vertex indices `primitive` draws (its index accessor's, else 0 .. vertex_count - 1),
+  // each checked to be below vertex_count.
+  absl::StatusOr<std::vector<uint32_t>> PrimitiveIndices(const tinygltf::Primitive& primitive,
+                                                         size_t vertex_count);
   // The primitive's vertices in scene space, appended to the scene; the index of the first.
   absl::StatusOr<uint32_t> AddPositions(int accessor, const Mat4& world, size_t& count);
   absl::Status AddTriangles(const std::vector<Triangle>& triangles, bool flip, Face prototype,
@@ -70,7 +78,8 @@ absl::StatusOr<uint32_t> SceneBuilder::MaterialOf(int material, const std::strin
     return static_cast<uint32_t>(default_material_);
   }
   if (static_cast<size_t>(material) >= model_.materials.size()) {
-    return absl::InvalidArgumentError(absl::StrCat(where, ": material ", material, " does not exist"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(where, ": material ", material, " does not exist"));
   }
   if (!noted_[material]) {
     noted_[material] = true;
@@ -98,8 +107,8 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
                                         std::map<int, std::pair<uint32_t, size_t>>& positions) {
   const tinygltf::Mesh& mesh = model_.meshes[instance.mesh];
   const tinygltf::Primitive& primitive = mesh.primitives[p];
-  const std::string mesh_name =
-      mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : absl::StrCat("mesh '", mesh.name, "'");
+  const std::string mesh_name = mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh)
+                                                  : absl::StrCat("mesh '", mesh.name, "'");
   const std::string where = absl::StrCat(name_, ": ", mesh_name, " primitive ", p);
   const auto error = [&](absl::string_view what) {
     return absl::InvalidArgumentError(absl::StrCat(where, ": ", what));
@@ -122,31 +131,55 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
     added = positions.emplace(position->second, std::make_pair(*first, count)).first;
   }
   const auto [first, vertex_count] = added->second;
-  std::vector<uint32_t> indices;
-  if (primitive.indices >= 0 || primitive.indices < -1) {
-    absl::StatusOr<std::vector<uint32_t>> read = ReadIndices(model_, primitive.indices);
-    if (!read.ok()) return error(read.status().message());
-    indices = *std::move(read);
-    for (uint32_t index : indices) {
-      if (index >= vertex_count) {
-        return error(absl::StrCat("index ", index, " out of range (", vertex_count, " vertices)"));
-      }
-    }
-  } else {
-    for (size_t v = 0; v < vertex_count; ++v) indices.push_back(static_cast<uint32_t>(v));
+  if (absl::Status budget = ChargeTriangles(primitive, vertex_count, where); !budget.ok()) {
+    return budget;
   }
+  absl::StatusOr<std::vector<uint32_t>> indices = PrimitiveIndices(primitive, vertex_count);
+  if (!indices.ok()) return error(indices.status().message());
   absl::StatusOr<uint32_t> material = MaterialOf(primitive.material, where);
   if (!material.ok()) return material.status();
   Face prototype;
   prototype.material = *material;
   prototype.object = object;
-  const std::string group = absl::StrCat(
-      mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
-      mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
+  const std::string group =
+      absl::StrCat(mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
+                   mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
   prototype.group = InternName(scene_.groups, group_index_, group);
-  for (uint32_t& index : indices) index += first;
-  return AddTriangles(AssembleTriangles(primitive.mode, indices),
+  for (uint32_t& index : *indices) index += first;
+  return AddTriangles(AssembleTriangles(primitive.mode, *indices),
                       LinearDeterminant(instance.world) < 0, std::move(prototype), where);
+}
+
+absl::Status SceneBuilder::ChargeTriangles(const tinygltf::Primitive& primitive,
+                                           size_t vertex_count, const std::string& where) {
+  const bool indexed =
+      primitive.indices >= 0 && static_cast<size_t>(primitive.indices) < model_.accessors.size();
+  const uint64_t drawn = TriangleCount(
+      primitive.mode, indexed ? model_.accessors[primitive.indices].count : vertex_count);
+  triangles_ += std::min(drawn, kMaxGltfTriangles + 1);  // no wrap-around for absurd counts
+  if (triangles_ > kMaxGltfTriangles) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(where, ": the scene has more than ", kMaxGltfTriangles, " triangles"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::vector<uint32_t>> SceneBuilder::PrimitiveIndices(
+    const tinygltf::Primitive& primitive, size_t vertex_count) {
+  std::vector<uint32_t> indices;
+  if (primitive.indices == -1) {
+    for (size_t v = 0; v < vertex_count; ++v) indices.push_back(static_cast<uint32_t>(v));
+    return indices;
+  }
+  absl::StatusOr<std::vector<uint32_t>> read = ReadIndices(model_, primitive.indices);
+  if (!read.ok()) return read.status();
+  for (uint32_t index : *read) {
+    if (index >= vertex_count) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("index ", index, " out of range (", vertex_count, " vertices)"));
+    }
+  }
+  return read;
 }
 
 absl::StatusOr<uint32_t> SceneBuilder::AddPositions(int accessor, const Mat4& world,
@@ -172,11 +205,7 @@ absl::StatusOr<uint32_t> SceneBuilder::AddPositions(int accessor, const Mat4& wo
 
 absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, bool flip,
                                         Face prototype, const std::string& where) {
-  triangles_ += triangles.size();
-  if (triangles_ > kMaxGltfTriangles) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(where, ": the scene has more than ", kMaxGltfTriangles, " triangles"));
-  }
+  size_t dropped = 0, first_dropped = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
     const Triangle& v = triangles[t];
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
@@ -184,15 +213,18 @@ absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, 
         return absl::InvalidArgumentError(
             absl::StrCat(where, ": triangle ", t, " repeats a vertex (zero area)"));
       }
-      scene_.import_log.Add("gltf_repeated_vertex_dropped",
-                            "glTF triangles with a repeated vertex (strip restarts) dropped",
-                            absl::StrCat(where, " triangle ", t));
+      if (dropped++ == 0) first_dropped = t;
       continue;
     }
     Face face = prototype;
-    face.vertices = flip ? std::vector<uint32_t>{v[0], v[2], v[1]}
-                         : std::vector<uint32_t>{v[0], v[1], v[2]};
+    face.vertices =
+        flip ? std::vector<uint32_t>{v[0], v[2], v[1]} : std::vector<uint32_t>{v[0], v[1], v[2]};
     scene_.faces.push_back(std::move(face));
+  }
+  if (dropped > 0) {
+    scene_.import_log.Add("gltf_repeated_vertex_dropped",
+                          "glTF triangles with a repeated vertex (strip restarts) dropped",
+                          absl::StrCat(where, " triangle ", first_dropped), dropped);
   }
   return absl::OkStatus();
 }

@@ -25,12 +25,16 @@ bool AllFinite(const std::vector<double>& values) {
 absl::StatusOr<Mat4> RotationMatrix(const tinygltf::Node& node) {
   const std::vector<double>& q = node.rotation;
   const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (!(norm > 0) || !std::isfinite(norm)) return NodeError(node, "rotation quaternion is zero");
+  if (!(norm > 0) || !std::isfinite(norm))
+    return NodeError(node, "rotation quaternion has zero (or overflowing) length");
   const double x = q[0] / norm, y = q[1] / norm, z = q[2] / norm, w = q[3] / norm;
+  // One matrix column per line.
+  // clang-format off
   return Mat4{1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),     0,
               2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),     0,
               2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y), 0,
               0,                       0,                       0,                       1};
+  // clang-format on
 }
 
 // The nodes the scene starts from (see FlattenNodes).

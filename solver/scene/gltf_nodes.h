@@ -26,7 +26,7 @@ double LinearDeterminant(const Mat4& m);
 
 // A node's own transform: its `matrix`, or T * R * S from translation, rotation (unit
 // quaternion x, y, z, w; normalised here) and scale. INVALID_ARGUMENT when an array has
-// the wrong length, a value is not finite, or the quaternion is zero.
+// the wrong length, a value is not finite, or the quaternion's length is 0 or overflows.
 absl::StatusOr<Mat4> LocalMatrix(const tinygltf::Node& node);
 
 struct MeshInstance {

@@ -17,11 +17,14 @@
 namespace radflux {
 namespace {
 
-// Extensions a file may require: what they change is read (emissive strength), makes no
-// difference to a diffuse solve, or is handled by the accessor reader (quantized positions).
-constexpr const char* kReadableExtensions[] = {
-    "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform",
-    "KHR_materials_specular",          "KHR_materials_ior",     "KHR_materials_unlit"};
+// Extensions a file may require and still load right: the material extensions (a diffuse
+// solve reads base colour and emission only; emissive strength is read), texture transforms
+// (textures are not read) and quantized vertex attributes (the accessor reader handles any
+// component type). Compressed geometry (Draco, meshopt) is refused.
+bool Readable(const std::string& extension) {
+  return absl::StartsWith(extension, "KHR_materials_") || extension == "KHR_texture_transform" ||
+         extension == "KHR_mesh_quantization";
+}
 
 // Fs callbacks' user data: the directory external files may come from ("" for none).
 struct FileAccess {
@@ -114,10 +117,9 @@ absl::string_view JsonText(const std::string& data, bool binary) {
 
 absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std::string& name) {
   for (const std::string& extension : model.extensionsRequired) {
-    if (std::find(std::begin(kReadableExtensions), std::end(kReadableExtensions), extension) ==
-        std::end(kReadableExtensions)) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          name, ": requires glTF extension '", extension, "', which radflux does not read"));
+    if (!Readable(extension)) {
+      return absl::InvalidArgumentError(absl::StrCat(name, ": requires glTF extension '", extension,
+                                                     "', which radflux does not read"));
     }
   }
   return absl::OkStatus();
@@ -145,11 +147,11 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
   bool ok = false;
   try {
     const auto size = static_cast<unsigned int>(data.size());
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                              reinterpret_cast<const unsigned char*>(data.data()),
-                                              size, access.base_dir)
-                : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size,
-                                             access.base_dir);
+    ok = binary
+             ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                           reinterpret_cast<const unsigned char*>(data.data()),
+                                           size, access.base_dir)
+             : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size, access.base_dir);
   } catch (const std::exception& e) {
     err = e.what();
     ok = false;

@@ -9,12 +9,18 @@ bool IsSurfaceMode(int mode) {
          mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
+size_t TriangleCount(int mode, size_t count) {
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    return count < 3 ? 0 : count - 2;
+  }
+  return count / 3;
+}
+
 std::vector<Triangle> AssembleTriangles(int mode, const std::vector<uint32_t>& indices) {
   std::vector<Triangle> triangles;
+  triangles.reserve(TriangleCount(mode, indices.size()));
   const size_t n = indices.size();
   if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    if (n < 3) return triangles;
-    triangles.reserve(n - 2);
     for (size_t i = 0; i + 2 < n; ++i) {
       if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
         triangles.push_back({indices[i + 1], indices[i + 2], indices[0]});
@@ -25,7 +31,6 @@ std::vector<Triangle> AssembleTriangles(int mode, const std::vector<uint32_t>& i
     }
     return triangles;
   }
-  triangles.reserve(n / 3);
   for (size_t i = 0; i + 2 < n; i += 3) {
     triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
   }

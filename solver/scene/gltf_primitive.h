@@ -16,6 +16,9 @@ using Triangle = std::array<uint32_t, 3>;
 // TRIANGLE_STRIP or TRIANGLE_FAN.
 bool IsSurfaceMode(int mode);
 
+// How many triangles `count` indices draw in surface mode `mode` (AssembleTriangles' size).
+size_t TriangleCount(int mode, size_t count);
+
 // The triangles `indices` draw in surface mode `mode`: TRIANGLES takes them three at a time
 // (a partial last triple is ignored), TRIANGLE_STRIP gives triangle i as
 // (i, i + 1 + i % 2, i + 2 - i % 2) and TRIANGLE_FAN as (i + 1, i + 2, 0), as the spec does.

@@ -10,7 +10,7 @@
 // equal-energy white E (x = y = 1/3) as the white point, i.e. the RGB that Radiance and
 // RenderPark use for MGF. So the MGF neutral colour (the default, x = y = 1/3) with value Y
 // becomes (Y, Y, Y) exactly; with D65 as white every MGF "white" would turn pink.
-// Chromaticities outside that RGB gamut give negative components, which callers clip to 0.
+// Chromaticities outside that RGB gamut give negative components (see mgf_material.h).
 #pragma once
 
 #include <vector>

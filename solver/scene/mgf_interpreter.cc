@@ -35,8 +35,8 @@ MgfInterpreter::MgfInterpreter(const ImportOptions& options, const MgfLimits& li
 
 absl::Status MgfInterpreter::RunMain(const std::string& path, const std::string& text) {
   if (options_.curve_segments < 3 || options_.curve_segments > limits_.max_curve_segments) {
-    return Invalid(absl::StrCat(path, ": curve segments ", options_.curve_segments,
-                                " outside [3, ", limits_.max_curve_segments, "]"));
+    return Invalid(absl::StrCat(path, ": curve segments ", options_.curve_segments, " outside [3, ",
+                                limits_.max_curve_segments, "]"));
   }
   scene_.source = path;
   scene_.files = {path};
@@ -52,25 +52,22 @@ absl::Status MgfInterpreter::RunFile(FileRun& run, int depth, bool include_frame
       if (absl::Status s = Execute(run, pc, depth); !s.ok()) return s;
     }
     if (xf_.size() > run.xf_base) {
-      return Invalid(absl::StrCat(run.path, ":", xf_.back().line,
+      return Invalid(absl::StrCat(xf_.back().path, ":", xf_.back().line,
                                   ": xf transform is never closed (no matching 'xf' line)"));
     }
     object_path_.resize(objects_base);  // objects left open end with their file
     object_ = InternName(scene_.objects, object_index_, absl::StrJoin(object_path_, "."));
     if (!include_frame) return absl::OkStatus();
-    absl::StatusOr<bool> again = StepXf();
-    if (!again.ok()) return Locate(run.path, 1, again.status());
-    if (!*again) return absl::OkStatus();
+    const XfFrame& include = xf_.back();
+    if (absl::Status tick = Tick(include.path, include.line); !tick.ok()) return tick;
+    if (!StepXf()) return absl::OkStatus();
   }
 }
 
 absl::Status MgfInterpreter::Execute(FileRun& run, size_t& pc, int depth) {
   const MgfStatement& s = run.statements[pc];
   const std::string& e = s.words[0];
-  if (++statements_ > limits_.max_statements) {
-    return Locate(run.path, s.line, Invalid(absl::StrCat("more than ", limits_.max_statements,
-                                                         " statements to run (xf array too large?)")));
-  }
+  if (absl::Status tick = Tick(run.path, s.line); !tick.ok()) return tick;
   if (e == "i") {
     ++pc;
     return Include(run, s, depth);
@@ -78,16 +75,15 @@ absl::Status MgfInterpreter::Execute(FileRun& run, size_t& pc, int depth) {
   absl::Status status;
   if (e == "xf" && s.words.size() == 1) {
     if (xf_.size() <= run.xf_base) {
-      return Locate(run.path, s.line, Invalid("'xf' ends a transform but none is open in this file"));
+      return Locate(run.path, s.line,
+                    Invalid("'xf' ends a transform but none is open in this file"));
     }
-    absl::StatusOr<bool> again = StepXf();
-    if (!again.ok()) return Locate(run.path, s.line, again.status());
-    pc = *again ? xf_.back().start_pc : pc + 1;
+    pc = StepXf() ? xf_.back().start_pc : pc + 1;
     return absl::OkStatus();
   }
   ++pc;
   if (e == "xf") {
-    status = PushXf({s.words.begin() + 1, s.words.end()}, pc, s.line);
+    status = PushXf({s.words.begin() + 1, s.words.end()}, pc, run.path, s.line);
   } else if (MgfMaterialContext::Handles(e)) {
     status = materials_.Apply(s.words);
   } else if (e == "o") {
@@ -102,14 +98,22 @@ absl::Status MgfInterpreter::Execute(FileRun& run, size_t& pc, int depth) {
              e == "prism") {
     status = Primitive(run, s);
   } else if (IsSkippedEntity(e)) {
-    scene_.import_log.Add(absl::StrCat("mgf_skipped_", e),
-                          absl::StrCat("MGF '", e, "' entities skipped (no use in a diffuse solve)"),
-                          absl::StrCat(run.path, ":", s.line));
+    scene_.import_log.Add(
+        absl::StrCat("mgf_skipped_", e),
+        absl::StrCat("MGF '", e, "' entities skipped (no use in a diffuse solve)"),
+        absl::StrCat(run.path, ":", s.line));
   } else {
     scene_.import_log.Add("mgf_unknown_entity", "unknown MGF entities skipped",
                           absl::StrCat(run.path, ":", s.line, " ('", e.substr(0, 32), "')"));
   }
   return status.ok() ? status : Locate(run.path, s.line, status);
+}
+
+absl::Status MgfInterpreter::Tick(const std::string& path, int line) {
+  if (++statements_ <= limits_.max_statements) return absl::OkStatus();
+  return Locate(path, line,
+                Invalid(absl::StrCat("more than ", limits_.max_statements,
+                                     " statements to run (xf array too large?)")));
 }
 
 absl::Status MgfInterpreter::Include(const FileRun& run, const MgfStatement& s, int depth) {
@@ -120,16 +124,19 @@ absl::Status MgfInterpreter::Include(const FileRun& run, const MgfStatement& s, 
     return fail(absl::StrCat("includes nested deeper than ", limits_.max_include_depth));
   }
   if (std::find(include_stack_.begin(), include_stack_.end(), path) != include_stack_.end()) {
-    return fail(absl::StrCat("include cycle: ", absl::StrJoin(include_stack_, " -> "), " -> ", path));
+    return fail(
+        absl::StrCat("include cycle: ", absl::StrJoin(include_stack_, " -> "), " -> ", path));
   }
   absl::StatusOr<std::string> text = reader_(path);
-  if (!text.ok()) return fail(absl::StrCat("cannot include '", path, "': ", text.status().message()));
+  if (!text.ok())
+    return fail(absl::StrCat("cannot include '", path, "': ", text.status().message()));
   auto known = std::find(scene_.files.begin(), scene_.files.end(), path);
   const uint32_t index = static_cast<uint32_t>(known - scene_.files.begin());
   if (known == scene_.files.end()) scene_.files.push_back(path);
   const bool has_xf = s.words.size() > 2;
   if (has_xf) {
-    if (absl::Status st = PushXf({s.words.begin() + 2, s.words.end()}, 0, s.line); !st.ok()) {
+    if (absl::Status st = PushXf({s.words.begin() + 2, s.words.end()}, 0, run.path, s.line);
+        !st.ok()) {
       return Locate(run.path, s.line, st);
     }
   }
@@ -141,33 +148,32 @@ absl::Status MgfInterpreter::Include(const FileRun& run, const MgfStatement& s, 
 }
 
 absl::Status MgfInterpreter::PushXf(const std::vector<std::string>& args, size_t start_pc,
-                                    int line) {
-  absl::StatusOr<std::vector<long long>> counts = XfArrayCounts(args);
-  if (!counts.ok()) return counts.status();
-  XfFrame frame{args, *counts, std::vector<long long>(counts->size(), 0), {}, start_pc, line};
-  absl::StatusOr<Affine> own = ParseXf(args, frame.indices);
-  if (!own.ok()) return own.status();
-  frame.total = own->Then(Transform());
+                                    const std::string& path, int line) {
+  absl::StatusOr<XfProgram> program = ParseXfProgram(args);
+  if (!program.ok()) return program.status();
+  XfFrame frame{*std::move(program), {}, {}, start_pc, path, line};
+  frame.indices.assign(frame.program.array_counts.size(), 0);
+  frame.total = frame.program.Evaluate(frame.indices).Then(Transform());
   xf_.push_back(std::move(frame));
   ++epoch_;
   return absl::OkStatus();
 }
 
-absl::StatusOr<bool> MgfInterpreter::StepXf() {
+bool MgfInterpreter::StepXf() {
   XfFrame& frame = xf_.back();
   ++epoch_;
-  size_t d = frame.counts.size();
+  const std::vector<long long>& counts = frame.program.array_counts;
+  size_t d = counts.size();
   while (d-- > 0) {
-    if (++frame.indices[d] < frame.counts[d]) break;
+    if (++frame.indices[d] < counts[d]) break;
     frame.indices[d] = 0;
   }
   if (d == static_cast<size_t>(-1)) {
     xf_.pop_back();
     return false;
   }
-  absl::StatusOr<Affine> own = ParseXf(frame.args, frame.indices);
-  if (!own.ok()) return own.status();
-  frame.total = own->Then(xf_.size() > 1 ? xf_[xf_.size() - 2].total : Affine());
+  const Affine enclosing = xf_.size() > 1 ? xf_[xf_.size() - 2].total : Affine();
+  frame.total = frame.program.Evaluate(frame.indices).Then(enclosing);
   return true;
 }
 

@@ -21,8 +21,8 @@ namespace radflux {
 class MgfInterpreter {
  public:
   // Faces go to `scene`, which must outlive the interpreter.
-  MgfInterpreter(const ImportOptions& options, const MgfLimits& limits,
-                 const MgfFileReader& reader, Scene& scene);
+  MgfInterpreter(const ImportOptions& options, const MgfLimits& limits, const MgfFileReader& reader,
+                 Scene& scene);
 
   // Runs the main file `text` named `path`. Error: one "file:line: ..." line.
   absl::Status RunMain(const std::string& path, const std::string& text);
@@ -35,24 +35,28 @@ class MgfInterpreter {
     size_t xf_base = 0;  // transform depth when the file started (its own frames lie above)
   };
   struct XfFrame {
-    std::vector<std::string> args;
-    std::vector<long long> counts, indices;  // array sizes and the current element
-    Affine total;                            // this frame then every enclosing one
-    size_t start_pc = 0;                     // where an array element starts again
+    XfProgram program;               // the parsed arguments
+    std::vector<long long> indices;  // the current element of each array
+    Affine total;                    // this frame then every enclosing one
+    size_t start_pc = 0;             // where an array element starts again
+    std::string path;                // where the xf (or i) statement is
     int line = 0;
   };
   struct Vertex {
-    Vec3 p, n;              // as written (untransformed)
-    uint64_t epoch = 0;     // transform epoch of `index` (0: none)
-    uint32_t index = 0;     // its transformed copy in Scene::positions
+    Vec3 p, n;           // as written (untransformed)
+    uint64_t epoch = 0;  // transform epoch of `index` (0: none)
+    uint32_t index = 0;  // its transformed copy in Scene::positions
   };
 
   absl::Status RunFile(FileRun& run, int depth, bool include_frame);
   absl::Status Execute(FileRun& run, size_t& pc, int depth);
+  // Counts one statement (or one array element of an include) against the limit.
+  absl::Status Tick(const std::string& path, int line);
   absl::Status Include(const FileRun& run, const MgfStatement& s, int depth);
-  absl::Status PushXf(const std::vector<std::string>& args, size_t start_pc, int line);
+  absl::Status PushXf(const std::vector<std::string>& args, size_t start_pc,
+                      const std::string& path, int line);
   // Advances the top frame's array; true when it starts another element, false when popped.
-  absl::StatusOr<bool> StepXf();
+  bool StepXf();
   absl::Status Object(const std::vector<std::string>& words);
   absl::Status VertexStatement(const std::vector<std::string>& words);
   absl::StatusOr<Vertex*> FindVertex(const std::string& name);
@@ -74,10 +78,10 @@ class MgfInterpreter {
   Vertex unnamed_vertex_;
   Vertex* vertex_ = &unnamed_vertex_;  // the vertex p and n set
   std::vector<XfFrame> xf_;
-  uint64_t epoch_ = 1;                 // changes whenever the transform in force does
+  uint64_t epoch_ = 1;  // changes whenever the transform in force does
   std::vector<std::string> object_path_;
   std::map<std::string, uint32_t> object_index_;
-  uint32_t object_ = 0;                // index of the object in force in Scene::objects
+  uint32_t object_ = 0;  // index of the object in force in Scene::objects
   std::vector<std::string> include_stack_;
   uint64_t statements_ = 0;
 };

@@ -72,8 +72,7 @@ uint32_t MgfInterpreter::ScenePoint(Vertex& v) {
   return v.index;
 }
 
-absl::Status MgfInterpreter::AddFace(std::vector<uint32_t> vertices, const FileRun& run,
-                                     int line) {
+absl::Status MgfInterpreter::AddFace(std::vector<uint32_t> vertices, const FileRun& run, int line) {
   if (scene_.faces.size() >= limits_.max_faces) {
     return Invalid(absl::StrCat("more than ", limits_.max_faces, " faces (xf array too large?)"));
   }
@@ -102,7 +101,7 @@ absl::Status MgfInterpreter::Face(const FileRun& run, const MgfStatement& s) {
 }
 
 absl::Status MgfInterpreter::FaceWithHoles(const FileRun& run, const MgfStatement& s) {
-  constexpr size_t kMaxVertices = 2000;  // bridging is quadratic in the vertex count
+  constexpr size_t kMaxVertices = 512;  // bridging is cubic in the vertex count at worst
   if (s.words.size() > kMaxVertices) {
     return Invalid(absl::StrCat("'fh' with more than ", kMaxVertices, " vertices"));
   }

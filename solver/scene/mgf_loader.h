@@ -29,10 +29,10 @@
 namespace radflux {
 
 struct MgfLimits {
-  uint64_t max_statements = 100'000'000;  // statements executed (each array element counts)
-  uint64_t max_faces = 5'000'000;         // faces made, primitives' facets included
-  int max_include_depth = 32;             // includes within includes
-  int max_curve_segments = 1024;          // largest ImportOptions::curve_segments accepted
+  uint64_t max_statements = 10'000'000;  // statements executed (each array element counts)
+  uint64_t max_faces = 5'000'000;        // faces made, primitives' facets included
+  int max_include_depth = 32;            // includes within includes
+  int max_curve_segments = 1024;         // largest ImportOptions::curve_segments accepted
 };
 
 // The text of an included file, given its path (already joined to the including file's

@@ -26,16 +26,16 @@ absl::Status Numbers(const std::vector<std::string>& words, size_t count, double
   return absl::OkStatus();
 }
 
-// Bands of `rgb` below 0 set to 0; true when one was.
-bool ClipNegative(Rgb& rgb) {
-  bool clipped = false;
-  for (double& v : rgb) {
-    if (v < 0) {
-      v = 0;
-      clipped = true;
-    }
+// `rgb` (of luminance y) moved toward the neutral (y, y, y) along the line of constant
+// luminance just far enough that no band is negative; true when it had to move.
+bool DesaturateIntoGamut(Rgb& rgb, double y) {
+  double t = 1;  // share of the original colour kept
+  for (double v : rgb) {
+    if (v < 0) t = std::min(t, y / (y - v));
   }
-  return clipped;
+  if (t == 1) return false;
+  for (double& v : rgb) v = std::max(0.0, y + t * (v - y));
+  return true;
 }
 
 // The named entry of `table` chosen, defined or copied by a `c`/`m` statement:
@@ -54,7 +54,8 @@ absl::StatusOr<T*> SelectNamed(std::map<std::string, T>& table,
   T value = fresh;
   if (words.size() == 4) {
     auto it = table.find(words[3]);
-    if (it == table.end()) return Error(entity, absl::StrCat("template '", words[3], "' is not defined"));
+    if (it == table.end())
+      return Error(entity, absl::StrCat("template '", words[3], "' is not defined"));
     value = it->second;
   }
   T& slot = table[words[1]];
@@ -64,22 +65,25 @@ absl::StatusOr<T*> SelectNamed(std::map<std::string, T>& table,
 
 }  // namespace
 
-Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state,
-                            ImportLog& log, const std::string& where) {
+Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state, ImportLog& log,
+                            const std::string& where) {
   Material m;
   m.name = name;
   m.two_sided = state.two_sided;
+  const double emitted_y = state.ed / kMgfLumensPerWatt;
   m.reflectance = XyYToLinearRgb(state.rd_color, state.rd);
-  m.emission = XyYToLinearRgb(state.ed_color, state.ed / kMgfLumensPerWatt);
-  const bool clipped_r = ClipNegative(m.reflectance);
-  const bool clipped_e = ClipNegative(m.emission);
-  if (clipped_r || clipped_e) {
+  m.emission = XyYToLinearRgb(state.ed_color, emitted_y);
+  const bool moved_r = DesaturateIntoGamut(m.reflectance, state.rd);
+  const bool moved_e = DesaturateIntoGamut(m.emission, emitted_y);
+  if (moved_r || moved_e) {
     log.Add("mgf_colour_out_of_gamut",
-            "MGF materials with a colour outside the RGB gamut (negative bands set to 0)", where);
+            "MGF materials with a colour outside the RGB gamut, desaturated at the same luminance",
+            where);
   }
   if (state.rs > 0) {
     log.Add("mgf_specular_reflection_left_out",
-            "MGF materials with a specular reflection part (rs) left out of the diffuse solve", where);
+            "MGF materials with a specular reflection part (rs) left out of the diffuse solve",
+            where);
   }
   if (state.ts > 0) {
     log.Add("mgf_specular_transmission_left_out",

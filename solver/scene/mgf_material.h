@@ -9,8 +9,10 @@
 // - two_sided = `sides 2` (the MGF default); `sides 1` is one-sided.
 // - The specular reflection `rs`, specular transmission `ts` and diffuse transmission `td`
 //   are read and checked but a diffuse solve has no place for them: each material that has
-//   one is counted in the scene's import log (one line per kind). Bands made negative by a
-//   colour outside the RGB gamut are set to 0 and counted too.
+//   one is counted in the scene's import log (one line per kind).
+// - A colour outside the RGB gamut (a negative band) is moved toward the neutral colour at
+//   the same luminance until its lowest band is 0, so rd and ed keep their meaning; such
+//   materials are counted too. (Bands above 1 are left to the import rules' clamp.)
 #pragma once
 
 #include <cstdint>
@@ -28,21 +30,21 @@ namespace radflux {
 
 // One MGF material's values as the file sets them.
 struct MgfMaterialState {
-  double rd = 0;                      // diffuse reflectance (photopic), [0, 1]
-  double td = 0;                      // diffuse transmittance, [0, 1]
-  double ed = 0;                      // diffuse emittance, lm/m^2
-  double rs = 0, rs_roughness = 0;    // specular reflectance and its roughness
-  double ts = 0, ts_roughness = 0;    // specular transmittance and its roughness
+  double rd = 0;                    // diffuse reflectance (photopic), [0, 1]
+  double td = 0;                    // diffuse transmittance, [0, 1]
+  double ed = 0;                    // diffuse emittance, lm/m^2
+  double rs = 0, rs_roughness = 0;  // specular reflectance and its roughness
+  double ts = 0, ts_roughness = 0;  // specular transmittance and its roughness
   MgfColor rd_color, td_color, ed_color, rs_color, ts_color;  // colour in force at each
-  bool two_sided = true;              // sides 2 (MGF default) or 1
+  bool two_sided = true;                                      // sides 2 (MGF default) or 1
 
   bool operator==(const MgfMaterialState&) const = default;
 };
 
 // The radflux material for `state` named `name`; what it leaves out is counted in `log`
 // with location `where`.
-Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state,
-                            ImportLog& log, const std::string& where);
+Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& state, ImportLog& log,
+                            const std::string& where);
 
 class MgfMaterialContext {
  public:

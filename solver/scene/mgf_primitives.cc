@@ -123,7 +123,8 @@ absl::StatusOr<MgfMesh> TessellateTorus(const Vec3& centre, const Vec3& normal, 
   if (!axis.ok()) return axis.status();
   const double sign = r_in != 0 ? (r_in > 0 ? 1 : -1) : (r_out > 0 ? 1 : -1);
   if (!(sign * (r_out - r_in) > 0)) {
-    return absl::InvalidArgumentError("torus radii must satisfy 0 <= inner < outer (or both negated)");
+    return absl::InvalidArgumentError(
+        "torus radii must satisfy 0 <= inner < outer (or both negated)");
   }
   const double major = std::abs(r_in + r_out) / 2, minor = std::abs(r_out - r_in) / 2;
   std::vector<ProfilePoint> profile, outward;
@@ -176,13 +177,15 @@ double Orient(const Point2& a, const Point2& b, const Point2& c) {
 
 // Whether segments pq and rs cross or touch (collinear overlap included).
 bool SegmentsMeet(const Point2& p, const Point2& q, const Point2& r, const Point2& s) {
-  const double d1 = Orient(r, s, p), d2 = Orient(r, s, q), d3 = Orient(p, q, r), d4 = Orient(p, q, s);
+  const double d1 = Orient(r, s, p), d2 = Orient(r, s, q), d3 = Orient(p, q, r),
+               d4 = Orient(p, q, s);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
     return true;
   }
   auto on = [](const Point2& a, const Point2& b, const Point2& c, double d) {
-    return d == 0 && std::min(a.first, b.first) <= c.first && c.first <= std::max(a.first, b.first) &&
-           std::min(a.second, b.second) <= c.second && c.second <= std::max(a.second, b.second);
+    return d == 0 && std::min(a.first, b.first) <= c.first &&
+           c.first <= std::max(a.first, b.first) && std::min(a.second, b.second) <= c.second &&
+           c.second <= std::max(a.second, b.second);
   };
   return on(r, s, p, d1) || on(r, s, q, d2) || on(p, q, r, d3) || on(p, q, s, d4);
 }

@@ -6,7 +6,9 @@
 namespace radflux {
 namespace {
 
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+bool IsSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
 
 // Appends the words of `line` to `words`.
 void SplitWords(std::string_view line, std::vector<std::string>& words) {

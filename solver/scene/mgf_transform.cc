@@ -114,46 +114,41 @@ absl::StatusOr<Affine> ParseOperation(const std::vector<std::string>& args, size
 
 }  // namespace
 
-absl::StatusOr<std::vector<long long>> XfArrayCounts(const std::vector<std::string>& args) {
-  std::vector<long long> counts;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] != "-a") continue;
-    long long n = 0;
-    if (i + 1 >= args.size() || !ParseMgfInteger(args[i + 1], &n) || n < 1) {
-      return absl::InvalidArgumentError("xf -a needs an array count of at least 1");
-    }
-    counts.push_back(n);
-    ++i;
-  }
-  return counts;
-}
-
-absl::StatusOr<Affine> ParseXf(const std::vector<std::string>& args,
-                               const std::vector<long long>& indices) {
-  Affine total, segment;
-  long long repeat = 1;
-  size_t array = 0;
+absl::StatusOr<XfProgram> ParseXfProgram(const std::vector<std::string>& args) {
+  XfProgram program;
+  program.segments.emplace_back();
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "-i" || args[i] == "-a") {
+      const bool array = args[i] == "-a";
       long long n = 0;
-      if (i + 1 >= args.size() || !ParseMgfInteger(args[i + 1], &n) || n < 0) {
-        return absl::InvalidArgumentError(absl::StrCat("xf ", args[i], " needs a count >= 0"));
+      if (i + 1 >= args.size() || !ParseMgfInteger(args[i + 1], &n) || n < (array ? 1 : 0)) {
+        return absl::InvalidArgumentError(
+            absl::StrCat("xf ", args[i], " needs a count >= ", array ? "1" : "0"));
       }
-      if (args[i] == "-a") {
-        if (array >= indices.size()) return absl::InternalError("xf array index missing");
-        n = indices[array++];
+      XfProgram::Segment next;
+      next.repeat = n;
+      if (array) {
+        next.array = static_cast<int>(program.array_counts.size());
+        program.array_counts.push_back(n);
       }
-      total = total.Then(segment.Power(repeat));
-      segment = Affine();
-      repeat = n;
+      program.segments.push_back(next);
       ++i;
       continue;
     }
     absl::StatusOr<Affine> op = ParseOperation(args, i);
     if (!op.ok()) return op.status();
-    segment = segment.Then(*op);
+    program.segments.back().ops = program.segments.back().ops.Then(*op);
   }
-  return total.Then(segment.Power(repeat));
+  return program;
+}
+
+Affine XfProgram::Evaluate(const std::vector<long long>& indices) const {
+  Affine total;
+  for (const Segment& s : segments) {
+    total =
+        total.Then(s.ops.Power(s.array >= 0 ? indices[static_cast<size_t>(s.array)] : s.repeat));
+  }
+  return total;
 }
 
 }  // namespace radflux

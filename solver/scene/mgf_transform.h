@@ -39,14 +39,24 @@ struct Affine {
   bool Mirrors() const { return linear.Determinant() < 0; }
 };
 
-// The array sizes of an xf argument list (one per `-a N`, in order; empty when no array).
-// Error (no location) when a count is missing, not an integer or below 1.
-absl::StatusOr<std::vector<long long>> XfArrayCounts(const std::vector<std::string>& args);
+// An xf argument list parsed once: its operations grouped into segments, each applied a
+// fixed number of times (-i) or as many times as an array's current element (-a).
+struct XfProgram {
+  struct Segment {
+    Affine ops;            // the segment's operations composed, in the order written
+    long long repeat = 1;  // times applied when not an array segment
+    int array = -1;        // index into array_counts when the segment follows -a
+  };
+  std::vector<Segment> segments;
+  std::vector<long long> array_counts;  // one per -a, in order (each >= 1)
 
-// The transform of an xf argument list (the words after "xf"), with `indices` giving the
-// element of each `-a` array (as many as XfArrayCounts returned). Error (no location) for an
-// unknown option, a missing or non-numeric argument, a zero scale or a negative `-i` count.
-absl::StatusOr<Affine> ParseXf(const std::vector<std::string>& args,
-                               const std::vector<long long>& indices);
+  // The transform with `indices` choosing each array's element (one per array_counts entry,
+  // each in [0, count)).
+  Affine Evaluate(const std::vector<long long>& indices) const;
+};
+
+// Parses the words after "xf". Error (no location) for an unknown option, a missing or
+// non-numeric argument, a zero scale, a negative -i count or an -a count below 1.
+absl::StatusOr<XfProgram> ParseXfProgram(const std::vector<std::string>& args);
 
 }  // namespace radflux

@@ -78,12 +78,15 @@ Json GltfMaterial(const Material& material) {
     largest = std::max(largest, radiance[b]);
   }
   const double strength = largest > 1 ? std::exp2(std::ceil(std::log2(largest))) : 1;
-  Json m = {{"name", material.name},
-            {"pbrMetallicRoughness",
-             {{"baseColorFactor", {material.reflectance[0], material.reflectance[1], material.reflectance[2], 1}},
-              {"metallicFactor", 0}}},
-            {"emissiveFactor", {radiance[0] / strength, radiance[1] / strength, radiance[2] / strength}}};
-  if (strength != 1) m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = strength;
+  Json m = {
+      {"name", material.name},
+      {"pbrMetallicRoughness",
+       {{"baseColorFactor",
+         {material.reflectance[0], material.reflectance[1], material.reflectance[2], 1}},
+        {"metallicFactor", 0}}},
+      {"emissiveFactor", {radiance[0] / strength, radiance[1] / strength, radiance[2] / strength}}};
+  if (strength != 1)
+    m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = strength;
   return m;
 }
 
@@ -121,7 +124,8 @@ GltfBuilder FannedGltf(const Scene& scene, const Fanned& fanned) {
       }
       primitives.push_back(GltfBuilder::Primitive(positions, b.AddIndices(indices), 4, material));
     }
-    roots.push_back(b.AddNode({{"name", scene.objects[object]}, {"mesh", b.AddMesh("", primitives)}}));
+    roots.push_back(
+        b.AddNode({{"name", scene.objects[object]}, {"mesh", b.AddMesh("", primitives)}}));
     next_vertex = last_vertex + 1;
   }
   EXPECT_EQ(next_vertex, scene.positions.size());

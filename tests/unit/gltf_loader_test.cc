@@ -1,5 +1,7 @@
 // glTF loading: hand-written files in, faces, transforms, windings and materials checked
 // against what the glTF 2.0 spec says they mean.
+#include "solver/scene/gltf_loader.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <numbers>
 
-#include "solver/scene/gltf_loader.h"
 #include "solver/scene/load_scene.h"
 #include "tests/unit/gltf_test_builder.h"
 
@@ -67,14 +68,15 @@ TEST(GltfLoader, OneTriangleKeepsPositionsWindingAndNames) {
 TEST(GltfLoader, TranslationRotationScaleAndMatrix) {
   const double h = std::sqrt(0.5);
   // T * R * S: scale x by 2, rotate 90 degrees about z, then translate by (10, 20, 30).
-  absl::StatusOr<Scene> trs = Load(OneNode(
-      kTriangle, {{"scale", {2, 1, 1}}, {"rotation", {0, 0, h, h}}, {"translation", {10, 20, 30}}}));
+  absl::StatusOr<Scene> trs = Load(
+      OneNode(kTriangle,
+              {{"scale", {2, 1, 1}}, {"rotation", {0, 0, h, h}}, {"translation", {10, 20, 30}}}));
   ASSERT_TRUE(trs.ok()) << trs.status();
   const std::vector<Vec3> expected = {{10, 20, 30}, {10, 22, 30}, {9, 20, 30}};
   for (int k = 0; k < 3; ++k) ExpectNear(trs->positions[trs->faces[0].vertices[k]], expected[k]);
   // The same transform as a column-major matrix.
-  absl::StatusOr<Scene> matrix = Load(OneNode(
-      kTriangle, {{"matrix", {0, 2, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 10, 20, 30, 1}}}));
+  absl::StatusOr<Scene> matrix =
+      Load(OneNode(kTriangle, {{"matrix", {0, 2, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 10, 20, 30, 1}}}));
   ASSERT_TRUE(matrix.ok()) << matrix.status();
   for (int k = 0; k < 3; ++k) {
     ExpectNear(matrix->positions[matrix->faces[0].vertices[k]], expected[k]);
@@ -91,7 +93,8 @@ TEST(GltfLoader, NestedNodesComposeFromTheRootDown) {
   absl::StatusOr<Scene> scene = Load(b);
   ASSERT_TRUE(scene.ok()) << scene.status();
   const std::vector<Vec3> expected = {{3, 0, 5}, {6, 0, 5}, {3, 3, 5}};
-  for (int k = 0; k < 3; ++k) ExpectNear(scene->positions[scene->faces[0].vertices[k]], expected[k]);
+  for (int k = 0; k < 3; ++k)
+    ExpectNear(scene->positions[scene->faces[0].vertices[k]], expected[k]);
   EXPECT_EQ(scene->objects[scene->faces[0].object], "Leaf");  // unnamed node: its mesh's name
 }
 
@@ -122,13 +125,15 @@ TEST(GltfLoader, StripsAndFansGiveTheSpecsTriangles) {
   // Strip vertices 0 1 2 3 4: (0 1 2), (1 3 2), (2 3 4), all facing the same way.
   absl::StatusOr<Scene> strip = Load(OneNode(kStrip, {}, 5));
   ASSERT_TRUE(strip.ok()) << strip.status();
-  EXPECT_EQ(Triangles(*strip), (std::vector<std::vector<uint32_t>>{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}}));
+  EXPECT_EQ(Triangles(*strip),
+            (std::vector<std::vector<uint32_t>>{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}}));
   for (size_t f = 0; f < 3; ++f) ExpectNear(FaceNormal(*strip, f), {0, 0, -1});
   // Fan around the centre of a square, counter-clockwise from +z: (1 2 0), (2 3 0), (3 4 0).
   const std::vector<float> fan = {0, 0, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, -1, -1, 0};
   absl::StatusOr<Scene> fanned = Load(OneNode(fan, {}, 6));
   ASSERT_TRUE(fanned.ok()) << fanned.status();
-  EXPECT_EQ(Triangles(*fanned), (std::vector<std::vector<uint32_t>>{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}}));
+  EXPECT_EQ(Triangles(*fanned),
+            (std::vector<std::vector<uint32_t>>{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}}));
   for (size_t f = 0; f < 3; ++f) ExpectNear(FaceNormal(*fanned, f), {0, 0, 1});
 }
 
@@ -166,7 +171,8 @@ TEST(GltfLoader, InterleavedPositionsWithByteStride) {
   // position, then a 3-float normal, per vertex: stride 24, positions at offset 0.
   std::vector<float> interleaved;
   for (size_t v = 0; v < 3; ++v) {
-    interleaved.insert(interleaved.end(), {kTriangle[3 * v], kTriangle[3 * v + 1], kTriangle[3 * v + 2]});
+    interleaved.insert(interleaved.end(),
+                       {kTriangle[3 * v], kTriangle[3 * v + 1], kTriangle[3 * v + 2]});
     interleaved.insert(interleaved.end(), {99, 99, 99});
   }
   GltfBuilder b;
@@ -174,7 +180,32 @@ TEST(GltfLoader, InterleavedPositionsWithByteStride) {
   b.SetScene({b.AddNode({{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(p)})}})});
   absl::StatusOr<Scene> scene = Load(b);
   ASSERT_TRUE(scene.ok()) << scene.status();
-  EXPECT_EQ(FacePolygon(*scene, scene->faces[0]), (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+  EXPECT_EQ(FacePolygon(*scene, scene->faces[0]),
+            (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+}
+
+TEST(GltfLoader, QuantizedPositions) {
+  // KHR_mesh_quantization: normalized shorts map 32767 to 1 and -32768 to -1; plain unsigned
+  // bytes are their values.
+  GltfBuilder b;
+  const int shorts = b.AddAccessor(b.AddView(GltfBuilder::Bytes(std::vector<int16_t>{
+                                       0, 0, 0, 32767, 0, 0, 0, -32768, 0, 0, 0, 0})),
+                                   5122, 3, "VEC3");
+  b.json()["accessors"][shorts]["normalized"] = true;
+  const int bytes = b.AddAccessor(
+      b.AddView(GltfBuilder::Bytes(std::vector<uint8_t>{0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0})), 5121,
+      3, "VEC3");
+  b.json()["bufferViews"][1]["byteStride"] = 4;  // each element padded to 4 bytes
+  b.SetScene({b.AddNode({{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(shorts),
+                                                  GltfBuilder::Primitive(bytes)})}})});
+  b.json()["extensionsUsed"] = b.json()["extensionsRequired"] = {"KHR_mesh_quantization"};
+  absl::StatusOr<Scene> scene = Load(b);
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->faces.size(), 2u);
+  EXPECT_EQ(FacePolygon(*scene, scene->faces[0]),
+            (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, -1, 0}}));
+  EXPECT_EQ(FacePolygon(*scene, scene->faces[1]),
+            (std::vector<Vec3>{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}));
 }
 
 TEST(GltfLoader, MirroringTransformKeepsTheFrontFacingTheSameWay) {
@@ -198,15 +229,16 @@ TEST(GltfLoader, MaterialsFactorsEmissiveStrengthAndDoubleSided) {
   GltfBuilder b;
   const int lamp = b.AddMaterial(
       {{"name", "lamp"},
-       {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 0.125, 1}}, {"metallicFactor", 0}}},
+       {"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.5, 0.25, 0.125, 1}}, {"metallicFactor", 0}}},
        {"emissiveFactor", {1, 0.5, 0.25}},
        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8}}}}}});
-  const int leaf = b.AddMaterial(
-      {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}, {"emissiveFactor", {0.5, 0, 0}},
-       {"doubleSided", true}});
+  const int leaf = b.AddMaterial({{"pbrMetallicRoughness", {{"metallicFactor", 0}}},
+                                  {"emissiveFactor", {0.5, 0, 0}},
+                                  {"doubleSided", true}});
   const int p = b.AddPositions(kTriangle);
   b.SetScene({b.AddNode({{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(p, -1, 4, lamp),
-                                                   GltfBuilder::Primitive(p, -1, 4, leaf)})}})});
+                                                  GltfBuilder::Primitive(p, -1, 4, leaf)})}})});
   b.json()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
   absl::StatusOr<Scene> scene = Load(b);
   ASSERT_TRUE(scene.ok()) << scene.status();
@@ -218,7 +250,7 @@ TEST(GltfLoader, MaterialsFactorsEmissiveStrengthAndDoubleSided) {
   EXPECT_FALSE(a.two_sided);
   const Material& c = scene->materials[scene->faces[1].material];
   EXPECT_EQ(c.name, "material 1");
-  EXPECT_EQ(c.reflectance, (Rgb{1, 1, 1}));  // the default base colour
+  EXPECT_EQ(c.reflectance, (Rgb{1, 1, 1}));                    // the default base colour
   EXPECT_EQ(c.emission, (Rgb{0.5 * std::numbers::pi, 0, 0}));  // strength 1 when absent
   EXPECT_TRUE(c.two_sided);
   EXPECT_EQ(scene->groups[scene->faces[1].group], "m primitive 1");
@@ -228,9 +260,9 @@ TEST(GltfLoader, MaterialsFactorsEmissiveStrengthAndDoubleSided) {
 TEST(GltfLoader, PointsAndLinesAreSkippedAndCounted) {
   GltfBuilder b;
   const int p = b.AddPositions(kTriangle);
-  b.SetScene({b.AddNode({{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(p, -1, 0),
-                                                   GltfBuilder::Primitive(p, -1, 1),
-                                                   GltfBuilder::Primitive(p, -1, 4)})}})});
+  b.SetScene({b.AddNode(
+      {{"mesh", b.AddMesh("m", {GltfBuilder::Primitive(p, -1, 0), GltfBuilder::Primitive(p, -1, 1),
+                                GltfBuilder::Primitive(p, -1, 4)})}})});
   absl::StatusOr<Scene> scene = Load(b);
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_EQ(scene->faces.size(), 1u);

@@ -5,10 +5,9 @@
 
 #include <cstdint>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "absl/strings/escaping.h"
 
@@ -26,7 +25,8 @@ class GltfBuilder {
   // A bufferView of `bytes` appended to the buffer (4-byte aligned); its index.
   int AddView(const std::string& bytes, int stride = 0) {
     while (bin_.size() % 4 != 0) bin_.push_back('\0');
-    nlohmann::json view = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes.size()}};
+    nlohmann::json view = {
+        {"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes.size()}};
     if (stride > 0) view["byteStride"] = stride;
     bin_ += bytes;
     json_["bufferViews"].push_back(view);
@@ -35,8 +35,11 @@ class GltfBuilder {
 
   int AddAccessor(int view, int component_type, size_t count, const std::string& type,
                   size_t byte_offset = 0) {
-    json_["accessors"].push_back({{"bufferView", view}, {"componentType", component_type},
-                                  {"count", count}, {"type", type}, {"byteOffset", byte_offset}});
+    json_["accessors"].push_back({{"bufferView", view},
+                                  {"componentType", component_type},
+                                  {"count", count},
+                                  {"type", type},
+                                  {"byteOffset", byte_offset}});
     return static_cast<int>(json_["accessors"].size()) - 1;
   }
 
@@ -57,7 +60,8 @@ class GltfBuilder {
   }
 
   // A primitive (JSON) with POSITION `positions`, optional indices, mode and material.
-  static nlohmann::json Primitive(int positions, int indices = -1, int mode = 4, int material = -1) {
+  static nlohmann::json Primitive(int positions, int indices = -1, int mode = 4,
+                                  int material = -1) {
     nlohmann::json p = {{"attributes", {{"POSITION", positions}}}, {"mode", mode}};
     if (indices >= 0) p["indices"] = indices;
     if (material >= 0) p["material"] = material;
@@ -94,11 +98,11 @@ class GltfBuilder {
   // .gltf text with the buffer as a data URI, or named `bin_uri` (an external file).
   std::string Gltf(const std::string& bin_uri = "") const {
     nlohmann::json out = json_;
-    out["buffers"] = nlohmann::json::array(
-        {{{"byteLength", bin_.size()},
-          {"uri", bin_uri.empty()
-                      ? "data:application/octet-stream;base64," + absl::Base64Escape(bin_)
-                      : bin_uri}}});
+    out["buffers"] =
+        nlohmann::json::array({{{"byteLength", bin_.size()},
+                                {"uri", bin_uri.empty() ? "data:application/octet-stream;base64," +
+                                                              absl::Base64Escape(bin_)
+                                                        : bin_uri}}});
     return out.dump();
   }
 

@@ -2,6 +2,8 @@
 // black bodies to chromaticity, and the material conversion (rd, ed, sides, rs/ts/td).
 #include "solver/scene/mgf_color.h"
 
+#include <algorithm>
+
 #include "gtest/gtest.h"
 #include "solver/scene/mgf_material.h"
 
@@ -18,8 +20,10 @@ TEST(MgfColor, PrimariesMapToSingleBands) {
   for (int c = 0; c < 3; ++c) {
     const Rgb rgb = XyYToLinearRgb(primaries[c], 0.5);
     for (int b = 0; b < 3; ++b) {
-      if (b == c) EXPECT_GT(rgb[b], 0.1);
-      else EXPECT_NEAR(rgb[b], 0, 1e-12);
+      if (b == c)
+        EXPECT_GT(rgb[b], 0.1);
+      else
+        EXPECT_NEAR(rgb[b], 0, 1e-12);
     }
   }
 }
@@ -82,8 +86,12 @@ TEST(MgfColor, MixAddsTristimulusValues) {
 TEST(MgfMaterial, ConversionOfValuesAndLeftOutParts) {
   MgfMaterialContext ctx;
   for (const std::vector<std::string>& w :
-       std::vector<std::vector<std::string>>{{"m", "lamp", "="}, {"rd", "0.25"}, {"ed", "179"},
-                                             {"sides", "1"}, {"rs", "0.1", "0.05"}, {"td", "0.2"}}) {
+       std::vector<std::vector<std::string>>{{"m", "lamp", "="},
+                                             {"rd", "0.25"},
+                                             {"ed", "179"},
+                                             {"sides", "1"},
+                                             {"rs", "0.1", "0.05"},
+                                             {"td", "0.2"}}) {
     ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
   }
   Scene scene;
@@ -109,9 +117,14 @@ TEST(MgfMaterial, ConversionOfValuesAndLeftOutParts) {
 
 TEST(MgfMaterial, ColourOfEachComponentIsTheOneInForceThen) {
   MgfMaterialContext ctx;
-  for (const std::vector<std::string>& w : std::vector<std::vector<std::string>>{
-           {"c", "red", "="}, {"cxy", "0.64", "0.33"}, {"m", "x", "="}, {"c", "red"},
-           {"rd", "0.2"}, {"c"}, {"ed", "358"}}) {
+  for (const std::vector<std::string>& w :
+       std::vector<std::vector<std::string>>{{"c", "red", "="},
+                                             {"cxy", "0.64", "0.33"},
+                                             {"m", "x", "="},
+                                             {"c", "red"},
+                                             {"rd", "0.2"},
+                                             {"c"},
+                                             {"ed", "358"}}) {
     ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
   }
   Scene scene;
@@ -121,6 +134,25 @@ TEST(MgfMaterial, ColourOfEachComponentIsTheOneInForceThen) {
   EXPECT_NEAR(m.reflectance[2], 0, 1e-12);
   for (int b = 0; b < 3; ++b) EXPECT_NEAR(m.emission[b], 2.0, 1e-12);
   EXPECT_TRUE(m.two_sided);  // the MGF default, sides 2
+}
+
+TEST(MgfMaterial, OutOfGamutColourKeepsItsLuminance) {
+  // corridor.mgf's "groen": x = 0, y = 0.38, far outside the RGB gamut.
+  MgfMaterialContext ctx;
+  for (const std::vector<std::string>& w : std::vector<std::vector<std::string>>{
+           {"m", "groen", "="}, {"c"}, {"cxy", "0", "0.38"}, {"rd", "0.3"}}) {
+    ASSERT_TRUE(ctx.Apply(w).ok()) << w[0];
+  }
+  Scene scene;
+  const Material& m = scene.materials[ctx.Intern(scene, "c.mgf:3")];
+  double y = 0;
+  const MgfColor c = LinearRgbToXyY(m.reflectance, &y);
+  EXPECT_NEAR(y, 0.3, 1e-12);
+  EXPECT_NEAR(*std::min_element(m.reflectance.begin(), m.reflectance.end()), 0, 1e-12);
+  EXPECT_GT(m.reflectance[1], m.reflectance[0]);  // still green
+  EXPECT_LT(c.x, 1.0 / 3);
+  ASSERT_EQ(scene.import_log.fixups().size(), 1u);
+  EXPECT_EQ(scene.import_log.fixups()[0].kind, "mgf_colour_out_of_gamut");
 }
 
 TEST(MgfMaterial, BadValuesAreErrors) {

@@ -19,7 +19,9 @@ absl::StatusOr<Scene> Load(const std::string& text, std::map<std::string, std::s
   return LoadMgfText(text, "main.mgf", ImportOptions{}, MgfReaderFromMap(std::move(files)), limits);
 }
 
-Vec3 Corner(const Scene& s, size_t face, size_t k) { return s.positions[s.faces[face].vertices[k]]; }
+Vec3 Corner(const Scene& s, size_t face, size_t k) {
+  return s.positions[s.faces[face].vertices[k]];
+}
 
 void ExpectNear(const Vec3& a, const Vec3& b) {
   EXPECT_NEAR(a.x, b.x, 1e-12);
@@ -33,8 +35,8 @@ std::string Error(const absl::StatusOr<Scene>& s) {
 }
 
 TEST(MgfLoader, FacesVerticesAndNestedObjects) {
-  absl::StatusOr<Scene> s = Load(std::string(kSquare) +
-                                 "o room\no floor\nf s0 s1 s2 s3\no\nf s0 s1 s2\no\nf s2 s3 s0\n");
+  absl::StatusOr<Scene> s =
+      Load(std::string(kSquare) + "o room\no floor\nf s0 s1 s2 s3\no\nf s0 s1 s2\no\nf s2 s3 s0\n");
   ASSERT_TRUE(s.ok()) << s.status();
   ASSERT_EQ(s->faces.size(), 3u);
   EXPECT_EQ(s->positions.size(), 4u);  // shared while the transform stays the same
@@ -47,24 +49,28 @@ TEST(MgfLoader, FacesVerticesAndNestedObjects) {
 
 TEST(MgfTransform, OperationsApplyInTheOrderWritten) {
   auto apply = [](std::vector<std::string> args, Vec3 p) {
-    absl::StatusOr<Affine> a = ParseXf(args, std::vector<long long>(XfArrayCounts(args)->size(), 0));
-    EXPECT_TRUE(a.ok()) << a.status();
-    return a->Apply(p);
+    absl::StatusOr<XfProgram> xf = ParseXfProgram(args);
+    EXPECT_TRUE(xf.ok()) << xf.status();
+    return xf->Evaluate(std::vector<long long>(xf->array_counts.size(), 0)).Apply(p);
   };
   ExpectNear(apply({"-t", "1", "2", "3", "-rz", "90"}, {1, 0, 0}), {-2, 2, 3});
   ExpectNear(apply({"-rz", "90", "-t", "1", "2", "3"}, {1, 0, 0}), {1, 3, 3});
   ExpectNear(apply({"-rx", "90"}, {0, 1, 0}), {0, 0, 1});
   ExpectNear(apply({"-ry", "90"}, {0, 0, 1}), {1, 0, 0});
   ExpectNear(apply({"-s", "2", "-t", "1", "0", "0"}, {1, 1, 1}), {3, 2, 2});
+  ExpectNear(apply({"-sy", "3"}, {1, 1, 1}), {1, 3, 1});
   ExpectNear(apply({"-t", "1", "0", "0", "-i", "3", "-t", "0", "1", "0"}, {0, 0, 0}), {1, 3, 0});
-  absl::StatusOr<Affine> element = ParseXf({"-t", "-21", "0", "0", "-a", "15", "-t", "3", "0", "0"}, {4});
-  ASSERT_TRUE(element.ok());
-  ExpectNear(element->Apply({0, 0, 0}), {-9, 0, 0});
-  EXPECT_TRUE(ParseXf({"-my"}, {})->Mirrors());
-  EXPECT_FALSE(ParseXf({"-q"}, {}).ok());
-  EXPECT_FALSE(ParseXf({"-t", "1", "2"}, {}).ok());
-  EXPECT_FALSE(ParseXf({"-s", "0"}, {}).ok());
-  EXPECT_FALSE(XfArrayCounts({"-a", "0"}).ok());
+  absl::StatusOr<XfProgram> array =
+      ParseXfProgram({"-t", "-21", "0", "0", "-a", "15", "-t", "3", "0", "0"});
+  ASSERT_TRUE(array.ok());
+  EXPECT_EQ(array->array_counts, std::vector<long long>{15});
+  ExpectNear(array->Evaluate({4}).Apply({0, 0, 0}), {-9, 0, 0});
+  EXPECT_TRUE(ParseXfProgram({"-my"})->Evaluate({}).Mirrors());
+  EXPECT_FALSE(ParseXfProgram({"-q"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-t", "1", "2"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-s", "0"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-a", "0"}).ok());
+  EXPECT_FALSE(ParseXfProgram({"-i", "-1"}).ok());
 }
 
 TEST(MgfLoader, TransformAppliesWhereTheVertexIsUsedInnerFirst) {
@@ -78,8 +84,8 @@ TEST(MgfLoader, TransformAppliesWhereTheVertexIsUsedInnerFirst) {
 }
 
 TEST(MgfLoader, ArraysRepeatTheirStatements) {
-  absl::StatusOr<Scene> s = Load(std::string(kSquare) +
-                                 "xf -a 2 -t 5 0 0 -a 3 -t 0 5 0\nf s0 s1 s2\nxf\nf s0 s1 s2\n");
+  absl::StatusOr<Scene> s =
+      Load(std::string(kSquare) + "xf -a 2 -t 5 0 0 -a 3 -t 0 5 0\nf s0 s1 s2\nxf\nf s0 s1 s2\n");
   ASSERT_TRUE(s.ok()) << s.status();
   ASSERT_EQ(s->faces.size(), 7u);
   // Last index fastest, as MGF's parser counts.
@@ -96,8 +102,8 @@ TEST(MgfLoader, MirrorReversesWindingSoFacesKeepFacingTheirSide) {
 }
 
 TEST(MgfLoader, PrimitivesAreTransformedWithTheirVertices) {
-  absl::StatusOr<Scene> s = Load(
-      "v a =\n p 0 0 0\nv b =\n p 0 0 1\nxf -s 2 -t 1 0 0\ncyl a 0.5 b\nxf\n");
+  absl::StatusOr<Scene> s =
+      Load("v a =\n p 0 0 0\nv b =\n p 0 0 1\nxf -s 2 -t 1 0 0\ncyl a 0.5 b\nxf\n");
   ASSERT_TRUE(s.ok()) << s.status();
   ASSERT_EQ(s->faces.size(), 16u);  // ImportOptions::curve_segments
   double area = 0, zmax = 0;
@@ -157,14 +163,14 @@ TEST(MgfLoader, FaceWithHoleBecomesOneFace) {
 TEST(MgfLoader, ErrorsNameFileAndLine) {
   EXPECT_EQ(Error(Load("v a =\n p 0 0 0\nf a a q\n")), "main.mgf:3: vertex 'q' is not defined");
   EXPECT_EQ(Error(Load("v a =\n p 0 x 0\n")), "main.mgf:2: 'p' argument 2 is not a number");
-  EXPECT_EQ(Error(Load("m x =\n rd 1.5\n")),
-            "main.mgf:2: 'rd' must be in [0, 1] (roughness >= 0)");
+  EXPECT_EQ(Error(Load("m x =\n rd 1.5\n")), "main.mgf:2: 'rd' must be in [0, 1] (roughness >= 0)");
   EXPECT_EQ(Error(Load("xf\n")), "main.mgf:1: 'xf' ends a transform but none is open in this file");
   EXPECT_EQ(Error(Load("\nxf -t 1 0 0\n")),
             "main.mgf:2: xf transform is never closed (no matching 'xf' line)");
   EXPECT_EQ(Error(Load("f a b\n")), "main.mgf:1: 'f' needs at least 3 vertices");
   EXPECT_EQ(Error(Load("o\n")), "main.mgf:1: 'o' ends an object but none is open");
-  EXPECT_EQ(Error(Load("\n\ni nosuch.mgf\n")), "main.mgf:3: cannot include 'nosuch.mgf': no such file");
+  EXPECT_EQ(Error(Load("\n\ni nosuch.mgf\n")),
+            "main.mgf:3: cannot include 'nosuch.mgf': no such file");
   EXPECT_EQ(Error(Load("i a.mgf\n", {{"a.mgf", "\nv x =\n p 0 0\n"}})),
             "a.mgf:3: 'p' needs 3 numbers");
   EXPECT_EQ(Error(Load("sph c 1\n")), "main.mgf:1: vertex 'c' is not defined");
@@ -172,7 +178,8 @@ TEST(MgfLoader, ErrorsNameFileAndLine) {
 }
 
 TEST(MgfLoader, IncludeCyclesAreRefused) {
-  const std::string message = Error(Load("i a.mgf\n", {{"a.mgf", "i b.mgf\n"}, {"b.mgf", "\ni a.mgf\n"}}));
+  const std::string message =
+      Error(Load("i a.mgf\n", {{"a.mgf", "i b.mgf\n"}, {"b.mgf", "\ni a.mgf\n"}}));
   EXPECT_EQ(message, "b.mgf:2: include cycle: main.mgf -> a.mgf -> b.mgf -> a.mgf");
   EXPECT_NE(Error(Load("i main.mgf\n", {{"main.mgf", "i main.mgf\n"}})).find("include cycle"),
             std::string::npos);
@@ -186,6 +193,12 @@ TEST(MgfLoader, HugeArraysAreRefusedNotRun) {
             "main.mgf:3: more than 10000 statements to run (xf array too large?)");
   EXPECT_EQ(Error(Load(std::string(kSquare) + "xf -a 5000 -t 1 0 0\nf s0 s1 s2\nxf\n", {}, limits)),
             "main.mgf:10: more than 1000 faces (xf array too large?)");
+  // An include repeated by an array counts each element even when the file is empty.
+  EXPECT_EQ(Error(Load("\ni e.mgf -a 1000000000\n", {{"e.mgf", ""}}, limits)),
+            "main.mgf:2: more than 10000 statements to run (xf array too large?)");
+  std::string many = "v a =\n p 0 0 0\nfh";
+  for (int i = 0; i < 600; ++i) many += " a";
+  EXPECT_EQ(Error(Load(many + "\n")), "main.mgf:3: 'fh' with more than 512 vertices");
   ImportOptions options;
   options.curve_segments = 100000;
   EXPECT_FALSE(LoadMgfText("", "x.mgf", options, MgfReaderFromMap({})).ok());

@@ -1,9 +1,10 @@
-// RenderPark's MGF scenes (../shared/scenes/renderpark/) load through the MGF loader (before
-// the import rules, which add the back-face twins of two-sided faces): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
+// RenderPark's MGF scenes (../shared/scenes/renderpark/) as the MGF loader reads them
+// (before the import rules): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
 // primitives at 16 segments), emitters present, and what the conversion left out logged.
 #include <string>
 
 #include "gtest/gtest.h"
+#include "solver/scene/load_scene.h"
 #include "solver/scene/mgf_loader.h"
 
 namespace radflux {
@@ -63,6 +64,23 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
   // "groen" is cxy 0 0.38, outside every RGB gamut.
   EXPECT_TRUE(Logged(*corridor, "mgf_colour_out_of_gamut"));
   EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights");
+}
+
+TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {
+  absl::StatusOr<Scene> scene = LoadScene(kDir + "cube.mgf", ImportOptions{});
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_EQ(scene->source, kDir + "cube.mgf");
+  EXPECT_GT(EmitterFaces(*scene), 0u);
+}
+
+TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {
+  // examp1.mgf says `sides 1` in every material; corridor.mgf never says, so MGF's default
+  // (two-sided) holds.
+  absl::StatusOr<Scene> examp1 = LoadMgfFile(kDir + "examp1.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
+  ASSERT_TRUE(examp1.ok() && corridor.ok());
+  for (const Material& m : examp1->materials) EXPECT_FALSE(m.two_sided) << m.name;
+  for (const Material& m : corridor->materials) EXPECT_TRUE(m.two_sided) << m.name;
 }
 
 TEST(MgfRenderPark, MaterialLibrariesLoadThroughIncludes) {
