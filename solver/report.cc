@@ -1,5 +1,7 @@
 #include "solver/report.h"
 
+#include <string>
+
 #include "solver/core/parallel.h"
 
 namespace radflux {
@@ -66,6 +68,22 @@ nlohmann::json AdaptiveJson(const std::vector<AdaptivePass>& passes) {
   return out;
 }
 
+// Which term of a balance that is not ok is out, and the likely why.
+std::string BalanceWhy(const EnergyBalance& e, const Rgb& imbalance) {
+  for (int b = 0; b < kBands; ++b) {
+    if (e.escaped[b] < -kEnergyBalanceFloor * e.emitted[b]) {
+      return "escaped is negative: rows or emitter columns carry more than the power that "
+             "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
+    }
+  }
+  return imbalance[0] + imbalance[1] + imbalance[2] > 0
+             ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
+               "not reciprocal, e.g. emitter columns against the emitters' own rows, or a "
+               "solve that has not converged)"
+             : "absorbed + escaped exceed emitted: rows that carry more than they should "
+               "(row sums above 1, rows that are not reciprocal)";
+}
+
 // The balance with its threshold; when it is not ok, which term is out and why.
 nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
@@ -83,13 +101,7 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
                          "max(0.005, noise / emitted); noise: the imbalance the rows' Monte Carlo "
                          "noise gives (multinomial rows of k rays, an upper estimate)"},
                         {"ok", e.Ok()}};
-  if (!e.Ok()) {
-    out["why"] = imbalance[0] + imbalance[1] + imbalance[2] > 0
-                     ? "more power emitted than absorbed and escaped: light the rows lose "
-                       "(non-reciprocal or truncated rows, leaks in the geometry)"
-                     : "more power absorbed and escaped than emitted: rows that carry more "
-                       "than they should (row sums above 1, non-reciprocal rows)";
-  }
+  if (!e.Ok()) out["why"] = BalanceWhy(e, imbalance);
   return out;
 }
 

@@ -252,14 +252,15 @@ absl::StatusOr<Scene> LoadGltfFile(const std::string& path, const ImportOptions&
   bytes << file.rdbuf();
   const size_t slash = path.find_last_of('/');
   const std::string base_dir = slash == std::string::npos ? "." : path.substr(0, slash);
-  absl::StatusOr<tinygltf::Model> model = ParseGltf(bytes.str(), path, base_dir);
+  absl::StatusOr<tinygltf::Model> model = ParseGltf(bytes.str(), path, base_dir, nullptr);
   if (!model.ok()) return model.status();
   return ModelToScene(*model, path, options);
 }
 
 absl::StatusOr<Scene> LoadGltfData(const std::string& data, const std::string& name,
-                                   const ImportOptions& options) {
-  absl::StatusOr<tinygltf::Model> model = ParseGltf(data, name, std::nullopt);
+                                   const ImportOptions& options,
+                                   const std::map<std::string, std::string>& files) {
+  absl::StatusOr<tinygltf::Model> model = ParseGltf(data, name, "", &files);
   if (!model.ok()) return model.status();
   return ModelToScene(*model, name, options);
 }

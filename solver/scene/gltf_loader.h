@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -31,10 +32,12 @@ inline constexpr uint64_t kMaxGltfTriangles = uint64_t{1} << 24;
 // with a repeated vertex is refused instead of dropped.
 absl::StatusOr<Scene> LoadGltfFile(const std::string& path, const ImportOptions& options);
 
-// The same from the bytes of a .gltf or .glb file (uploads, fuzzing): only data: URIs and
-// the GLB's own BIN chunk can hold buffers; a buffer in an external file is an error.
-// `name` is used in messages and as Scene::source.
+// The same from the bytes of a .gltf or .glb file (uploads, fuzzing), with the files it
+// names (buffers, images) taken from `files`, keyed by the URI's path relative to the glTF
+// file ("scene.bin", "textures/wall.png"; a path with ".." is never served). A buffer in a
+// file that is not there is an error. `name` is used in messages and as Scene::source.
 absl::StatusOr<Scene> LoadGltfData(const std::string& data, const std::string& name,
-                                   const ImportOptions& options);
+                                   const ImportOptions& options,
+                                   const std::map<std::string, std::string>& files = {});
 
 }  // namespace radflux

@@ -7,6 +7,7 @@
 #include <exception>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "absl/strings/match.h"
@@ -26,32 +27,52 @@ bool Readable(const std::string& extension) {
          extension == "KHR_mesh_quantization";
 }
 
-// Fs callbacks' user data: the directory external files may come from ("" for none).
+// Fs callbacks' user data: where external files may come from.
 struct FileAccess {
-  std::string base_dir;
+  std::string base_dir;                                       // on disk, under this ("" = not)
+  const std::map<std::string, std::string>* files = nullptr;  // or these (relative path -> bytes)
 };
 
-// Whether `path` is inside the scene's directory: under base_dir, no ".." component.
-bool UnderBaseDir(const std::string& path, const FileAccess& access) {
-  if (access.base_dir.empty() || !absl::StartsWith(path, access.base_dir)) return false;
+bool HasParentStep(const std::string& path) {
   for (absl::string_view part : absl::StrSplit(path, '/')) {
-    if (part == "..") return false;
+    if (part == "..") return true;
   }
-  return true;
+  return false;
+}
+
+// The bytes `path` names in access.files, or null (the path as tinygltf joins it to an
+// empty base directory: the URI itself).
+const std::string* BundleFile(const std::string& path, const FileAccess& access) {
+  if (access.files == nullptr || HasParentStep(path)) return nullptr;
+  const auto it = access.files->find(path);
+  return it == access.files->end() ? nullptr : &it->second;
+}
+
+// Whether `path` may be read from disk: under base_dir, no ".." component.
+bool OnDiskUnderBaseDir(const std::string& path, const FileAccess& access) {
+  return !access.base_dir.empty() && absl::StartsWith(path, access.base_dir) &&
+         !HasParentStep(path);
 }
 
 bool FileExists(const std::string& path, void* user_data) {
+  const FileAccess& access = *static_cast<FileAccess*>(user_data);
+  if (access.files != nullptr) return BundleFile(path, access) != nullptr;
   struct stat info;
-  return UnderBaseDir(path, *static_cast<FileAccess*>(user_data)) &&
-         stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+  return OnDiskUnderBaseDir(path, access) && stat(path.c_str(), &info) == 0 &&
+         S_ISREG(info.st_mode);
 }
 
 std::string ExpandFilePath(const std::string& path, void*) { return path; }
 
 bool ReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user_data) {
+  const FileAccess& access = *static_cast<FileAccess*>(user_data);
+  if (const std::string* bytes = BundleFile(path, access); bytes != nullptr) {
+    out->assign(bytes->begin(), bytes->end());
+    return true;
+  }
   struct stat info;
-  if (!UnderBaseDir(path, *static_cast<FileAccess*>(user_data)) || stat(path.c_str(), &info) != 0) {
+  if (!OnDiskUnderBaseDir(path, access) || stat(path.c_str(), &info) != 0) {
     *err = "not readable here";
     return false;
   }
@@ -128,7 +149,8 @@ absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std:
 }  // namespace
 
 absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::string& name,
-                                          const std::optional<std::string>& base_dir) {
+                                          const std::string& base_dir,
+                                          const std::map<std::string, std::string>* files) {
   if (data.size() > std::numeric_limits<unsigned int>::max()) {
     return absl::InvalidArgumentError(absl::StrCat(name, ": larger than 4 GiB"));
   }
@@ -138,7 +160,7 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
     return absl::InvalidArgumentError(absl::StrCat(
         name, ": cannot parse glTF: JSON nested deeper than ", kMaxGltfJsonDepth, " levels"));
   }
-  FileAccess access{base_dir.value_or("")};
+  FileAccess access{files == nullptr ? base_dir : "", files};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&FileExists, &ExpandFilePath, &ReadWholeFile, &WriteWholeFile, &access});
   loader.SetImageLoader(&KeepImageUndecoded, nullptr);

@@ -1,12 +1,12 @@
 // tinygltf behind one call: bytes of a .gltf or .glb in, a parsed model or one error line out.
 // File access is ours, not tinygltf's defaults: external files are read only from the
-// scene's own directory and below (no ".." component, no home-directory or shell expansion,
-// no search of the working directory), at most kMaxGltfExternalBytes each; images are not
-// decoded.
+// scene's own directory and below, or from a bundle of files in memory (no ".." component,
+// no home-directory or shell expansion, no search of the working directory), at most
+// kMaxGltfExternalBytes each from disk; images are not decoded.
 #pragma once
 
 #include <cstdint>
-#include <optional>
+#include <map>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -22,12 +22,14 @@ inline constexpr uint64_t kMaxGltfExternalBytes = uint64_t{1} << 32;
 inline constexpr int kMaxGltfJsonDepth = 64;
 
 // Parses `data` (GLB when it starts with the "glTF" magic, glTF JSON otherwise). External
-// files (buffer and image URIs) are read relative to `base_dir`; with no base_dir a buffer
-// in an external file is an error. INVALID_ARGUMENT "<name>: cannot parse glTF: ..." on one
-// line for anything tinygltf refuses (tinygltf's exceptions included), for JSON nested
-// deeper than kMaxGltfJsonDepth, and for a file that requires an extension radflux does
+// files (buffer and image URIs) come from `files` when it is given (keyed by the URI's path,
+// URL-decoded, relative to the glTF file), else from disk relative to `base_dir`; with
+// neither ("" and null) a buffer in an external file is an error. INVALID_ARGUMENT "<name>: cannot
+// parse glTF: ..." on one line for anything tinygltf refuses (tinygltf's exceptions included), for
+// JSON nested deeper than kMaxGltfJsonDepth, and for a file that requires an extension radflux does
 // not read.
 absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::string& name,
-                                          const std::optional<std::string>& base_dir);
+                                          const std::string& base_dir,
+                                          const std::map<std::string, std::string>* files);
 
 }  // namespace radflux

@@ -55,7 +55,7 @@ absl::Status MgfInterpreter::RunFile(FileRun& run, int depth, bool include_frame
       return Invalid(absl::StrCat(xf_.back().path, ":", xf_.back().line,
                                   ": xf transform is never closed (no matching 'xf' line)"));
     }
-    object_path_.resize(objects_base);  // objects left open end with their file
+    if (object_path_.size() > objects_base) object_path_.resize(objects_base);  // left open
     object_ = InternName(scene_.objects, object_index_, absl::StrJoin(object_path_, "."));
     if (!include_frame) return absl::OkStatus();
     const XfFrame& include = xf_.back();

@@ -16,6 +16,7 @@
 #include "solver/pipeline.h"
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/obj_loader.h"
+#include "solver/solve/energy_balance.h"
 #include "tests/unit/gltf_test_builder.h"
 
 namespace radflux {
@@ -182,6 +183,9 @@ TEST(GltfCornellBox, SameTrianglesAsObjAndAsGltfGiveBitIdenticalRadiosity) {
       differing += result.solve.radiosity[p] != reference.solve.radiosity[p];
     }
     EXPECT_EQ(differing, 0u) << name << ": patches whose B differs in any bit";
+    // And the glTF scene's solve conserves energy (the open front lets light escape).
+    const EnergyBalance balance = ComputeEnergyBalance(result.System(), result.solve.radiosity);
+    EXPECT_LT(balance.RelativeImbalance(), 0.005) << name;
   }
 }
 

@@ -304,9 +304,19 @@ TEST(GltfLoader, GlbAndExternalBinAndLoadSceneGiveTheSameScene) {
     EXPECT_EQ(loaded->positions, embedded->positions);
     EXPECT_EQ(Triangles(*loaded), Triangles(*embedded));
   }
-  // From memory, the external .bin is not there to read.
-  absl::StatusOr<Scene> no_file = LoadGltfData(b.Gltf("scene data.bin"), "up.gltf", {});
-  EXPECT_EQ(no_file.status().code(), absl::StatusCode::kInvalidArgument);
+  // From memory, the .bin comes from the bundle of files (an upload), keyed by its URI.
+  absl::StatusOr<Scene> bundled = LoadGltfData(b.Gltf("bin/scene%20data.bin"), "up.gltf", {},
+                                               {{"bin/scene data.bin", b.bin()}});
+  ASSERT_TRUE(bundled.ok()) << bundled.status();
+  EXPECT_EQ(bundled->positions, embedded->positions);
+  EXPECT_EQ(Triangles(*bundled), Triangles(*embedded));
+  // Not in the bundle, or reached through "..": not read (and never from disk).
+  for (const char* uri : {"scene data.bin", "bin/../bin/scene data.bin"}) {
+    absl::StatusOr<Scene> missing =
+        LoadGltfData(b.Gltf(uri), "up.gltf", {}, {{"bin/scene data.bin", b.bin()}});
+    EXPECT_EQ(missing.status().code(), absl::StatusCode::kInvalidArgument) << uri;
+    EXPECT_NE(missing.status().message().find(uri), std::string::npos) << missing.status();
+  }
 }
 
 }  // namespace

@@ -131,6 +131,18 @@ TEST(MgfLoader, IncludesAreRelativeToTheIncludingFile) {
   EXPECT_NEAR(Corner(*s, 2, 0).z, 0, 1e-12);  // vertices outlive their file
 }
 
+TEST(MgfLoader, ObjectsLeftOpenEndWithTheirFile) {
+  absl::StatusOr<Scene> s = Load(
+      "o a\ni open.mgf\nf s0 s1 s2\ni close.mgf\no c\nf s0 s1 s2\n",
+      {{"open.mgf", std::string(kSquare) + "o b\nf s0 s1 s2\n"}, {"close.mgf", "o\nf s0 s1 s2\n"}});
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_EQ(s->faces.size(), 4u);
+  EXPECT_EQ(s->objects[s->faces[0].object], "a.b");
+  EXPECT_EQ(s->objects[s->faces[1].object], "a");
+  EXPECT_EQ(s->objects[s->faces[2].object], "");  // an include may close its parent's object
+  EXPECT_EQ(s->objects[s->faces[3].object], "c");
+}
+
 TEST(MgfLoader, IncludeWithArrayRepeatsTheFile) {
   absl::StatusOr<Scene> s =
       Load("i part.mgf -a 3 -t 2 0 0\n", {{"part.mgf", std::string(kSquare) + "f s0 s1 s2\n"}});
