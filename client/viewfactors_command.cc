@@ -8,9 +8,11 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_format.h"
 #include "client/exit_status.h"
+#include "client/import_flags.h"
 #include "client/job_flags.h"
 #include "solver/formfactor/view_factor_job.h"
 #include "solver/scene/load_scene.h"
+#include "solver/scene/stl_loader.h"
 #include "solver/scene/vs3_loader.h"
 
 namespace radflux::cli {
@@ -24,11 +26,23 @@ struct ViewFactorArgs {
   bool quiet = false;
   bool form_factors_given = false;  // --form-factors on the command line: auto means patches
   JobFlags job;
+  ImportFlags import;
 };
 
-// The scene; a .vs3 file's control record also sets the enclosure adjustment.
-absl::StatusOr<Scene> LoadViewFactorScene(const std::string& path, ViewFactorJobOptions& options) {
-  if (!absl::EndsWithIgnoreCase(path, ".vs3")) return LoadScene(path, ImportOptions{});
+// The scene; a .vs3 file's control record also sets the enclosure adjustment. STL and .vs3
+// are read as they are, without the import rules, so that surface k of the output is facet
+// or surface record k of the file (what uDALES and View3D users index by).
+absl::StatusOr<Scene> LoadViewFactorScene(const ViewFactorArgs& args,
+                                          ViewFactorJobOptions& options) {
+  const std::string& path = args.scene;
+  if (absl::EndsWithIgnoreCase(path, ".stl")) return LoadStlFile(path);
+  if (!absl::EndsWithIgnoreCase(path, ".vs3")) {
+    absl::StatusOr<ImportOptions> import = ToImportOptions(args.import);
+    if (!import.ok()) return import.status();
+    absl::StatusOr<Scene> scene = LoadScene(path, *import);
+    if (scene.ok()) PrintImportLog(scene->import_log, args.quiet);
+    return scene;
+  }
   absl::StatusOr<Vs3Model> model = LoadVs3File(path);
   if (!model.ok()) return model.status();
   if (model->control.emittances) {
@@ -90,7 +104,7 @@ absl::Status RunViewFactors(const ViewFactorArgs& args) {
   options.output.path = args.output;
   options.output.min_vf = args.min_vf;
   options.output.svf_path = args.svf;
-  absl::StatusOr<Scene> scene = LoadViewFactorScene(args.scene, options);
+  absl::StatusOr<Scene> scene = LoadViewFactorScene(args, options);
   if (!scene.ok()) return scene.status();
   absl::StatusOr<ViewFactorReport> report = RunViewFactorJob(*std::move(scene), options);
   if (!report.ok()) return report.status();
@@ -140,6 +154,7 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
       ->transform(CLI::AsSizeValue(false));
   cmd->add_flag("--quiet,-q", args->quiet, "no progress output");
   AddJobFlags(*cmd, args->job);
+  AddImportFlags(*cmd, args->import);
   cmd->callback([args, cmd, &exit_code] {
     args->form_factors_given = cmd->count("--form-factors") > 0;
     exit_code = ReportStatus("viewfactors", RunViewFactors(*args));

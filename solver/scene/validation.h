@@ -17,4 +17,9 @@ inline constexpr double kDegenerateAreaTolerance = 1e-9;
 // some face emits. View factors are geometry only and pass false.
 absl::Status ValidateScene(const Scene& scene, bool require_emitter = true);
 
+// The checks of ValidateScene for one face (vertex count, finite, zero area, planar, convex)
+// and one material (reflectance in [0,1), emission finite and >= 0), with its messages.
+absl::Status ValidateFace(const Scene& scene, size_t f);
+absl::Status ValidateMaterial(const Scene& scene, const Material& m);
+
 }  // namespace radflux
