@@ -156,8 +156,8 @@ Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Poi
   // u.x picks the x where the sub-rectangle [x0, x] has solid angle u.x * S...
   const double au = u.x * f.solid_angle + f.k;
   const double fu = (std::cos(au) * f.b0 - f.b1) / std::sin(au);
-  const double cu = std::clamp(std::copysign(1 / std::sqrt(fu * fu + f.b0 * f.b0), fu),
-                               -1 + 1e-15, 1 - 1e-15);
+  const double cu =
+      std::clamp(std::copysign(1 / std::sqrt(fu * fu + f.b0 * f.b0), fu), -1 + 1e-15, 1 - 1e-15);
   const double xu = std::clamp(-(cu * f.z0) / std::sqrt(1 - cu * cu), f.x0, f.x1);
   // ...and u.y the y along that strip, uniform in h(y).
   const double d2 = xu * xu + f.z0 * f.z0;

@@ -38,7 +38,6 @@ double SphericalRectangleSolidAngle(const SphericalRectangle& rect, const Vec3& 
 Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Point2 u,
                               double* pdf = nullptr);
 // The u that SampleSphericalRectangle maps to point q on `rect`.
-Point2 InvertSphericalRectangleSample(const SphericalRectangle& rect, const Vec3& p,
-                                      const Vec3& q);
+Point2 InvertSphericalRectangleSample(const SphericalRectangle& rect, const Vec3& p, const Vec3& q);
 
 }  // namespace radflux
