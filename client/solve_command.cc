@@ -59,7 +59,14 @@ std::vector<std::string> RefinementLines(const JobResult& result) {
   return lines;
 }
 
-absl::Status RunSolve(const SolveArgs& args) {
+// How the solve itself ended (outputs are written either way).
+struct SolveOutcome {
+  bool converged = true;
+  int iterations = 0;
+  double residual = 0, tolerance = 0;
+};
+
+absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
   absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
   if (!options.ok()) return options.status();
   options->spill.memory_limit = args.memory_limit;
@@ -85,6 +92,8 @@ absl::Status RunSolve(const SolveArgs& args) {
   if (!result.ok()) return result.status();
   progress.Finish();
   const PreparedJob& job = *result->job;
+  outcome = {result->solve.converged, result->solve.iterations, result->solve.residual,
+             options->solver.tolerance};
   progress.Line(
       absl::StrFormat("%d patches, %d non-zeros (%.1f MB), %d iterations, residual %.2e; "
                       "mesh %.3fs embree %.3fs rows %.3fs solve %.3fs",
@@ -131,7 +140,14 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   solve->add_option("--spill-dir", args->spill_dir,
                     "with --memory-limit: directory for the spill file (default: a fresh "
                     "directory under $TMPDIR or /tmp, removed at the end)");
-  solve->callback([args, &exit_code] { exit_code = ReportStatus("solve", RunSolve(*args)); });
+  solve->callback([args, &exit_code] {
+    SolveOutcome outcome;
+    exit_code = ReportStatus("solve", RunSolve(*args, outcome));
+    if (exit_code == 0 && !outcome.converged) {
+      exit_code =
+          ReportNotConverged("solve", outcome.iterations, outcome.residual, outcome.tolerance);
+    }
+  });
 }
 
 }  // namespace radflux::cli

@@ -1,5 +1,7 @@
 #include "solver/report.h"
 
+#include <string>
+
 #include "solver/core/parallel.h"
 
 namespace radflux {
@@ -66,15 +68,68 @@ nlohmann::json AdaptiveJson(const std::vector<AdaptivePass>& passes) {
   return out;
 }
 
+// Which term of a balance that is not ok is out, and the likely why.
+std::string BalanceWhy(const EnergyBalance& e, const Rgb& imbalance) {
+  for (int b = 0; b < kBands; ++b) {
+    if (e.escaped[b] < -kEnergyBalanceFloor * e.emitted[b]) {
+      return "escaped is negative: rows or emitter columns carry more than the power that "
+             "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
+    }
+  }
+  return imbalance[0] + imbalance[1] + imbalance[2] > 0
+             ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
+               "not reciprocal, e.g. emitter columns against the emitters' own rows, or a "
+               "solve that has not converged)"
+             : "absorbed + escaped exceed emitted: rows that carry more than they should "
+               "(row sums above 1, rows that are not reciprocal)";
+}
+
+// The balance with its threshold; when it is not ok, which term is out and why.
 nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
-  return {{"emitted", BandsJson(balance->emitted)},
-          {"absorbed", BandsJson(balance->absorbed)},
-          {"escaped", BandsJson(balance->escaped)},
-          {"unaccounted", BandsJson(balance->unaccounted)},
-          {"relative_imbalance", balance->RelativeImbalance()},
-          {"tolerance", kEnergyBalanceTolerance},
-          {"ok", balance->RelativeImbalance() <= kEnergyBalanceTolerance}};
+  const EnergyBalance& e = *balance;
+  Rgb imbalance{};
+  for (int b = 0; b < kBands; ++b) imbalance[b] = e.emitted[b] - e.absorbed[b] - e.escaped[b];
+  nlohmann::json out = {{"emitted", BandsJson(e.emitted)},
+                        {"absorbed", BandsJson(e.absorbed)},
+                        {"escaped", BandsJson(e.escaped)},
+                        {"imbalance", BandsJson(imbalance)},
+                        {"noise", BandsJson(e.noise)},
+                        {"relative_imbalance", e.RelativeImbalance()},
+                        {"tolerance", e.Tolerance()},
+                        {"tolerance_rule",
+                         "max(0.005, noise / emitted); noise: the imbalance the rows' Monte Carlo "
+                         "noise gives (multinomial rows of k rays, an upper estimate)"},
+                        {"ok", e.Ok()}};
+  if (!e.Ok()) out["why"] = BalanceWhy(e, imbalance);
+  return out;
+}
+
+// What cg handed over and why, with the solve's estimated remaining error.
+nlohmann::json SolverJson(const SolveResult& s) {
+  nlohmann::json used = nlohmann::json::array();
+  for (SolverMethod m : s.methods_used) used.push_back(std::string(SolverName(m)));
+  return {{"requested", std::string(SolverName(s.requested))},
+          {"used", used},
+          {"fallback_reason", s.fallback_reason.empty() ? nlohmann::json(nullptr)
+                                                        : nlohmann::json(s.fallback_reason)}};
+}
+
+// Power the cut-off dropped, W per band: the dropped form-factor area sum_i A_i d_i times
+// the area-mean radiosity (an estimate: the dropped entries' own B_j are not kept).
+nlohmann::json DroppedPowerJson(const JobResult& result) {
+  const PatchAttributes& p = result.job->attributes;
+  const std::vector<Rgb>& b = result.solve.radiosity;
+  Rgb mean{};
+  double area = 0;
+  for (size_t i = 0; i < b.size() && i < p.size(); ++i) {
+    area += p.area[i];
+    for (int k = 0; k < kBands; ++k) mean[k] += p.area[i] * b[i][k];
+  }
+  Rgb watts{};
+  for (int k = 0; k < kBands; ++k)
+    watts[k] = area > 0 ? result.row_stats.dropped_area * mean[k] / area : 0;
+  return BandsJson(watts);
 }
 
 // Where the rows lived when they spilled (before the report's own pass over them).
@@ -99,7 +154,8 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
   const absl::StatusOr<EnergyBalance> balance =
       result.solved_balance ? *result.solved_balance
-                            : StreamEnergyBalance(result.System(), result.solve.radiosity);
+                            : StreamEnergyBalance(result.System(), result.solve.radiosity,
+                                                  SampledRays(options.form_factors));
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
   nlohmann::json report = {
@@ -117,7 +173,8 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
         {"bytes", result.RowBytes()},
         {"spill", spill},
         {"dropped_sum", result.row_stats.dropped_sum},
-        {"max_row_dropped", result.row_stats.max_row_dropped}}},
+        {"max_row_dropped", result.row_stats.max_row_dropped},
+        {"dropped_power_estimate", DroppedPowerJson(result)}}},
       {"seconds", {{"mesh", t.mesh}, {"embree", t.embree}, {"rows", t.rows}, {"solve", t.solve}}},
       {"rays", result.row_stats.rays},
       {"rays_per_second", t.rows > 0 ? result.row_stats.rays / t.rows : 0.0},
@@ -125,11 +182,15 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
        {{"method", std::string(SolverName(result.solve.method))},
         {"iterations", result.solve.iterations},
         {"residual", result.solve.residual},
+        {"residual_measure", "||E + rho F B - B|| / ||rho F B|| (area-weighted), max over bands"},
+        {"error_estimate", result.solve.error_estimate},
+        {"error_estimate_method", result.solve.error_estimate_method},
         {"converged", result.solve.converged},
         {"cancelled", result.solve.cancelled},
         {"bands_solved", result.solve.bands_solved},
         {"reciprocity_error", result.solve.reciprocity_error},
         {"residual_history", result.solve.residual_history}}},
+      {"solver", SolverJson(result.solve)},
       {"energy_balance", BalanceJson(balance)},
   };
   if (result.hierarchical) report["hierarchical"] = HierarchicalJson(*result.hierarchical);

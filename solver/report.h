@@ -12,9 +12,6 @@
 
 namespace radflux {
 
-// Energy balance is checked against this relative tolerance in the report's "ok" flag.
-inline constexpr double kEnergyBalanceTolerance = 0.005;
-
 nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
                              const std::string& scene_name);
 

@@ -18,10 +18,17 @@ struct FormFactorOptions {
   int rays = 64;           // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
   int hemicube_res = 32;   // r: hemicube top-face resolution (r x r), even
   int samples = 4;         // s: analytic points per patch (also monte_carlo's emitter columns)
-  double cutoff = 1e-6;    // entries F_ij below this are dropped (their sum is reported)
+  double cutoff = 1e-6;    // entries F_ij below this are dropped (their sum is reported),
+                           // except in emitter columns (direct light is never cut)
   uint64_t seed = 1;       // job seed; each patch's samples are seeded from (seed, patch)
   int threads = 0;         // 0 = all cores
   int block_size = 64;     // rows per block: the unit of work, checkpoint and retry
 };
+
+// k when the rows' non-emitter entries are Monte Carlo hit counts / k (monte_carlo), else 0:
+// what the energy balance needs to know of the rows' sampling noise.
+inline int SampledRays(const FormFactorOptions& o) {
+  return o.method == FormFactorMethod::kMonteCarlo ? o.rays : 0;
+}
 
 }  // namespace radflux

@@ -36,15 +36,16 @@ class RowAccumulator {
   double Value(uint32_t j) const { return value_[j]; }
   const std::vector<uint32_t>& Touched() const { return touched_; }
 
-  // Moves the row into `block` (ascending columns, entries >= cutoff) and clears it;
-  // returns the sum of the entries the cut-off dropped.
-  double Flush(double cutoff, RowBlock& block) {
+  // Moves the row into `block` (ascending columns, entries >= cutoff, and every entry in
+  // a column with keep[j] != 0: emitter columns, which carry direct light however small
+  // the form factor) and clears it; returns the sum of the entries the cut-off dropped.
+  double Flush(double cutoff, RowBlock& block, const std::vector<uint8_t>* keep = nullptr) {
     SortTouched();
     double dropped = 0;
     for (uint32_t j : touched_) {
       const double v = value_[j];
       value_[j] = 0;
-      if (v >= cutoff) {
+      if (v >= cutoff || (keep != nullptr && j < keep->size() && (*keep)[j] != 0)) {
         block.Add(j, static_cast<float>(v));
       } else {
         dropped += v;

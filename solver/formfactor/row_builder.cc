@@ -16,6 +16,7 @@ void RowBlockStats::Merge(const RowBlockStats& o) {
   rays += o.rays;
   dropped_sum += o.dropped_sum;
   max_row_dropped = std::max(max_row_dropped, o.max_row_dropped);
+  dropped_area += o.dropped_area;
 }
 
 std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
@@ -38,8 +39,9 @@ RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, dou
   block.row_begin.reserve(count + 1);
   for (uint32_t i = first; i < first + count; ++i) {
     if (context.needs_row[i]) stats.rays += builder.BuildRow(i, row);
-    const double dropped = row.Flush(cutoff, block);
+    const double dropped = row.Flush(cutoff, block, &context.emitter);
     stats.dropped_sum += dropped;
+    stats.dropped_area += context.mesh->patches[i].area * dropped;
     stats.max_row_dropped = std::max(stats.max_row_dropped, dropped);
   }
   return block;

@@ -43,12 +43,16 @@ std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
 
 struct RowBlockStats {
   uint64_t rays = 0;
-  double dropped_sum = 0;      // sum over rows of the F_ij dropped by the cut-off
+  double dropped_sum = 0;      // sum over rows of the F_ij dropped by the cut-off (never
+                               // an emitter column's: those are kept whatever their size)
   double max_row_dropped = 0;  // the largest such sum in one row
+  double dropped_area = 0;     // sum over rows of A_i times the row's dropped sum, scene
+                               // units^2: times a radiosity, the power the cut-off dropped
   void Merge(const RowBlockStats& o);
 };
 
-// Rows [first, first + count) as one block; `row` is scratch of size n.
+// Rows [first, first + count) as one block; `row` is scratch of size n. Entries below
+// `cutoff` are dropped except in emitter columns (context.emitter).
 RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, double cutoff,
                        uint32_t first, uint32_t count, RowAccumulator& row, RowBlockStats& stats);
 

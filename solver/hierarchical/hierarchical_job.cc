@@ -90,7 +90,8 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   const PatchMesh& display = a.mesh;
   const PatchAttributes leaf_attributes = ComputePatchAttributes(scene, a.leaf_mesh);
   const EnergyBalance balance =
-      ComputeEnergyBalance({&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity);
+      ComputeEnergyBalance({&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity,
+                           SampledRays(options.form_factors));
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareFromMesh(std::move(scene), display);
   if (!job.ok()) return job.status();

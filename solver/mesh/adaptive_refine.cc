@@ -170,7 +170,7 @@ class RowSource {
     RowAccumulator& acc = scratch_[static_cast<size_t>(ThreadIndex())];
     rays += builder_->BuildRow(i, acc);
     RowBlock block;
-    acc.Flush(ff_.cutoff, block);
+    acc.Flush(ff_.cutoff, block, &context_.emitter);
     entries += block.col.size();
     for (size_t k = 0; k < block.col.size(); ++k) row.push_back({block.col[k], block.value[k]});
   }
@@ -180,13 +180,16 @@ class RowSource {
     return LeafPoints(tree_, leaves_[i], ff_.samples, ff_.seed);
   }
 
-  // F_ij by analytic pairs from row i's Points (PerEntry only), appended when above the cut-off.
+  // F_ij by analytic pairs from row i's Points (PerEntry only), appended when above the cut-off
+  // or in an emitter column.
   void Entry(uint32_t i, const std::vector<Vec3>& points, uint32_t j, Row& row, uint64_t& entries,
              uint64_t& rays) const {
     if (!pairs_->CanExchange(i, j)) return;
     ++entries;
     const double f = pairs_->FormFactor(i, points, j, ff_.seed, rays);
-    if (f > 0 && f >= ff_.cutoff) row.push_back({j, static_cast<float>(f)});
+    if (f > 0 && (f >= ff_.cutoff || (j < context_.emitter.size() && context_.emitter[j] != 0))) {
+      row.push_back({j, static_cast<float>(f)});
+    }
   }
 
  private:

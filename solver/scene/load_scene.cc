@@ -4,6 +4,8 @@
 #include <cctype>
 
 #include "absl/strings/str_cat.h"
+#include "solver/scene/gltf_loader.h"
+#include "solver/scene/mgf_loader.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -26,8 +28,10 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& op
   (void)options;
   const std::string ext = Extension(path);
   if (ext == "obj") return LoadObjFile(path);
-  return absl::InvalidArgumentError(
-      absl::StrCat(path, ": unknown scene format '", ext, "' (supported: .obj)"));
+  if (ext == "gltf" || ext == "glb") return LoadGltfFile(path, options);
+  if (ext == "mgf") return LoadMgfFile(path, options);
+  return absl::InvalidArgumentError(absl::StrCat(
+      path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb, .mgf)"));
 }
 
 }  // namespace radflux

@@ -11,7 +11,8 @@
 
 namespace radflux {
 
-// The scene in `path` (.obj; the extension picks the format, case-insensitively).
+// The scene in `path` (.obj, .gltf, .glb, .mgf; the extension picks the format,
+// case-insensitively).
 // INVALID_ARGUMENT for an unknown extension, naming the ones supported. The result is not
 // yet validated: see ValidateScene.
 absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options);

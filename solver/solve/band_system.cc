@@ -84,21 +84,31 @@ Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const s
   return s;
 }
 
-Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r) {
+Rgb ResidualMeasures(const BandSystem& bands, const std::vector<Rgb>& r,
+                     const std::vector<Rgb>& reflected) {
   // Serial, so a sweep pays for no extra parallel region (O(n), small next to the rows),
   // and summed exactly as ReduceBlocks(kSolveBlock) would: per block, then blocks in order.
   const std::vector<double>& area = *bands.area;
-  Rgb norm2{};
+  Rgb r2{}, reflected2{};
   for (int64_t begin = 0; begin < bands.n; begin += kSolveBlock) {
     const int64_t end = std::min<int64_t>(bands.n, begin + kSolveBlock);
-    Rgb s{};
+    Rgb s{}, t{};
     for (int64_t i = begin; i < end; ++i)
-      for (int k = 0; k < bands.lanes; ++k) s[k] += area[i] * r[i][k] * r[i][k];
-    for (int k = 0; k < kBands; ++k) norm2[k] += s[k];
+      for (int k = 0; k < bands.lanes; ++k) {
+        s[k] += area[i] * r[i][k] * r[i][k];
+        t[k] += area[i] * reflected[i][k] * reflected[i][k];
+      }
+    for (int k = 0; k < kBands; ++k) {
+      r2[k] += s[k];
+      reflected2[k] += t[k];
+    }
   }
-  Rgb relative{};
-  for (int k = 0; k < bands.lanes; ++k) relative[k] = std::sqrt(norm2[k]) / bands.emission_norm[k];
-  return relative;
+  Rgb measure{};
+  for (int k = 0; k < bands.lanes; ++k) {
+    const double scale = reflected2[k] > 0 ? std::sqrt(reflected2[k]) : bands.emission_norm[k];
+    measure[k] = std::sqrt(r2[k]) / scale;
+  }
+  return measure;
 }
 
 absl::StatusOr<Rgb> LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b,
@@ -106,25 +116,49 @@ absl::StatusOr<Rgb> LaneResiduals(const BandSystem& bands, const std::vector<Rgb
   std::vector<Rgb> local;
   std::vector<Rgb>& res = r != nullptr ? *r : local;
   res.resize(bands.n);
+  std::vector<Rgb> reflected(bands.n);
   const absl::Status read = ForEachRowRange(bands, [&](const RowsView& rows) {
     ParallelFor(rows.RowCount(), kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
       for (int64_t l = begin; l < end; ++l) {
         const uint32_t i = rows.first_row + static_cast<uint32_t>(l);
         const Rgb fb = GatherRow(bands, rows, i, b, 0, bands.n);
-        Rgb ri{};
-        for (int k = 0; k < bands.lanes; ++k)
-          ri[k] = bands.emission[i][k] + bands.rho[i][k] * fb[k] - b[i][k];
+        Rgb ri{}, reflected_i{};
+        for (int k = 0; k < bands.lanes; ++k) {
+          reflected_i[k] = bands.rho[i][k] * fb[k];
+          ri[k] = bands.emission[i][k] + reflected_i[k] - b[i][k];
+        }
         res[i] = ri;
+        reflected[i] = reflected_i;
       }
     });
   });
   if (!read.ok()) return read;
-  return RelativeNorms(bands, res);
+  return ResidualMeasures(bands, res, reflected);
 }
 
 Rgb ResidentLaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r) {
   assert(bands.f != nullptr);
   return *LaneResiduals(bands, b, r);
+}
+
+absl::StatusOr<double> MaxReflectedRowSum(const BandSystem& bands) {
+  std::vector<double> row_q(bands.n, 0.0);
+  const absl::Status read = ForEachRowRange(bands, [&](const RowsView& rows) {
+    for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
+      double sum = 0;
+      for (const float v : rows.RowValues(i)) sum += v;
+      for (int k = 0; k < bands.lanes; ++k) row_q[i] = std::max(row_q[i], bands.rho[i][k] * sum);
+    }
+  });
+  if (!read.ok()) return read;
+  return row_q.empty() ? 0.0 : *std::max_element(row_q.begin(), row_q.end());
+}
+
+Rgb MaxNorms(const BandSystem& bands, const std::vector<Rgb>& x) {
+  Rgb m{};
+  for (const Rgb& xi : x)
+    for (int k = 0; k < bands.lanes; ++k) m[k] = std::max(m[k], std::abs(xi[k]));
+  return m;
 }
 
 double MaxOverLanes(const BandSystem& bands, const Rgb& v) {

@@ -75,17 +75,28 @@ absl::Status ForEachRowRange(const BandSystem& bands, const RowsFn& fn);
 Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const std::vector<Rgb>& x,
               uint32_t col_begin, uint32_t col_end);
 
-// ||r||_A / ||E||_A per lane, summed per fixed block of kSolveBlock rows in block order
-// (the same numbers as a ReduceBlocks over r), on the calling thread.
-Rgb RelativeNorms(const BandSystem& bands, const std::vector<Rgb>& r);
+// The stopping measure per lane: ||r||_A / ||R||_A, the residual against the reflected part
+// R = rho F B of the same B (at the solution R = B - E), so a small bright emitter cannot
+// make a loose solve look tight. Where R is 0 (B = 0, or no light reflects) ||E||_A stands
+// in for it. Summed per fixed block of kSolveBlock rows in block order (the same numbers as
+// a ReduceBlocks over r), on the calling thread.
+Rgb ResidualMeasures(const BandSystem& bands, const std::vector<Rgb>& r,
+                     const std::vector<Rgb>& reflected);
 
-// r = E + rho F B - B (if `r` is non-null, stored there) and ||r||_A / ||E||_A per lane;
+// r = E + rho F B - B (if `r` is non-null, stored there) and ResidualMeasures per lane;
 // one pass over the rows (streamed when they are in a store: its read error).
 absl::StatusOr<Rgb> LaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b,
                                   std::vector<Rgb>* r);
 
 // LaneResiduals for methods that need every row in memory (bands.f set): cannot fail.
 Rgb ResidentLaneResiduals(const BandSystem& bands, const std::vector<Rgb>& b, std::vector<Rgb>* r);
+
+// Largest rho_i * sum_j F_ij over rows and lanes: q < 1 bounds the max-norm error of B by
+// ||r||_inf / (1 - q) (the rows as a contraction); a pass over the rows.
+absl::StatusOr<double> MaxReflectedRowSum(const BandSystem& bands);
+
+// Per lane max_i |x_i|.
+Rgb MaxNorms(const BandSystem& bands, const std::vector<Rgb>& x);
 
 // The larger of the first `bands.lanes` components.
 double MaxOverLanes(const BandSystem& bands, const Rgb& v);

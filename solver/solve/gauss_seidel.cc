@@ -11,16 +11,25 @@
 namespace radflux {
 namespace {
 
-// One sweep; r receives the residual of B at the sweep's start.
-absl::Status Sweep(const BandSystem& bands, std::vector<Rgb>& b, std::vector<Rgb>& lower,
-                   std::vector<Rgb>& upper, std::vector<Rgb>& r) {
+// The per-row vectors of a sweep.
+struct SweepState {
+  std::vector<Rgb> lower, upper;  // sum_{j<i} F_ij B_j and sum_{j>=i} F_ij B_j per lane
+  std::vector<Rgb> r, reflected;  // residual and rho F B of B at the sweep's start
+};
+
+// One sweep.
+absl::Status Sweep(const BandSystem& bands, std::vector<Rgb>& b, SweepState& st) {
+  std::vector<Rgb>& lower = st.lower;
+  std::vector<Rgb>& upper = st.upper;
   return ForEachRowRange(bands, [&](const RowsView& rows) {
     ParallelFor(rows.RowCount(), kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
       for (int64_t l = begin; l < end; ++l) {
         const uint32_t i = rows.first_row + static_cast<uint32_t>(l);
         upper[i] = GatherRow(bands, rows, i, b, i, bands.n);
-        for (int k = 0; k < bands.lanes; ++k)
-          r[i][k] = bands.emission[i][k] + bands.rho[i][k] * (lower[i][k] + upper[i][k]) - b[i][k];
+        for (int k = 0; k < bands.lanes; ++k) {
+          st.reflected[i][k] = bands.rho[i][k] * (lower[i][k] + upper[i][k]);
+          st.r[i][k] = bands.emission[i][k] + st.reflected[i][k] - b[i][k];
+        }
       }
     });
     for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
@@ -37,19 +46,20 @@ absl::Status SolveGaussSeidel(const BandSystem& bands, const SolverOptions& opti
                               const SolveCallback& callback, std::vector<Rgb>& b,
                               SolveResult& result) {
   IterationMonitor monitor(bands, options, callback, result);
-  std::vector<Rgb> lower(bands.n), upper(bands.n), r(bands.n);
+  SweepState st{std::vector<Rgb>(bands.n), std::vector<Rgb>(bands.n), std::vector<Rgb>(bands.n),
+                std::vector<Rgb>(bands.n)};
   absl::Status read = ForEachRowRange(bands, [&](const RowsView& rows) {
     ParallelFor(rows.RowCount(), kSolveBlock, bands.threads, [&](int64_t begin, int64_t end) {
       for (int64_t l = begin; l < end; ++l) {
         const uint32_t i = rows.first_row + static_cast<uint32_t>(l);
-        lower[i] = GatherRow(bands, rows, i, b, 0, i);
+        st.lower[i] = GatherRow(bands, rows, i, b, 0, i);
       }
     });
   });
   while (read.ok() && !monitor.ShouldStop()) {
-    read = Sweep(bands, b, lower, upper, r);
+    read = Sweep(bands, b, st);
     if (!read.ok()) break;
-    const double residual = MaxOverLanes(bands, RelativeNorms(bands, r));
+    const double residual = MaxOverLanes(bands, ResidualMeasures(bands, st.r, st.reflected));
     if (monitor.Record(residual, residual, 0, b)) break;
   }
   return read;

@@ -7,7 +7,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/solve/band_system.h"
+#include "solver/solve/error_estimate.h"
 #include "solver/solve/methods.h"
+#include "spdlog/spdlog.h"
 
 namespace radflux {
 namespace {
@@ -103,6 +105,40 @@ absl::Status Dispatch(const BandSystem& bands, const SolverOptions& options,
   return absl::InvalidArgumentError("unknown solver method");
 }
 
+// cg's fallback: gauss_seidel from the B cg left, with a budget of its own; its sweeps
+// follow cg's in the iteration count and history.
+absl::Status FallBack(const BandSystem& bands, const SolverOptions& options,
+                      const SolveCallback& callback, std::vector<Rgb>& b, SolveResult& result) {
+  spdlog::warn("solver cg gave up after {} iterations ({}); continuing with gauss_seidel",
+               result.iterations, result.fallback_reason);
+  SolverOptions gs = options;
+  gs.method = SolverMethod::kGaussSeidel;
+  SolveResult more;
+  const int done = result.iterations;
+  const SolveCallback shifted = [&](const SolveProgress& p) {
+    SolveProgress q = p;
+    q.iteration += done;
+    if (callback) callback(q);
+  };
+  if (absl::Status s = Dispatch(bands, gs, shifted, b, more); !s.ok()) return s;
+  result.methods_used.push_back(SolverMethod::kGaussSeidel);
+  result.iterations += more.iterations;
+  result.residual_history.insert(result.residual_history.end(), more.residual_history.begin(),
+                                 more.residual_history.end());
+  result.converged = more.converged;
+  result.cancelled = more.cancelled;
+  return absl::OkStatus();
+}
+
+// The method, then (cg that gave up) the fallback.
+absl::Status RunMethods(const BandSystem& bands, const SolverOptions& options,
+                        const SolveCallback& callback, std::vector<Rgb>& b, SolveResult& result) {
+  result.methods_used = {options.method};
+  if (absl::Status s = Dispatch(bands, options, callback, b, result); !s.ok()) return s;
+  if (result.fallback_reason.empty() || result.cancelled) return absl::OkStatus();
+  return FallBack(bands, options, callback, b, result);
+}
+
 }  // namespace
 
 std::string_view SolverName(SolverMethod method) {
@@ -144,6 +180,7 @@ absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOpt
         "(--memory-limit) solve with jacobi, gauss_seidel or auto"));
   }
   SolveResult result;
+  result.requested = options.method;
   result.method = resolved.method;
   result.bands_solved = bands.lanes;
   std::vector<Rgb> b = options.initial != nullptr ? PackLanes(bands, *options.initial)
@@ -151,10 +188,12 @@ absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOpt
   if (bands.lanes == 0) {  // nothing emits: B = 0 everywhere, no sweep needed
     result.converged = true;
   } else {
-    if (absl::Status s = Dispatch(bands, resolved, callback, b, result); !s.ok()) return s;
-    const absl::StatusOr<Rgb> residual = LaneResiduals(bands, b, nullptr);
+    if (absl::Status s = RunMethods(bands, resolved, callback, b, result); !s.ok()) return s;
+    std::vector<Rgb> r;
+    const absl::StatusOr<Rgb> residual = LaneResiduals(bands, b, &r);
     if (!residual.ok()) return residual.status();
     result.residual = MaxOverLanes(bands, *residual);
+    if (absl::Status s = EstimateError(bands, b, r, result); !s.ok()) return s;
   }
   UnpackLanes(bands, b, result.radiosity);
   return result;

@@ -21,7 +21,9 @@
 namespace radflux {
 
 // kAuto picks per scene: gauss_seidel while max rho <= kAutoCgReflectance (it converges in
-// a handful of cheap sweeps), conjugate_gradient above (where gathering crawls).
+// a handful of cheap sweeps), conjugate_gradient above (where gathering crawls). cg (asked
+// for or picked) that meets an indefinite system, diverges or stalls hands its best B to
+// gauss_seidel, which converges for any rho < 1 (SolveResult::fallback_reason says why).
 enum class SolverMethod { kJacobi, kGaussSeidel, kSouthwell, kConjugateGradient, kDirect, kAuto };
 inline constexpr double kAutoCgReflectance = 0.9;
 
@@ -49,8 +51,10 @@ bool StreamsRows(SolverMethod method);
 
 struct SolverOptions {
   SolverMethod method = SolverMethod::kConjugateGradient;
-  double tolerance = 1e-4;    // stop when the measure (residual or unshot fraction) <= this
-  int max_iterations = 1000;  // sweeps (jacobi, gauss_seidel, cg) or shooting batches (southwell)
+  double tolerance = 1e-4;    // stop when the residual measure (RelativeResidual) <= this
+  int max_iterations = 1000;  // sweeps (jacobi, gauss_seidel, cg; a fallback gets as many
+                              // again), or southwell's sweep-equivalents (batches that shot
+                              // as many entries as the rows hold)
   int threads = 0;            // 0 = all cores
   int snapshot_every = 0;     // include B in the callback every N iterations (0 = never)
   const std::atomic<bool>* cancel = nullptr;  // set by the caller to stop at the next sweep
@@ -64,9 +68,7 @@ struct SolverOptions {
 // for the duration of the call.
 struct SolveProgress {
   int iteration = 0;
-  double residual = 0;         // relative residual ||E + rho F B - B|| / ||E||, max over bands;
-                               // southwell: the bound max(rho) ||dB|| / ||E|| (exact for
-                               // reciprocal rows), its true residual is in SolveResult
+  double residual = 0;         // the stopping measure (RelativeResidual), max over bands
   double unshot_fraction = 0;  // southwell: unshot power / emitted power (else 0)
   const std::vector<Rgb>* snapshot = nullptr;
   // On snapshot iterations, the solver state to resume from (SolverOptions::initial and,
@@ -80,12 +82,22 @@ using SolveCallback = std::function<void(const SolveProgress&)>;
 struct SolveResult {
   std::vector<Rgb> radiosity;  // B per patch per band, W/m^2
   int iterations = 0;
-  double residual = 0;                   // final relative residual (max over bands)
-  std::vector<double> residual_history;  // per iteration: the stopping measure (the residual
-                                         // of B at the sweep's start; southwell: unshot fraction)
+  double residual = 0;                   // final RelativeResidual (max over bands)
+  std::vector<double> residual_history;  // per iteration: the stopping measure (of B at the
+                                         // sweep's start; southwell: at each sweep-equivalent)
   bool converged = false;
   bool cancelled = false;
-  SolverMethod method = SolverMethod::kConjugateGradient;  // the method that ran (never kAuto)
+  SolverMethod requested = SolverMethod::kConjugateGradient;  // as asked (may be kAuto)
+  SolverMethod method = SolverMethod::kConjugateGradient;  // the method that ran first (never
+                                                           // kAuto)
+  std::vector<SolverMethod> methods_used;  // in order: method, then a fallback if one ran
+  std::string fallback_reason;             // why cg handed over to gauss_seidel ("" if not)
+  // Estimated error left in B: max_i |B*_i - B_i| / max_i |B_i - E_i| (max over bands),
+  // from the bound ||r||_inf / (1 - q), q = max_i rho_i sum_j F_ij < 1 (the rows as a
+  // contraction); when q >= 1, from the observed contraction rate c of the last iterations,
+  // residual / (1 - c). error_estimate_method names which ("bound" or "rate"; "" if none).
+  double error_estimate = 0;
+  std::string error_estimate_method;
   int bands_solved = 3;                                    // 1 when the scene is grey
   double reciprocity_error = 0;  // cg: max |A_i F_ij - A_j F_ji| / max(A_i F_ij, A_j F_ji)
                                  // over pairs where both entries are stored
@@ -99,8 +111,9 @@ SolverMethod ResolveSolver(const RadiositySystem& system, SolverMethod requested
 absl::StatusOr<SolveResult> Solve(const RadiositySystem& system, const SolverOptions& options,
                                   const SolveCallback& callback = {});
 
-// ||E + rho F B - B|| / ||E|| (area-weighted 2-norm), max over bands; the shared stopping
-// measure. NaN when rows in a store cannot be read back.
+// ||E + rho F B - B||_A / ||rho F B||_A (area-weighted 2-norms; ||E||_A where rho F B = 0),
+// max over bands: the residual against the reflected part of the same B, the stopping
+// measure of every method. NaN when rows in a store cannot be read back.
 double RelativeResidual(const RadiositySystem& system, const std::vector<Rgb>& radiosity);
 
 }  // namespace radflux

@@ -43,6 +43,18 @@ grep -q '"error": "not computed for --solver hierarchical' "$tmp/h.json" ||
   fail "adaptive solve exited $?"
 grep -q '"rows_recomputed"' "$tmp/a.json" || fail "adaptive report lacks its passes"
 
+# A solve that stops short of --tolerance exits 3 with one line giving the residual reached,
+# and still writes what was asked.
+out=$("$radflux" solve "$cornell" --patches 300 --quiet --max-iterations 2 --report "$tmp/n.json" \
+  --patch-values "$tmp/n.csv" 2>&1 >/dev/null)
+code=$?
+[ "$code" -eq 3 ] || fail "unconverged solve exited $code, not 3"
+[ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "unconverged solve: not one line: $out"
+printf '%s' "$out" | grep -q "radflux solve: not converged: residual .* after 2 iterations" ||
+  fail "unconverged solve: '$out' lacks the residual reached"
+grep -q '"converged": false' "$tmp/n.json" || fail "unconverged solve: report not written"
+[ "$(wc -l <"$tmp/n.csv")" -gt 270 ] || fail "unconverged solve: patch values not written"
+
 # Bad input: non-zero exit and exactly one line naming the problem.
 expect_error() {
   local what=$1 pattern=$2
@@ -83,7 +95,7 @@ expect_missing_sibling_for() {
 expect_missing_sibling_for radflux-local solve "$cornell"
 expect_missing_sibling_for radflux-service --server 127.0.0.1:1 list
 
-checks=29
+checks=34
 # The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
 # command line reaches them, connection flags before or after the verb.
 if [ -x "$(dirname "$radflux")/radflux-service" ]; then

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "hard_cases.h"
@@ -175,7 +176,14 @@ TEST(FormFactorInvariants, CutoffDropsSmallEntriesAndReportsTheirSum) {
     lost += all->matrix.RowSum(i) - cut->matrix.RowSum(i);
   EXPECT_NEAR(lost, cut->stats.dropped_sum, 1e-4);
   EXPECT_GT(cut->stats.dropped_sum, 0);
-  for (float v : cut->matrix.value) EXPECT_GE(v, 1e-3f);
+  // Below the cut-off only in emitter columns, which are never cut (issue 20).
+  int kept_small = 0;
+  for (size_t e = 0; e < cut->matrix.value.size(); ++e) {
+    if (cut->matrix.value[e] >= 1e-3f) continue;
+    EXPECT_TRUE(fixture.context.emitter[cut->matrix.col[e]]) << "entry " << e;
+    ++kept_small;
+  }
+  std::printf("cut-off 1e-3: %d entries below it kept in emitter columns\n", kept_small);
 }
 
 // The shared edge terms give every contour sum bit for bit: adjacent patches' opposite

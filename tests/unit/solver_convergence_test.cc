@@ -84,6 +84,8 @@ TEST(SolverConvergence, CgNeedsAtMostATenthOfJacobiSweepsAtRho099) {
               cg->iterations);
 }
 
+// Southwell stops on the same residual measure as every method (checked once per
+// sweep-equivalent), while its unshot power only goes down.
 TEST(SolverConvergence, SouthwellUnshotEnergyDecreasesMonotonically) {
   const TestSystem t = ColouredScene(400, 5);
   std::vector<double> unshot;
@@ -93,9 +95,9 @@ TEST(SolverConvergence, SouthwellUnshotEnergyDecreasesMonotonically) {
   EXPECT_TRUE(result->converged);
   ASSERT_EQ(unshot.size(), static_cast<size_t>(result->iterations));
   for (size_t k = 1; k < unshot.size(); ++k) ASSERT_LE(unshot[k], unshot[k - 1]) << k;
-  EXPECT_LE(unshot.back(), 1e-8);
   EXPECT_EQ(result->unshot_fraction, unshot.back());
-  EXPECT_LT(result->residual, 1e-7);  // the final true residual of the original rows
+  EXPECT_LE(result->residual_history.back(), 1e-8);
+  EXPECT_LE(result->residual, 1e-8);  // the final true residual of the original rows
 }
 
 TEST(SolverConvergence, JacobiResidualContractsByMaxRhoPerSweep) {
@@ -110,9 +112,12 @@ TEST(SolverConvergence, JacobiResidualContractsByMaxRhoPerSweep) {
   t.patches.emission[3] = {4, 4, 4};
   const auto result = Solve(t.View(), Options(SolverMethod::kJacobi, 1e-12, 10000));
   ASSERT_TRUE(result.ok());
+  // From B = 0 the measure is 1 for two sweeps (r = E against ||E||, then r = rho F E
+  // against rho F E itself); from there the reflected part only grows, so the measure
+  // contracts at least as fast as the residual.
   const auto& h = result->residual_history;
   ASSERT_GT(h.size(), 10u);
-  for (size_t k = 1; k < h.size(); ++k)
+  for (size_t k = 2; k < h.size(); ++k)
     ASSERT_LE(h[k], max_rho * h[k - 1] * (1 + 1e-6) + 1e-15) << "sweep " << k;
 }
 

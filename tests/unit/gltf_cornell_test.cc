@@ -1,0 +1,193 @@
+// The Cornell box as OBJ and as glTF: the same triangles in the same order give bit-identical
+// per-patch radiosity. glTF stores positions as 32-bit floats and only triangles, so both
+// files are written here from scenes/cornell_box.obj with its coordinates in tenths of a
+// millimetre (integers, exact in float and in any OBJ parser) and every polygon fanned into
+// triangles from its first vertex; the materials are the original MTL's (the glTF factors
+// carry the very doubles the OBJ loader read).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "solver/pipeline.h"
+#include "solver/scene/gltf_loader.h"
+#include "solver/scene/obj_loader.h"
+#include "solver/solve/energy_balance.h"
+#include "tests/unit/gltf_test_builder.h"
+
+namespace radflux {
+namespace {
+
+using testing::GltfBuilder;
+using Json = nlohmann::json;
+
+constexpr double kScale = 10;  // millimetres -> tenths of a millimetre
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// The original's faces fanned into triangles (v0, v[k], v[k + 1]), in order.
+struct Fanned {
+  std::vector<std::vector<uint32_t>> triangles;
+  std::vector<size_t> face;  // the original face of each triangle
+};
+
+Fanned Fan(const Scene& scene) {
+  Fanned fanned;
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    const std::vector<uint32_t>& v = scene.faces[f].vertices;
+    for (size_t k = 1; k + 1 < v.size(); ++k) {
+      fanned.triangles.push_back({v[0], v[k], v[k + 1]});
+      fanned.face.push_back(f);
+    }
+  }
+  return fanned;
+}
+
+// The fanned scene as OBJ text (integer coordinates; materials from the MTL).
+std::string FannedObj(const Scene& scene, const Fanned& fanned) {
+  std::string obj;
+  for (const Vec3& p : scene.positions) {
+    absl::StrAppend(&obj, "v ", std::lround(kScale * p.x), " ", std::lround(kScale * p.y), " ",
+                    std::lround(kScale * p.z), "\n");
+  }
+  for (size_t t = 0; t < fanned.triangles.size(); ++t) {
+    const Face& face = scene.faces[fanned.face[t]];
+    absl::StrAppend(&obj, "o ", scene.objects[face.object], "\ng ", scene.groups[face.group],
+                    "\nusemtl ", scene.materials[face.material].name, "\n");
+    const auto& v = fanned.triangles[t];
+    absl::StrAppend(&obj, "f ", v[0] + 1, " ", v[1] + 1, " ", v[2] + 1, "\n");
+  }
+  return obj;
+}
+
+// emission = pi * L_e with L_e = factor * strength exactly: strength a power of two.
+Json GltfMaterial(const Material& material) {
+  Rgb radiance{};
+  double largest = 0;
+  for (int b = 0; b < kBands; ++b) {
+    radiance[b] = material.emission[b] / std::numbers::pi;
+    EXPECT_EQ(std::numbers::pi * radiance[b], material.emission[b]);  // L_e round-trips
+    largest = std::max(largest, radiance[b]);
+  }
+  const double strength = largest > 1 ? std::exp2(std::ceil(std::log2(largest))) : 1;
+  Json m = {
+      {"name", material.name},
+      {"pbrMetallicRoughness",
+       {{"baseColorFactor",
+         {material.reflectance[0], material.reflectance[1], material.reflectance[2], 1}},
+        {"metallicFactor", 0}}},
+      {"emissiveFactor", {radiance[0] / strength, radiance[1] / strength, radiance[2] / strength}}};
+  if (strength != 1)
+    m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = strength;
+  return m;
+}
+
+// The fanned scene as glTF: one node and mesh per object, one primitive per run of
+// triangles of one material, indexing the object's own float position accessor (the
+// object's vertices, a contiguous range of the OBJ's, so that the glTF loader lists the
+// same vertices in the same order).
+GltfBuilder FannedGltf(const Scene& scene, const Fanned& fanned) {
+  GltfBuilder b;
+  for (const Material& material : scene.materials) b.AddMaterial(GltfMaterial(material));
+  std::vector<int> roots;
+  uint32_t next_vertex = 0;
+  for (size_t t = 0; t < fanned.triangles.size();) {
+    const uint32_t object = scene.faces[fanned.face[t]].object;
+    size_t end = t;
+    uint32_t last_vertex = next_vertex;
+    for (; end < fanned.triangles.size() && scene.faces[fanned.face[end]].object == object; ++end) {
+      for (uint32_t v : fanned.triangles[end]) {
+        EXPECT_GE(v, next_vertex) << "objects' vertices are not in order";
+        last_vertex = std::max(last_vertex, v);
+      }
+    }
+    std::vector<float> xyz;
+    for (uint32_t v = next_vertex; v <= last_vertex; ++v) {
+      const Vec3& p = scene.positions[v];
+      for (double c : {p.x, p.y, p.z}) xyz.push_back(static_cast<float>(std::lround(kScale * c)));
+    }
+    const int positions = b.AddPositions(xyz);
+    std::vector<Json> primitives;
+    while (t < end) {
+      const uint32_t material = scene.faces[fanned.face[t]].material;
+      std::vector<uint32_t> indices;
+      for (; t < end && scene.faces[fanned.face[t]].material == material; ++t) {
+        for (uint32_t v : fanned.triangles[t]) indices.push_back(v - next_vertex);
+      }
+      primitives.push_back(GltfBuilder::Primitive(positions, b.AddIndices(indices), 4, material));
+    }
+    roots.push_back(
+        b.AddNode({{"name", scene.objects[object]}, {"mesh", b.AddMesh("", primitives)}}));
+    next_vertex = last_vertex + 1;
+  }
+  EXPECT_EQ(next_vertex, scene.positions.size());
+  b.SetScene(roots);
+  b.json()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  return b;
+}
+
+JobResult Solve(Scene scene) {
+  JobOptions options;
+  options.mesh.target_patches = 400;
+  options.form_factors.rays = 64;
+  options.solver.tolerance = 1e-6;
+  absl::StatusOr<JobResult> result = RunJob(std::move(scene), options);
+  EXPECT_TRUE(result.ok()) << result.status();
+  return result.ok() ? *std::move(result) : JobResult{};
+}
+
+TEST(GltfCornellBox, SameTrianglesAsObjAndAsGltfGiveBitIdenticalRadiosity) {
+  absl::StatusOr<Scene> original = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(original.ok()) << original.status();
+  for (const Vec3& p : original->positions) {  // on a 0.1 mm grid: the scaling is exact
+    for (double c : {p.x, p.y, p.z}) ASSERT_NEAR(kScale * c, std::lround(kScale * c), 1e-9);
+  }
+  const Fanned fanned = Fan(*original);
+  absl::StatusOr<Scene> obj =
+      LoadObjText(FannedObj(*original, fanned),
+                  ReadFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl"), "cornell_triangles.obj");
+  ASSERT_TRUE(obj.ok()) << obj.status();
+  const GltfBuilder gltf = FannedGltf(*original, fanned);
+  const JobResult reference = Solve(*obj);
+  ASSERT_TRUE(reference.solve.converged);
+  ASSERT_GE(reference.solve.radiosity.size(), 300u);  // a meshed scene, not one patch a face
+  ASSERT_GT(reference.solve.radiosity[0][0], 0);      // the floor is lit
+  for (const auto& [name, data] : {std::pair<std::string, std::string>{"cornell.gltf", gltf.Gltf()},
+                                   {"cornell.glb", gltf.Glb()}}) {
+    absl::StatusOr<Scene> loaded = LoadGltfData(data, name, {});
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    // The same scene, to the bit: positions, triangles, materials.
+    EXPECT_EQ(loaded->positions, obj->positions) << name;
+    ASSERT_EQ(loaded->faces.size(), obj->faces.size()) << name;
+    for (size_t f = 0; f < obj->faces.size(); ++f) {
+      EXPECT_EQ(loaded->faces[f].vertices, obj->faces[f].vertices) << name << " face " << f;
+      const Material& a = loaded->materials[loaded->faces[f].material];
+      const Material& b = obj->materials[obj->faces[f].material];
+      EXPECT_EQ(a.reflectance, b.reflectance) << name << " face " << f;
+      EXPECT_EQ(a.emission, b.emission) << name << " face " << f;
+      EXPECT_EQ(loaded->objects[loaded->faces[f].object], obj->objects[obj->faces[f].object]);
+    }
+    const JobResult result = Solve(*std::move(loaded));
+    ASSERT_EQ(result.solve.radiosity.size(), reference.solve.radiosity.size()) << name;
+    size_t differing = 0;
+    for (size_t p = 0; p < reference.solve.radiosity.size(); ++p) {
+      differing += result.solve.radiosity[p] != reference.solve.radiosity[p];
+    }
+    EXPECT_EQ(differing, 0u) << name << ": patches whose B differs in any bit";
+    // And the glTF scene's solve conserves energy (the open front lets light escape).
+    const EnergyBalance balance = ComputeEnergyBalance(result.System(), result.solve.radiosity);
+    EXPECT_LT(balance.RelativeImbalance(), 0.005) << name;
+  }
+}
+
+}  // namespace
+}  // namespace radflux

@@ -1,0 +1,98 @@
+// RenderPark's MGF scenes (../shared/scenes/renderpark/) as the MGF loader reads them
+// (before the import rules): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
+// primitives at 16 segments), emitters present, and what the conversion left out logged.
+#include <string>
+
+#include "gtest/gtest.h"
+#include "solver/scene/load_scene.h"
+#include "solver/scene/mgf_loader.h"
+
+namespace radflux {
+namespace {
+
+const std::string kDir = RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/";
+
+struct Expected {
+  const char* file;
+  size_t faces, materials, objects, emitter_faces;
+};
+
+size_t EmitterFaces(const Scene& scene) {
+  size_t n = 0;
+  for (const Face& f : scene.faces) n += scene.materials[f.material].IsEmitter();
+  return n;
+}
+
+bool Logged(const Scene& scene, const std::string& kind) {
+  for (const ImportFixup& f : scene.import_log.fixups()) {
+    if (f.kind == kind) return true;
+  }
+  return false;
+}
+
+TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
+  // corridor: 67 f (57 of them the lights, from xf arrays) + 2 cyl x 16 + torus 16 x 16 +
+  // sph 16 x 8. examp1: 2 x (cyl 16 + 12 f + 2 prisms of 15 sides + 2 caps + 7 f) + 15 x 4 f.
+  const Expected scenes[] = {
+      {"cube.mgf", 66, 9, 10, 2},
+      {"corridor.mgf", 67 + 32 + 256 + 128, 9, 12, 57},
+      {"examp1.mgf", 2 * (16 + 12 + 2 * 17 + 7) + 60, 4, 10, 32},
+      {"floor_gloss.mgf", 8 + 128, 4, 3, 1},
+      {"office2/office2.mgf", 422, 24, 41, 1},
+      {"salon/classroom.mgf", 5250, 26, 632, 24},
+  };
+  for (const Expected& e : scenes) {
+    absl::StatusOr<Scene> scene = LoadMgfFile(kDir + e.file, ImportOptions{});
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->faces.size(), e.faces) << e.file;
+    EXPECT_EQ(scene->materials.size(), e.materials) << e.file;
+    EXPECT_EQ(scene->objects.size(), e.objects) << e.file;
+    EXPECT_EQ(EmitterFaces(*scene), e.emitter_faces) << e.file;
+    EXPECT_EQ(scene->files, std::vector<std::string>{kDir + e.file});
+  }
+}
+
+TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
+  ASSERT_TRUE(corridor.ok());
+  ASSERT_TRUE(Logged(*corridor, "mgf_specular_reflection_left_out"));
+  for (const ImportFixup& f : corridor->import_log.fixups()) {
+    if (f.kind == "mgf_specular_reflection_left_out") {
+      EXPECT_EQ(f.count, 8u);  // all but the light
+    }
+  }
+  // "groen" is cxy 0 0.38, outside every RGB gamut.
+  EXPECT_TRUE(Logged(*corridor, "mgf_colour_out_of_gamut"));
+  EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights");
+}
+
+TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {
+  absl::StatusOr<Scene> scene = LoadScene(kDir + "cube.mgf", ImportOptions{});
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_EQ(scene->source, kDir + "cube.mgf");
+  EXPECT_GT(EmitterFaces(*scene), 0u);
+}
+
+TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {
+  // examp1.mgf says `sides 1` in every material; corridor.mgf never says, so MGF's default
+  // (two-sided) holds.
+  absl::StatusOr<Scene> examp1 = LoadMgfFile(kDir + "examp1.mgf", ImportOptions{});
+  absl::StatusOr<Scene> corridor = LoadMgfFile(kDir + "corridor.mgf", ImportOptions{});
+  ASSERT_TRUE(examp1.ok() && corridor.ok());
+  for (const Material& m : examp1->materials) EXPECT_FALSE(m.two_sided) << m.name;
+  for (const Material& m : corridor->materials) EXPECT_TRUE(m.two_sided) << m.name;
+}
+
+TEST(MgfRenderPark, MaterialLibrariesLoadThroughIncludes) {
+  // Materials/test.mgf includes the five libraries and uses OakWood from realobj.mgf.
+  absl::StatusOr<Scene> scene = LoadMgfFile(kDir + "Materials/test.mgf", ImportOptions{});
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  EXPECT_EQ(scene->files.size(), 6u);
+  EXPECT_EQ(scene->faces.size(), 2u);
+  EXPECT_EQ(scene->materials[scene->faces[0].material].name, "OakWood");
+  EXPECT_GT(scene->materials[scene->faces[0].material].reflectance[0], 0);
+  EXPECT_EQ(EmitterFaces(*scene), 1u);
+}
+
+}  // namespace
+}  // namespace radflux
