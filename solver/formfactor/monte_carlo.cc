@@ -16,10 +16,6 @@ constexpr uint64_t kShiftStream = 11;
 constexpr uint32_t kPositionPattern = 0x2545f491u;
 constexpr uint32_t kDirectionPattern = 0x9e3779b9u;
 
-// The light samples of one row: kLightSamplesPerPoint at each of s (--samples) points on
-// the patch, so that s keeps meaning "points on the receiver for the emitters' columns".
-constexpr int kLightSamplesPerPoint = 4;
-
 class MonteCarloBuilder final : public RowBuilder {
  public:
   // The k position samples and k paired direction samples are one correlated

@@ -168,8 +168,8 @@ std::string Grid(const std::string& name, const std::string& material, const Vec
 }
 
 // A closed unit room whose ceiling emits, as 1 face or as 64 x 64 = 4,096 faces (walls and
-// floor 8 x 8 faces each; every face one patch). Every row casts at most k + 4 s rays (k
-// cosine rays, 4 s light samples) in both, nearly all of them in both, and the rows still
+// floor 8 x 8 faces each; every face one patch). Every row casts at most k + 16 s rays (k
+// cosine rays, 16 s light samples) in both, nearly all of them in both, and the rows still
 // sum to 1 (the room is closed): the cost per row does not grow with the number of emitter
 // patches, and the estimate stays a form-factor row.
 TEST(LightSampling, CostPerRowDoesNotGrowWithEmitterPatches) {
@@ -177,7 +177,7 @@ TEST(LightSampling, CostPerRowDoesNotGrowWithEmitterPatches) {
   o.rays = 64;
   o.samples = 4;
   o.cutoff = 0;
-  const uint64_t budget = static_cast<uint64_t>(o.rays + 4 * o.samples);
+  const uint64_t budget = static_cast<uint64_t>(o.rays + kLightSamplesPerPoint * o.samples);
   for (int g : {1, 64}) {
     int next = 1;
     std::string obj;
