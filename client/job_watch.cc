@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "absl/strings/str_cat.h"
-#include "server/proto_convert.h"
+#include "wire/proto_convert.h"
 
 namespace radflux::cli {
 namespace {
