@@ -173,6 +173,7 @@ TEST_F(WorkerTest, HonestWorkerRowsAreVerifiedAndKept) {
 TEST_F(WorkerTest, WorkersNeedAWorkerTokenUnlessTheServerAllowsNone) {
   StartServer({"--worker-token", ""});
   Child& refused = StartWorker({"--worker-token", ""});
+  EXPECT_EQ(refused.WaitForLog("refused this worker|registered with")[0], "refused this worker");
   const int status = refused.Wait();
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << refused.Log();
   EXPECT_NE(refused.Log().find("--allow-workers-without-token"), std::string::npos)
@@ -181,6 +182,7 @@ TEST_F(WorkerTest, WorkersNeedAWorkerTokenUnlessTheServerAllowsNone) {
   // A server with a worker token tells a worker without one which flag it lacks.
   StartServer({});
   Child& tokenless = StartWorker({"--worker-token", ""});
+  EXPECT_EQ(tokenless.WaitForLog("refused this worker|registered with")[0], "refused this worker");
   EXPECT_TRUE(WIFEXITED(tokenless.Wait())) << tokenless.Log();
   EXPECT_NE(tokenless.Log().find("needs the token of its --worker-token"), std::string::npos)
       << tokenless.Log();
