@@ -61,6 +61,12 @@ RADFLUX_EMBREE_ON_DEMAND(void*, rtcSetNewGeometryBuffer,
                          (RTCGeometry geometry, RTCBufferType type, unsigned int slot,
                           RTCFormat format, size_t stride, size_t count),
                          (geometry, type, slot, format, stride, count))
+RADFLUX_EMBREE_ON_DEMAND(void, rtcSetGeometryUserData, (RTCGeometry geometry, void* user),
+                         (geometry, user))
+RADFLUX_EMBREE_ON_DEMAND(void, rtcSetGeometryIntersectFilterFunction,
+                         (RTCGeometry geometry, RTCFilterFunctionN filter), (geometry, filter))
+RADFLUX_EMBREE_ON_DEMAND(void, rtcSetGeometryOccludedFilterFunction,
+                         (RTCGeometry geometry, RTCFilterFunctionN filter), (geometry, filter))
 RADFLUX_EMBREE_ON_DEMAND(void, rtcCommitGeometry, (RTCGeometry geometry), (geometry))
 RADFLUX_EMBREE_ON_DEMAND(unsigned int, rtcAttachGeometry, (RTCScene scene, RTCGeometry geometry),
                          (scene, geometry))

@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "client/exit_status.h"
-#include "server/proto_convert.h"
+#include "wire/proto_convert.h"
 
 namespace radflux::cli {
 namespace {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
@@ -91,7 +92,8 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh) {
+absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh,
+                                       const Vec3& origin) {
   Camera camera;
   std::tie(camera.width, camera.height) = ParseSize(f.size);
   camera.vertical_fov_degrees = f.fov_deg;
@@ -102,9 +104,9 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   const Vec3 centre = (lo + hi) * 0.5;
-  camera.look_at = f.camera_look_at.empty() ? centre : ToVec3(f.camera_look_at);
+  camera.look_at = f.camera_look_at.empty() ? centre : ToVec3(f.camera_look_at) - origin;
   if (!f.camera_pos.empty()) {
-    camera.position = ToVec3(f.camera_pos);
+    camera.position = ToVec3(f.camera_pos) - origin;
   } else {
     const double half = std::max(hi.y - lo.y, (hi.x - lo.x) * camera.height / camera.width) / 2;
     const double distance = half / std::tan(f.fov_deg * M_PI / 360);
@@ -114,8 +116,12 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
   return camera;
 }
 
-absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
                           const std::vector<Rgb>& radiosity, int threads) {
+  // The mesh in the file's coordinates (a copy only for a recentred scene).
+  std::optional<PatchMesh> translated;
+  if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
+  const PatchMesh& mesh = translated ? *translated : solved_mesh;
   std::vector<Rgb> radiance(radiosity.size());
   for (size_t p = 0; p < radiosity.size(); ++p) {
     for (int b = 0; b < kBands; ++b) radiance[p][b] = radiosity[p][b] / M_PI;
@@ -133,11 +139,12 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
     if (absl::Status s = WriteGlb(f.out, mesh, radiosity, gltf); !s.ok()) return s;
   }
   if (!f.render.empty()) {
-    absl::StatusOr<Camera> camera = CameraFromFlags(f, mesh);
+    // Rendered in the solver's coordinates: single-precision rays near the origin.
+    absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, scene.origin);
     if (!camera.ok()) return camera.status();
     RenderOptions options;
     options.threads = threads;
-    absl::StatusOr<Image> image = RenderPatchRadiosity(mesh, radiosity, *camera, options);
+    absl::StatusOr<Image> image = RenderPatchRadiosity(solved_mesh, radiosity, *camera, options);
     if (!image.ok()) return image.status();
     absl::Status s = absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
                                                       : WritePng(f.render, *image, tone);

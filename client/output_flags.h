@@ -39,10 +39,14 @@ std::vector<std::string> GivenOutputFlags(const CLI::App& app);
 absl::Status ValidateOutputFlags(const OutputFlags& flags);
 
 // The camera from the flags; without --camera-pos it frames the scene's bounding box
-// from -z looking +z (for the Cornell box this is close to its classic camera).
-absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh);
+// from -z looking +z (for the Cornell box this is close to its classic camera). The flags
+// are in the file's coordinates; the camera is in the mesh's, which are the file's minus
+// `origin` (Scene::origin of a recentred scene).
+absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
+                                       const Vec3& origin = {});
 
-// Writes the mesh, picture and per-patch values that were asked for (not the report).
+// Writes the mesh, picture and per-patch values that were asked for (not the report), in
+// the file's coordinates (scene.origin added back to the mesh's positions).
 absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
                           const std::vector<Rgb>& radiosity, int threads);
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "server/grpc_credentials.h"
-#include "server/scene_hash.h"
+#include "wire/grpc_credentials.h"
+#include "wire/scene_hash.h"
 
 namespace radflux::cli {
 namespace {

@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "absl/strings/str_cat.h"
-#include "server/grpc_credentials.h"
-#include "server/proto_convert.h"
+#include "wire/grpc_credentials.h"
+#include "wire/proto_convert.h"
 
 namespace radflux::cli {
 

@@ -16,12 +16,12 @@
 #include "client/scene_upload.h"
 #include "client/service_client.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
-#include "server/grpc_credentials.h"
-#include "server/proto_convert.h"
-#include "server/scene_stream.h"
-#include "server/stored_scene.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/validation.h"
+#include "wire/grpc_credentials.h"
+#include "wire/proto_convert.h"
+#include "wire/scene_stream.h"
+#include "wire/stored_scene.h"
 
 namespace radflux::cli {
 namespace {

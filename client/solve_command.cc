@@ -11,11 +11,12 @@
 
 #include "absl/strings/str_format.h"
 #include "client/exit_status.h"
+#include "client/import_flags.h"
 #include "client/job_flags.h"
 #include "client/output_flags.h"
 #include "client/progress_display.h"
 #include "solver/report.h"
-#include "solver/scene/obj_loader.h"
+#include "solver/scene/load_scene.h"
 
 namespace radflux::cli {
 namespace {
@@ -23,6 +24,7 @@ namespace {
 struct SolveArgs {
   std::string scene;
   JobFlags job;
+  ImportFlags import;
   OutputFlags output;
   bool quiet = false;
   uint64_t memory_limit = 0;  // bytes of rows kept in memory (0 = all)
@@ -74,8 +76,11 @@ absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return s;
   const auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<Scene> scene = LoadObjFile(args.scene);
+  absl::StatusOr<ImportOptions> import = ToImportOptions(args.import);
+  if (!import.ok()) return import.status();
+  absl::StatusOr<Scene> scene = LoadScene(args.scene, *import);
   if (!scene.ok()) return scene.status();
+  PrintImportLog(scene->import_log, args.quiet);
   const double load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -127,8 +132,9 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* solve = app.add_subcommand(
       "solve", "Solve a scene in-process (no server): mesh, form factors, radiosity, outputs");
-  solve->add_option("SCENE", args->scene, "scene file (Wavefront OBJ with MTL)")->required();
+  solve->add_option("SCENE", args->scene, "scene file (.obj with its .mtl)")->required();
   AddJobFlags(*solve, args->job);
+  AddImportFlags(*solve, args->import);
   AddOutputFlags(*solve, args->output);
   solve->add_flag("--quiet,-q", args->quiet, "no progress output");
   solve

@@ -4,10 +4,11 @@
 #include <memory>
 
 #include "client/exit_status.h"
+#include "client/import_flags.h"
 #include "client/job_flags.h"
 #include "solver/formfactor/surface_view_factors.h"
 #include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
+#include "solver/scene/load_scene.h"
 
 namespace radflux::cli {
 namespace {
@@ -15,13 +16,17 @@ namespace {
 struct ViewFactorArgs {
   std::string scene, by = "object", output;
   JobFlags job;
+  ImportFlags import;
 };
 
 absl::Status RunViewFactors(const ViewFactorArgs& args) {
   absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
   if (!options.ok()) return options.status();
-  absl::StatusOr<Scene> scene = LoadObjFile(args.scene);
+  absl::StatusOr<ImportOptions> import = ToImportOptions(args.import);
+  if (!import.ok()) return import.status();
+  absl::StatusOr<Scene> scene = LoadScene(args.scene, *import);
   if (!scene.ok()) return scene.status();
+  PrintImportLog(scene->import_log, /*quiet=*/false);
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(*std::move(scene), *options);
   if (!job.ok()) return job.status();
   RowContext context = (*job)->rows;
@@ -48,6 +53,7 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "view-factor CSV to write")->required();
   AddJobFlags(*cmd, args->job);
+  AddImportFlags(*cmd, args->import);
   cmd->callback(
       [args, &exit_code] { exit_code = ReportStatus("viewfactors", RunViewFactors(*args)); });
 }

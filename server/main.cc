@@ -21,14 +21,14 @@
 #include <iostream>
 #include <thread>
 
-#include "server/grpc_credentials.h"
-#include "server/job_manager.h"
-#include "server/job_store.h"
-#include "server/radiosity_service.h"
-#include "server/row_farm.h"
-#include "server/work_queue.h"
-#include "server/worker_node.h"
-#include "server/worker_service.h"
+#include "server/api/radiosity_service.h"
+#include "server/jobs/job_manager.h"
+#include "server/jobs/work_queue.h"
+#include "server/store/job_store.h"
+#include "server/workers/row_farm.h"
+#include "server/workers/worker_node.h"
+#include "server/workers/worker_service.h"
+#include "wire/grpc_credentials.h"
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "solver/adaptive/adaptive_refine.h"
 #include "solver/core/cancel.h"
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/hierarchical/hierarchical.h"
-#include "solver/mesh/adaptive_refine.h"
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"

@@ -144,6 +144,15 @@ nlohmann::json SpillJson(const RowStore& store, const JobOptions& options) {
           {"wait_seconds", read.wait_seconds}};
 }
 
+// Every change import made to the scene, one entry per kind (scene.import_log).
+nlohmann::json ImportJson(const ImportLog& log) {
+  nlohmann::json fixups = nlohmann::json::array();
+  for (const ImportFixup& f : log.fixups()) {
+    fixups.push_back({{"kind", f.kind}, {"message", f.message}, {"count", f.count}, {"first", f.first}});
+  }
+  return fixups;
+}
+
 }  // namespace
 
 nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
@@ -161,6 +170,7 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
   nlohmann::json report = {
       {"scene", scene_name},
       {"options", OptionsJson(options)},
+      {"import", ImportJson(job.scene.import_log)},
       {"threads", threads},
       {"mesh",
        {{"faces", job.scene.faces.size()},

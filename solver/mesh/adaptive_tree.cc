@@ -78,10 +78,12 @@ void HangingVertices(const VertexIndex& index, uint32_t face, const Vec3& a, con
   HangingVertices(index, face, m, b, depth + 1, out);
 }
 
-void AddPatch(PatchMesh& mesh, const Vec3& normal, uint32_t face, std::array<uint32_t, 4> v) {
+void AddPatch(PatchMesh& mesh, const Element& e, std::array<uint32_t, 4> v) {
   Patch patch;
   patch.v = v;
-  patch.face = face;
+  patch.face = e.face;
+  patch.two_sided = e.two_sided;
+  const Vec3& normal = e.normal;
   FinishPatch(mesh.positions, normal, patch);
   mesh.patches.push_back(patch);
 }
@@ -98,6 +100,7 @@ ElementTree ElementTree::FromMesh(const PatchMesh& mesh) {
     e.triangle = patch.IsTriangle();
     e.face = patch.face;
     e.normal = patch.normal;
+    e.two_sided = patch.two_sided;
     FinishElement(e);
     tree.roots.push_back(static_cast<uint32_t>(tree.nodes.size()));
     tree.nodes.push_back(e);
@@ -123,6 +126,7 @@ uint32_t ElementTree::Split(uint32_t node) {
     Element e;
     e.corners = corners;
     e.triangle = parent.triangle;
+    e.two_sided = parent.two_sided;
     e.face = parent.face;
     e.parent = node;
     e.depth = parent.depth + 1;
@@ -195,13 +199,13 @@ PatchMesh BuildLeafMesh(const ElementTree& tree, const std::vector<uint32_t>& le
     if (static_cast<int>(boundary.size()) == corners) {
       std::array<uint32_t, 4> v;
       for (int k = 0; k < 4; ++k) v[k] = index.Get(e.face, e.corners[k]);
-      AddPatch(mesh, e.normal, e.face, v);
+      AddPatch(mesh, e, v);
     } else {
       const uint32_t centre = index.Get(e.face, e.centroid);
       for (size_t k = 0; k < boundary.size(); ++k) {
         const uint32_t a = index.Get(e.face, boundary[k]);
         const uint32_t b = index.Get(e.face, boundary[(k + 1) % boundary.size()]);
-        AddPatch(mesh, e.normal, e.face, {centre, a, b, b});
+        AddPatch(mesh, e, {centre, a, b, b});
       }
     }
     if (patch_leaf) patch_leaf->resize(mesh.patches.size(), li);

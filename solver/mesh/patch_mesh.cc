@@ -16,6 +16,13 @@ PatchPointSampler::PatchPointSampler(const PatchMesh& mesh, uint32_t p) {
   first_ = patch.IsTriangle() ? 1.0 : TriangleArea(a_, b_, c_) / patch.area;
 }
 
+PatchMesh TranslatedMesh(const PatchMesh& mesh, const Vec3& offset) {
+  PatchMesh moved = mesh;
+  for (Vec3& p : moved.positions) p += offset;
+  for (Patch& patch : moved.patches) patch.centroid += offset;
+  return moved;
+}
+
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch) {
   const Vec3& a = positions[patch.v[0]];
   const Vec3& b = positions[patch.v[1]];

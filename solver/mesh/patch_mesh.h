@@ -17,6 +17,7 @@ namespace radflux {
 struct Patch {
   std::array<uint32_t, 4> v{};  // PatchMesh::positions indices, ccw; v[3] == v[2] for a triangle
   uint32_t face = 0;            // source face in the Scene
+  bool two_sided = false;       // its face has a back-face twin: hits on its back are ignored
   Vec3 centroid;                // area-weighted centroid
   Vec3 normal;                  // unit normal of the source face (front side)
   double area = 0;              // scene units^2
@@ -56,6 +57,10 @@ class PatchPointSampler {
   Vec3 a_, b_, c_, d_;
   double first_;  // area fraction of triangle (a, b, c); 1 for a triangle patch
 };
+
+// `mesh` moved by `offset` (positions and centroids; areas and normals unchanged): how
+// outputs put a recentred scene's mesh back in the file's coordinates (Scene::origin).
+PatchMesh TranslatedMesh(const PatchMesh& mesh, const Vec3& offset);
 
 // Fills area, centroid and normal of `patch` from its vertices and face normal.
 void FinishPatch(const std::vector<Vec3>& positions, const Vec3& face_normal, Patch& patch);

@@ -52,8 +52,8 @@ int64_t FacePatchCount(const std::vector<Vec3>& p, double h) {
 // Builds one face's vertices and patches into the mesh.
 class FaceMesher {
  public:
-  FaceMesher(PatchMesh& mesh, uint32_t face, const Vec3& normal)
-      : mesh_(mesh), face_(face), normal_(normal) {}
+  FaceMesher(PatchMesh& mesh, uint32_t face, const Vec3& normal, bool two_sided)
+      : mesh_(mesh), face_(face), normal_(normal), two_sided_(two_sided) {}
 
   void Quad(const std::vector<Vec3>& p, int nu, int nv) {
     const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());
@@ -120,6 +120,7 @@ class FaceMesher {
     Patch patch;
     patch.v = v;
     patch.face = face_;
+    patch.two_sided = two_sided_;
     FinishPatch(mesh_.positions, normal_, patch);
     mesh_.patches.push_back(patch);
   }
@@ -127,6 +128,7 @@ class FaceMesher {
   PatchMesh& mesh_;
   uint32_t face_;
   Vec3 normal_;
+  bool two_sided_;
   std::map<Key, uint32_t> ids_;
 };
 
@@ -176,7 +178,8 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
       return absl::ResourceExhaustedError(absl::StrCat(scene.DescribeFace(f),
                                                        ": subdivision would exceed 2^31 patches"));
     }
-    FaceMesher mesher(mesh, f, Normalize(PolygonNewellNormal(polygon)));
+    FaceMesher mesher(mesh, f, Normalize(PolygonNewellNormal(polygon)),
+                      scene.materials[scene.faces[f].material].two_sided);
     if (polygon.size() == 4) {
       mesher.Quad(polygon, nu, nv);
     } else {

@@ -28,7 +28,8 @@ Hit BruteForceRayCaster::Intersect(const Ray& ray) const {
     const Vec3 &a = mesh_.positions[patch.v[0]], &b = mesh_.positions[patch.v[1]],
                &c = mesh_.positions[patch.v[2]], &d = mesh_.positions[patch.v[3]];
     for (double t : {IntersectTriangle(ray, a, b, c), IntersectTriangle(ray, a, c, d)}) {
-      if (t > ray.t_near && t < best_t) {
+      const bool back = Dot(ray.direction, Cross(b - a, c - a)) >= 0;
+      if (t > ray.t_near && t < best_t && !(patch.two_sided && back)) {
         best_t = t;
         best = {p, t, 0, 0, Cross(b - a, c - a)};  // ccw vertices: towards the front
       }

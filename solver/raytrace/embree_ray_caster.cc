@@ -51,6 +51,19 @@ static_assert(offsetof(StreamRay, org_x) == offsetof(RTCRayHit, ray.org_x) &&
               offsetof(StreamRay, inst) == offsetof(RTCRayHit, hit.instID));
 static_assert(kNoPatch == RTC_INVALID_GEOMETRY_ID);
 
+// Rejects hits on the back of two-sided patches (user data: one byte per patch).
+void IgnoreTwoSidedBacks(const RTCFilterFunctionNArguments* args) {
+  const auto* two_sided = static_cast<const uint8_t*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (!two_sided[RTCHitN_primID(args->hit, args->N, i)]) continue;
+    const float facing = RTCRayN_dir_x(args->ray, args->N, i) * RTCHitN_Ng_x(args->hit, args->N, i) +
+                         RTCRayN_dir_y(args->ray, args->N, i) * RTCHitN_Ng_y(args->hit, args->N, i) +
+                         RTCRayN_dir_z(args->ray, args->N, i) * RTCHitN_Ng_z(args->hit, args->N, i);
+    if (facing >= 0) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 RTCDevice SharedEmbreeDevice() {
@@ -87,8 +100,19 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
     vertices[3 * i + 1] = static_cast<float>(mesh.positions[i].y);
     vertices[3 * i + 2] = static_cast<float>(mesh.positions[i].z);
   }
+  std::vector<uint8_t> two_sided(mesh.patches.size());
+  bool any_two_sided = false;
   for (size_t p = 0; p < mesh.patches.size(); ++p) {
     std::copy(mesh.patches[p].v.begin(), mesh.patches[p].v.end(), indices + 4 * p);
+    two_sided[p] = mesh.patches[p].two_sided;
+    any_two_sided = any_two_sided || two_sided[p];
+  }
+  if (any_two_sided) {
+    rtcSetGeometryUserData(geometry, two_sided.data());  // moved into the caster: same buffer
+    rtcSetGeometryIntersectFilterFunction(geometry, IgnoreTwoSidedBacks);
+    rtcSetGeometryOccludedFilterFunction(geometry, IgnoreTwoSidedBacks);
+  } else {
+    two_sided.clear();
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene, geometry);
@@ -98,7 +122,7 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
     rtcReleaseScene(scene);
     return absl::InternalError("Embree failed to build the scene (see log)");
   }
-  return std::unique_ptr<EmbreeRayCaster>(new EmbreeRayCaster(scene));
+  return std::unique_ptr<EmbreeRayCaster>(new EmbreeRayCaster(scene, std::move(two_sided)));
 }
 
 EmbreeRayCaster::~EmbreeRayCaster() { rtcReleaseScene(scene_); }

@@ -1,11 +1,16 @@
 // EmbreeRayCaster: one Embree 3 device per process and one scene per mesh. Every
 // patch is a quad primitive (a triangle repeats its last vertex); primID = patch index.
 // Embree errors are routed to spdlog; construction fails with a Status, never throws.
+// Hits on the back of a two-sided patch (Patch::two_sided) are ignored by a filter
+// function, so its back-face twin is what a ray meets from behind and the twins never
+// shade each other; a mesh without two-sided patches gets no filter.
 #pragma once
 
 #include <embree3/rtcore.h>
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "solver/mesh/patch_mesh.h"
@@ -29,8 +34,10 @@ class EmbreeRayCaster final : public RayCaster {
   RTCScene scene() const { return scene_; }
 
  private:
-  explicit EmbreeRayCaster(RTCScene scene) : scene_(scene) {}
+  EmbreeRayCaster(RTCScene scene, std::vector<uint8_t> two_sided)
+      : scene_(scene), two_sided_(std::move(two_sided)) {}
   RTCScene scene_;
+  std::vector<uint8_t> two_sided_;  // per patch, the filter's user data (empty: no filter)
 };
 
 // The process-wide Embree device (created on first use).

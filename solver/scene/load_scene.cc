@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/scene/gltf_loader.h"
+#include "solver/scene/import_rules.h"
 #include "solver/scene/mgf_loader.h"
 #include "solver/scene/obj_loader.h"
 
@@ -22,16 +23,23 @@ std::string Extension(const std::string& path) {
   return ext;
 }
 
-}  // namespace
-
-absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options) {
-  (void)options;
+// The scene in `path` as its format's loader reads it, before the import rules.
+absl::StatusOr<Scene> LoadByExtension(const std::string& path, const ImportOptions& options) {
   const std::string ext = Extension(path);
   if (ext == "obj") return LoadObjFile(path);
   if (ext == "gltf" || ext == "glb") return LoadGltfFile(path, options);
   if (ext == "mgf") return LoadMgfFile(path, options);
   return absl::InvalidArgumentError(absl::StrCat(
       path, ": unknown scene format '", ext, "' (supported: .obj, .gltf, .glb, .mgf)"));
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options) {
+  absl::StatusOr<Scene> scene = LoadByExtension(path, options);
+  if (!scene.ok()) return scene.status();
+  if (absl::Status s = ApplyImportRules(options, *scene); !s.ok()) return s;
+  return scene;
 }
 
 }  // namespace radflux

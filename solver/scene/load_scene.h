@@ -12,9 +12,10 @@
 namespace radflux {
 
 // The scene in `path` (.obj, .gltf, .glb, .mgf; the extension picks the format,
-// case-insensitively).
-// INVALID_ARGUMENT for an unknown extension, naming the ones supported. The result is not
-// yet validated: see ValidateScene.
+// case-insensitively), with the import rules applied (import_rules.h; what they changed is
+// in Scene::import_log). INVALID_ARGUMENT for an unknown extension, naming the ones
+// supported, and for what the rules refuse. The result is not yet validated: see
+// ValidateScene.
 absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options);
 
 }  // namespace radflux

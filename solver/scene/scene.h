@@ -44,6 +44,9 @@ struct Scene {
   std::vector<std::string> objects;
   std::vector<std::string> groups;
   ImportLog import_log;  // what import fixed or left out, one entry per kind
+  // The file's coordinates are positions + origin (scene units): import recentres a scene
+  // far from the origin (recentre.h) and outputs add this back. Zero for most scenes.
+  Vec3 origin;
 
   // "file:line" of face f (the file alone when the line is unknown).
   std::string FaceLocation(size_t f) const;

@@ -5,6 +5,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "solver/scene/emitters.h"
+#include "solver/scene/face_shape.h"
 
 namespace radflux {
 namespace {
@@ -12,6 +14,8 @@ namespace {
 absl::Status FaceError(const Scene& scene, size_t f, const std::string& what) {
   return absl::InvalidArgumentError(absl::StrCat(scene.DescribeFace(f), ": ", what));
 }
+
+}  // namespace
 
 absl::Status ValidateMaterial(const Scene& scene, const Material& m) {
   for (int b = 0; b < kBands; ++b) {
@@ -32,41 +36,21 @@ absl::Status ValidateMaterial(const Scene& scene, const Material& m) {
 absl::Status ValidateFace(const Scene& scene, size_t f) {
   const Face& face = scene.faces[f];
   if (face.vertices.size() < 3) return FaceError(scene, f, "a face needs at least 3 vertices");
-  const std::vector<Vec3> polygon = FacePolygon(scene, face);
-  double longest = 0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    if (!IsFinite(polygon[i])) return FaceError(scene, f, "vertex has a NaN or infinite coordinate");
-    longest = std::max(longest, Length(polygon[(i + 1) % polygon.size()] - polygon[i]));
+  const FaceShape shape = MeasureFace(FacePolygon(scene, face));
+  if (!shape.finite) return FaceError(scene, f, "vertex has a NaN or infinite coordinate");
+  if (shape.degenerate) {
+    return FaceError(scene, f, absl::StrFormat("zero-area (degenerate) face, area %g", shape.area));
   }
-  const Vec3 newell = PolygonNewellNormal(polygon);
-  const double area = Length(newell) / 2;
-  if (!(area > kDegenerateAreaTolerance * longest * longest)) {
-    return FaceError(scene, f, absl::StrFormat("zero-area (degenerate) face, area %g", area));
+  if (!shape.planar) {
+    const double tolerance = kPlanarityTolerance * shape.longest_edge;
+    return FaceError(scene, f,
+                     absl::StrFormat("non-planar face: a vertex is %g off its plane (tolerance "
+                                     "%g = %g x longest edge); split it into triangles",
+                                     shape.planarity_error, tolerance, kPlanarityTolerance));
   }
-  const Vec3 n = newell / (2 * area);
-  Vec3 centroid;
-  for (const Vec3& p : polygon) centroid += p / static_cast<double>(polygon.size());
-  for (const Vec3& p : polygon) {
-    const double off = std::abs(Dot(p - centroid, n));
-    if (off > kPlanarityTolerance * longest) {
-      return FaceError(scene, f,
-                       absl::StrFormat("non-planar face: a vertex is %g off its plane (tolerance "
-                                       "%g = %g x longest edge); split it into triangles",
-                                       off, kPlanarityTolerance * longest, kPlanarityTolerance));
-    }
-  }
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Vec3& a = polygon[i];
-    const Vec3& b = polygon[(i + 1) % polygon.size()];
-    const Vec3& c = polygon[(i + 2) % polygon.size()];
-    if (Dot(Cross(b - a, c - b), n) < -kDegenerateAreaTolerance * longest * longest) {
-      return FaceError(scene, f, "non-convex face; split it into convex polygons");
-    }
-  }
+  if (!shape.convex) return FaceError(scene, f, "non-convex face; split it into convex polygons");
   return absl::OkStatus();
 }
-
-}  // namespace
 
 absl::Status ValidateScene(const Scene& scene) {
   if (scene.faces.empty()) return absl::InvalidArgumentError(scene.source + ": empty scene (no faces)");
@@ -83,8 +67,7 @@ absl::Status ValidateScene(const Scene& scene) {
     has_emitter = has_emitter || scene.materials[scene.faces[f].material].IsEmitter();
   }
   if (!has_emitter) {
-    return absl::InvalidArgumentError(scene.source +
-                                      ": no emitter (no face's material has Ke > 0)");
+    return absl::InvalidArgumentError(NoEmitterMessage(scene));
   }
   return absl::OkStatus();
 }

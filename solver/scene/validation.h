@@ -15,4 +15,9 @@ inline constexpr double kDegenerateAreaTolerance = 1e-9;
 
 absl::Status ValidateScene(const Scene& scene);
 
+// The checks of ValidateScene for one face (vertex count, finite, zero area, planar, convex)
+// and one material (reflectance in [0,1), emission finite and >= 0), with its messages.
+absl::Status ValidateFace(const Scene& scene, size_t f);
+absl::Status ValidateMaterial(const Scene& scene, const Material& m);
+
 }  // namespace radflux

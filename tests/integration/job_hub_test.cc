@@ -1,6 +1,6 @@
 // The rounds of watcher wakes: WakeSchedule's policy on given times, and JobHub running
 // them (intervals of an hour, never elapsing in a test; waits bounded only to fail, not hang).
-#include "server/job_hub.h"
+#include "server/jobs/job_hub.h"
 
 #include <gtest/gtest.h>
 

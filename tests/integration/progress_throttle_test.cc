@@ -1,6 +1,6 @@
 // ProgressThrottle: what reaches a job's hub. Intervals are an hour (never elapsing in a
 // test) or zero, so nothing here depends on timing.
-#include "server/progress_throttle.h"
+#include "server/jobs/progress_throttle.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // ResultEncoder against EncodeResultChunks(MakeResultChunks(...)): the same bytes, and a blob
 // file that reads back as them, for meshes of zero, one and several patch and vertex chunks.
-#include "server/result_codec.h"
+#include "server/store/result_codec.h"
 
 #include <gtest/gtest.h>
 

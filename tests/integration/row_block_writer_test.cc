@@ -1,7 +1,7 @@
 // RowBlockWriter stores a checkpoint as soon as its queue holds max_group_bytes of rows,
 // long before a (here hour-long) checkpoint interval: the rows waiting in memory stay
 // bounded whatever the job's size. Every block put is stored, in order, once.
-#include "server/row_block_writer.h"
+#include "server/store/row_block_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "server/job_store.h"
+#include "server/store/job_store.h"
 
 namespace radflux {
 namespace {

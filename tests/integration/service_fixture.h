@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
-#include "server/scene_hash.h"
 #include "tests/integration/server_process.h"
 #include "tests/integration/test_helpers.h"
+#include "wire/scene_hash.h"
 
 namespace radflux::testing {
 

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
-#include "server/scene_hash.h"
-#include "server/scene_stream.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"
+#include "wire/scene_hash.h"
+#include "wire/scene_stream.h"
 
 namespace radflux {
 namespace {

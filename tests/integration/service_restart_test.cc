@@ -13,8 +13,8 @@
 #include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
-#include "server/blob_file.h"
-#include "server/stored_codec.h"
+#include "server/store/blob_file.h"
+#include "server/store/stored_codec.h"
 #include "solver/pipeline.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"

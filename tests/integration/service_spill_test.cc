@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "server/proto_convert.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"
+#include "wire/proto_convert.h"
 
 namespace radflux {
 namespace {

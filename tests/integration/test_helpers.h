@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "radflux/v1/job.pb.h"
-#include "server/proto_convert.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "wire/proto_convert.h"
 
 namespace radflux::testing {
 

@@ -1,30 +1,29 @@
 // Integration tests of worker nodes: radfluxd plus `radfluxd --worker` processes on
 // loopback (and, where `ip netns` works, in separate network namespaces). Every test starts
 // its own processes and stops them; results are compared bit for bit with RunJob.
+#include <fcntl.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <fcntl.h>
-
 #include <chrono>
-#include <functional>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 #include <thread>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "radflux/v1/worker.grpc.pb.h"
-#include "server/proto_convert.h"
-#include "server/scene_hash.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/integration/test_helpers.h"
+#include "wire/proto_convert.h"
+#include "wire/scene_hash.h"
 
 namespace radflux {
 namespace {
@@ -134,21 +133,21 @@ class WorkerTest : public ::testing::Test {
 
   // radfluxd on `host`:0 with `extra` flags; returns its HOST:PORT.
   void StartServer(const std::vector<std::string>& extra, const std::string& host = "127.0.0.1") {
-    std::vector<std::string> args = {RADFLUXD_PATH, "--listen",  host + ":0",
-                                     "--data-dir",  dir_ + "/data", "--threads", "1"};
+    std::vector<std::string> args = {RADFLUXD_PATH,  "--listen",  host + ":0", "--data-dir",
+                                     dir_ + "/data", "--threads", "1"};
     args.insert(args.end(), extra.begin(), extra.end());
     server_ = std::make_unique<Child>(args, dir_ + "/server.log");
     address_ = server_->WaitForLog("radfluxd listening on (\\S+)")[1];
-    stub_ = v1::Radiosity::NewStub(
-        grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+    stub_ =
+        v1::Radiosity::NewStub(grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
   }
   // A worker process; `prefix` runs it through another command (ip netns exec NS).
   Child& StartWorker(const std::vector<std::string>& extra,
                      const std::vector<std::string>& prefix = {}) {
     std::vector<std::string> args = prefix;
-    for (const std::string& a : {std::string(RADFLUXD_PATH), std::string("--worker"),
-                                 std::string("--server"), address_, std::string("--threads"),
-                                 std::string("1")}) {
+    for (const std::string& a :
+         {std::string(RADFLUXD_PATH), std::string("--worker"), std::string("--server"), address_,
+          std::string("--threads"), std::string("1")}) {
       args.push_back(a);
     }
     args.insert(args.end(), extra.begin(), extra.end());
@@ -250,8 +249,7 @@ TEST_F(WorkerTest, ServerPlusThreeWorkersEqualsInProcessRunJobBitForBit) {
   const std::string job_id = Submit(options);
   ExpectSucceedsBitIdentical(job_id, options);
   for (auto& w : workers_) {
-    EXPECT_GT(CountOf(w->Log(), "sent row block"), 0) << "every worker built blocks:\n"
-                                                      << w->Log();
+    EXPECT_GT(CountOf(w->Log(), "sent row block"), 0) << "every worker built blocks:\n" << w->Log();
   }
   EXPECT_EQ(CountOf(server_->Log(), "dropped"), 0) << server_->Log();
 }
@@ -297,8 +295,8 @@ TEST_F(WorkerTest, WrongWorkerTokenOrClientTokenIsRefused) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << wrong.Log();
   EXPECT_NE(wrong.Log().find("UNAUTHENTICATED"), std::string::npos) << wrong.Log();
   // The client token does not register a worker either.
-  auto worker_stub = v1::Worker::NewStub(
-      grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+  auto worker_stub =
+      v1::Worker::NewStub(grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
   grpc::ClientContext context;
   context.AddMetadata("authorization", "Bearer " + token_);
   auto stream = worker_stub->Connect(&context);
@@ -315,8 +313,8 @@ TEST_F(WorkerTest, WrongWorkerTokenOrClientTokenIsRefused) {
 
 TEST_F(WorkerTest, BadChecksumDropsTheWorkerAndTheBlockIsBuiltElsewhere) {
   StartServer({});
-  auto worker_stub = v1::Worker::NewStub(
-      grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+  auto worker_stub =
+      v1::Worker::NewStub(grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
   grpc::ClientContext context;
   auto stream = worker_stub->Connect(&context);
   v1::WorkerMessage hello;
@@ -364,13 +362,12 @@ class NetnsWorkerTest : public WorkerTest {
     host_veth_ = "rfxh" + std::to_string(getpid());
     host_ip_ = "10.251." + std::to_string(id) + ".1";
     const std::string ns_ip = "10.251." + std::to_string(id) + ".2";
-    const std::string script = "ip netns add " + ns_ + " && ip link add " + host_veth_ +
-                               " type veth peer name rfxn0 netns " + ns_ + " && ip addr add " +
-                               host_ip_ + "/24 dev " + host_veth_ + " && ip link set " +
-                               host_veth_ + " up && ip netns exec " + ns_ + " ip addr add " +
-                               ns_ip + "/24 dev rfxn0 && ip netns exec " + ns_ +
-                               " ip link set rfxn0 up && ip netns exec " + ns_ +
-                               " ip link set lo up";
+    const std::string script =
+        "ip netns add " + ns_ + " && ip link add " + host_veth_ +
+        " type veth peer name rfxn0 netns " + ns_ + " && ip addr add " + host_ip_ + "/24 dev " +
+        host_veth_ + " && ip link set " + host_veth_ + " up && ip netns exec " + ns_ +
+        " ip addr add " + ns_ip + "/24 dev rfxn0 && ip netns exec " + ns_ +
+        " ip link set rfxn0 up && ip netns exec " + ns_ + " ip link set lo up";
     ready_ = std::system((script + " 2>" + dir_ + "/netns.err").c_str()) == 0;
   }
   void TearDown() override {
@@ -405,9 +402,9 @@ TEST_F(NetnsWorkerTest, WorkersInAnotherNetworkNamespaceOverVethGiveTheSameResul
   b.Stop(SIGKILL);
   ExpectSucceedsBitIdentical(job_id, options);
   EXPECT_GT(CountOf(a.Log(), "sent row block"), 0) << a.Log();
-  EXPECT_TRUE(std::regex_search(server_->Log(),
-                                std::regex("row block " + block + " \\(rows \\d+\\.\\.\\d+\\) "
-                                           "leased again")))
+  EXPECT_TRUE(std::regex_search(server_->Log(), std::regex("row block " + block +
+                                                           " \\(rows \\d+\\.\\.\\d+\\) "
+                                                           "leased again")))
       << server_->Log();
 }
 

@@ -2,7 +2,7 @@
 // furnace stays exact through incremental row updates (threshold 0 splits every patch and
 // only new rows and entries pointing at new patches are computed); the lit meshes of both
 // adaptive and hierarchical are conforming (no vertex inside another patch's edge).
-#include "solver/mesh/adaptive_refine.h"
+#include "solver/adaptive/adaptive_refine.h"
 
 #include <gtest/gtest.h>
 

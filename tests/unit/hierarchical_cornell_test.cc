@@ -10,7 +10,7 @@
 #include <map>
 
 #include "solver/hierarchical/hierarchical.h"
-#include "solver/mesh/adaptive_refine.h"
+#include "solver/adaptive/adaptive_refine.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {

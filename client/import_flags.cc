@@ -1,0 +1,73 @@
+#include "client/import_flags.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+
+namespace radflux::cli {
+namespace {
+
+absl::StatusOr<std::pair<std::string, Rgb>> ParseEmit(const std::string& value) {
+  const size_t equals = value.rfind('=');
+  const auto bad = [&] {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "--emit '", value, "': expected MATERIAL=R,G,B (emitted radiance L_e, three numbers >= 0)"));
+  };
+  if (equals == std::string::npos || equals == 0) return bad();
+  const std::vector<std::string> parts = absl::StrSplit(value.substr(equals + 1), ',');
+  if (parts.size() != 3) return bad();
+  Rgb radiance{};
+  for (int b = 0; b < kBands; ++b) {
+    if (!absl::SimpleAtod(parts[b], &radiance[b]) || !std::isfinite(radiance[b]) || radiance[b] < 0) {
+      return bad();
+    }
+  }
+  return std::make_pair(value.substr(0, equals), radiance);
+}
+
+}  // namespace
+
+void AddImportFlags(CLI::App& app, ImportFlags& f) {
+  constexpr const char* kGroup = "Import";
+  app.add_option("--max-reflectance", f.max_reflectance,
+                 "reflectance at or above 1 in a band is clamped to this")
+      ->capture_default_str()
+      ->group(kGroup);
+  app.add_flag("--strict", f.strict,
+               "refuse what the import rules would fix (non-convex, non-planar, zero-area, "
+               "duplicate faces, reflectance >= 1), naming file:line")
+      ->group(kGroup);
+  app.add_flag("--two-sided", f.two_sided,
+               "every face is two back-to-back patches, each lit from its own side")
+      ->group(kGroup);
+  app.add_option("--emit", f.emit,
+                 "MATERIAL=R,G,B: make a material an emitter of radiance L_e (repeatable)")
+      ->group(kGroup);
+}
+
+absl::StatusOr<ImportOptions> ToImportOptions(const ImportFlags& f) {
+  ImportOptions options;
+  if (!(f.max_reflectance > 0 && f.max_reflectance < 1)) {
+    return absl::InvalidArgumentError("--max-reflectance must be in (0, 1)");
+  }
+  options.max_reflectance = f.max_reflectance;
+  options.strict = f.strict;
+  options.two_sided = f.two_sided;
+  for (const std::string& value : f.emit) {
+    absl::StatusOr<std::pair<std::string, Rgb>> emit = ParseEmit(value);
+    if (!emit.ok()) return emit.status();
+    options.emit.push_back(*std::move(emit));
+  }
+  return options;
+}
+
+void PrintImportLog(const ImportLog& log, bool quiet) {
+  if (quiet) return;
+  for (const std::string& line : log.Lines()) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+}  // namespace radflux::cli

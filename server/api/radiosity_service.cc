@@ -1,0 +1,275 @@
+#include "server/api/radiosity_service.h"
+
+#include <functional>
+
+#include "absl/strings/str_cat.h"
+#include "server/api/auth.h"
+#include "server/jobs/watch_reactor.h"
+#include "wire/proto_convert.h"
+#include "wire/stored_scene.h"
+
+namespace radflux {
+namespace {
+
+// A server stream that ends at once with an error.
+template <typename T>
+class ErrorWriteReactor final : public grpc::ServerWriteReactor<T> {
+ public:
+  explicit ErrorWriteReactor(const grpc::Status& status) { this->Finish(status); }
+  void OnDone() override { delete this; }
+};
+
+// Collects an upload, checks its size against the header and the limit, then stores it
+// (off the reactor thread).
+class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
+ public:
+  UploadReactor(JobManager& manager, WorkQueue& work, v1::SceneRef* response)
+      : manager_(manager), work_(work), response_(response) {
+    StartRead(&chunk_);
+  }
+
+  void OnReadDone(bool ok) override {
+    if (!ok) return Complete();
+    if (first_) {
+      first_ = false;
+      if (!chunk_.has_header())
+        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
+                    "the first chunk of an upload must carry its header");
+      header_ = chunk_.header();
+      if (header_.mesh_size() > 0 && header_.obj_size() + header_.mtl_size() > 0) {
+        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
+                    "a scene header declares obj_size/mtl_size (OBJ + MTL text) or mesh_size "
+                    "(a serialized Mesh), not both");
+      }
+      expected_ = header_.obj_size() + header_.mtl_size() + header_.mesh_size();
+      if (expected_ > manager_.options().max_upload) {
+        return Fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                    absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
+                                 manager_.options().max_upload, " bytes (--max-upload)"));
+      }
+      data_.reserve(expected_);
+    }
+    if (data_.size() + chunk_.data().size() > expected_) {
+      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload is longer than the ", expected_,
+                                                            " bytes its header declares"));
+    }
+    data_ += chunk_.data();
+    StartRead(&chunk_);
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  void Fail(grpc::StatusCode code, const std::string& message) {
+    Finish(grpc::Status(code, message));
+  }
+
+  void Complete() {
+    if (first_) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "empty upload");
+    if (data_.size() != expected_) {
+      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload truncated: got ", data_.size(),
+                                                            " of ", expected_, " bytes"));
+    }
+    work_.Post([this] {
+      absl::StatusOr<v1::SceneRef> ref =
+          manager_.AddScene(header_, SplitScenePayload(header_, data_));
+      if (ref.ok()) *response_ = *ref;
+      Finish(ToGrpcStatus(ref.status()));
+    });
+  }
+
+  JobManager& manager_;
+  WorkQueue& work_;
+  v1::SceneRef* response_;
+  v1::SceneChunk chunk_;
+  v1::SceneHeader header_;
+  bool first_ = true;
+  uint64_t expected_ = 0;
+  std::string data_;
+};
+
+// Streams messages produced off the reactor thread by `produce` (a result's chunks, a
+// scene's chunks), one write in flight, Finish exactly once.
+template <typename T>
+class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
+ public:
+  ChunkStreamReactor(WorkQueue& work, std::function<absl::StatusOr<std::vector<T>>()> produce) {
+    work.Post([this, produce = std::move(produce)] {
+      absl::StatusOr<std::vector<T>> chunks = produce();
+      {
+        std::lock_guard lock(mu_);
+        if (chunks.ok())
+          chunks_ = *std::move(chunks);
+        else
+          status_ = ToGrpcStatus(chunks.status());
+      }
+      Next();
+    });
+  }
+
+  void OnWriteDone(bool ok) override {
+    {
+      std::lock_guard lock(mu_);
+      if (!ok) cancelled_ = true;
+    }
+    Next();
+  }
+  void OnCancel() override {
+    std::lock_guard lock(mu_);
+    cancelled_ = true;
+  }
+  void OnDone() override { delete this; }
+
+ private:
+  void Next() {
+    std::unique_lock lock(mu_);
+    if (cancelled_ || !status_.ok() || next_ == chunks_.size()) {
+      const grpc::Status status = cancelled_ ? grpc::Status::CANCELLED : status_;
+      lock.unlock();
+      this->Finish(status);
+      return;
+    }
+    const T* chunk = &chunks_[next_++];
+    lock.unlock();
+    this->StartWrite(chunk);
+  }
+
+  std::mutex mu_;
+  std::vector<T> chunks_;
+  size_t next_ = 0;
+  grpc::Status status_;
+  bool cancelled_ = false;
+};
+
+// A stored scene as the chunks GetScene streams (see ToSceneChunks).
+absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
+                                                        const std::string& sha256) {
+  absl::StatusOr<StoredScene> scene = manager.GetScene(sha256);
+  if (!scene.ok()) return scene.status();
+  return ToSceneChunks(*scene, sha256);
+}
+
+// INVALID_ARGUMENT for a snapshot cadence < 0 or bands that are not distinct values 0..2.
+grpc::Status CheckWatchRequest(const v1::WatchJobRequest& request) {
+  if (request.snapshot_every() < 0) {
+    return grpc::Status(
+        grpc::StatusCode::INVALID_ARGUMENT,
+        absl::StrCat("snapshot_every must be >= 0, not ", request.snapshot_every()));
+  }
+  bool seen[3] = {false, false, false};
+  for (int band : request.bands()) {
+    if (band < 0 || band > 2 || seen[band]) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          absl::StrCat("bands must be distinct values of 0 (red), 1 (green), "
+                                       "2 (blue); got ",
+                                       band));
+    }
+    seen[band] = true;
+  }
+  return grpc::Status::OK;
+}
+
+// A unary call: the token check on the reactor thread, `work` on the work queue.
+template <typename Work>
+grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const std::string& token,
+                                   WorkQueue& queue, Work work) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  if (grpc::Status auth = CheckBearerToken(*context, token); !auth.ok()) {
+    reactor->Finish(auth);
+    return reactor;
+  }
+  queue.Post([reactor, work = std::move(work)] { reactor->Finish(ToGrpcStatus(work())); });
+  return reactor;
+}
+
+}  // namespace
+
+grpc::ServerReadReactor<v1::SceneChunk>* RadiosityService::UploadScene(
+    grpc::CallbackServerContext* context, v1::SceneRef* response) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    class Refuse final : public grpc::ServerReadReactor<v1::SceneChunk> {
+     public:
+      explicit Refuse(const grpc::Status& s) { Finish(s); }
+      void OnDone() override { delete this; }
+    };
+    return new Refuse(auth);
+  }
+  return new UploadReactor(manager_, work_, response);
+}
+
+grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContext* context,
+                                                      const v1::SubmitJobRequest* request,
+                                                      v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Submit(*request);
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerWriteReactor<grpc::ByteBuffer>* RadiosityService::WatchJob(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* raw_request) {
+  using Error = ErrorWriteReactor<grpc::ByteBuffer>;
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) return new Error(auth);
+  v1::WatchJobRequest request;
+  grpc::ByteBuffer bytes(*raw_request);  // shares the slices; Deserialize consumes it
+  if (!grpc::SerializationTraits<v1::WatchJobRequest>::Deserialize(&bytes, &request).ok()) {
+    return new Error(grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "malformed WatchJobRequest"));
+  }
+  if (grpc::Status valid = CheckWatchRequest(request); !valid.ok()) return new Error(valid);
+  absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request.job_id());
+  if (!hub.ok()) return new Error(ToGrpcStatus(hub.status()));
+  return new WatchReactor(*std::move(hub), request);
+}
+
+grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(
+    grpc::CallbackServerContext* context, const v1::GetResultRequest* request) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    return new ErrorWriteReactor<v1::ResultChunk>(auth);
+  }
+  return new ChunkStreamReactor<v1::ResultChunk>(
+      work_, [this, job_id = request->job_id(), report_only = request->report_only()] {
+        return manager_.Result(job_id, report_only);
+      });
+}
+
+grpc::ServerUnaryReactor* RadiosityService::GetJob(grpc::CallbackServerContext* context,
+                                                   const v1::GetJobRequest* request,
+                                                   v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Get(request->job_id());
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerWriteReactor<v1::SceneChunk>* RadiosityService::GetScene(
+    grpc::CallbackServerContext* context, const v1::GetSceneRequest* request) {
+  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+    return new ErrorWriteReactor<v1::SceneChunk>(auth);
+  }
+  return new ChunkStreamReactor<v1::SceneChunk>(
+      work_, [this, sha = request->sha256()] { return SceneChunks(manager_, sha); });
+}
+
+grpc::ServerUnaryReactor* RadiosityService::CancelJob(grpc::CallbackServerContext* context,
+                                                      const v1::CancelJobRequest* request,
+                                                      v1::Job* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::Job> job = manager_.Cancel(request->job_id());
+    if (job.ok()) *response = *job;
+    return job.status();
+  });
+}
+
+grpc::ServerUnaryReactor* RadiosityService::ListJobs(grpc::CallbackServerContext* context,
+                                                     const v1::ListJobsRequest* request,
+                                                     v1::ListJobsResponse* response) {
+  return RunUnary(context, token_, work_, [this, request, response] {
+    absl::StatusOr<v1::ListJobsResponse> list = manager_.List(*request);
+    if (list.ok()) *response = *list;
+    return list.status();
+  });
+}
+
+}  // namespace radflux

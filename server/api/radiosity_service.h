@@ -1,0 +1,51 @@
+// RadiosityService: the radflux.v1.Radiosity gRPC service (callback API). A thin shell:
+// it checks the bearer token, moves blocking work onto a WorkQueue, and calls the
+// JobManager; conversions live in proto_convert.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <string>
+
+#include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/jobs/job_manager.h"
+#include "server/jobs/work_queue.h"
+
+namespace radflux {
+
+// WatchJob is a raw method: its reactor writes events serialized once for all watchers.
+class RadiosityService final
+    : public v1::Radiosity::WithRawCallbackMethod_WatchJob<v1::Radiosity::CallbackService> {
+ public:
+  // `token` empty = no authentication.
+  RadiosityService(JobManager& manager, WorkQueue& work, std::string token)
+      : manager_(manager), work_(work), token_(std::move(token)) {}
+
+  grpc::ServerReadReactor<v1::SceneChunk>* UploadScene(grpc::CallbackServerContext* context,
+                                                       v1::SceneRef* response) override;
+  grpc::ServerUnaryReactor* SubmitJob(grpc::CallbackServerContext* context,
+                                      const v1::SubmitJobRequest* request,
+                                      v1::Job* response) override;
+  // A serialized v1::WatchJobRequest in, serialized v1::JobEvents out.
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* WatchJob(grpc::CallbackServerContext* context,
+                                                       const grpc::ByteBuffer* request) override;
+  grpc::ServerWriteReactor<v1::ResultChunk>* GetResult(
+      grpc::CallbackServerContext* context, const v1::GetResultRequest* request) override;
+  grpc::ServerUnaryReactor* CancelJob(grpc::CallbackServerContext* context,
+                                      const v1::CancelJobRequest* request,
+                                      v1::Job* response) override;
+  grpc::ServerUnaryReactor* ListJobs(grpc::CallbackServerContext* context,
+                                     const v1::ListJobsRequest* request,
+                                     v1::ListJobsResponse* response) override;
+  grpc::ServerUnaryReactor* GetJob(grpc::CallbackServerContext* context,
+                                   const v1::GetJobRequest* request, v1::Job* response) override;
+  grpc::ServerWriteReactor<v1::SceneChunk>* GetScene(grpc::CallbackServerContext* context,
+                                                     const v1::GetSceneRequest* request) override;
+
+ private:
+  JobManager& manager_;
+  WorkQueue& work_;
+  const std::string token_;
+};
+
+}  // namespace radflux

@@ -1,0 +1,133 @@
+// JobManager: accepts jobs, keeps them in the job store, runs up to `jobs` of them at once
+// on worker threads (sharing `threads` OpenMP threads), and publishes their events to
+// per-job hubs. On Start it requeues every job a previous run left unfinished.
+// Every method is thread-safe; the blocking ones (disk, parsing) must not run on gRPC
+// reactor threads.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "radflux/v1/radiosity.pb.h"
+#include "server/jobs/job_hub.h"
+#include "server/jobs/recent_map.h"
+#include "server/jobs/scene_cache.h"
+#include "server/store/job_store.h"
+
+namespace radflux {
+
+class RowFarm;
+
+struct ManagerOptions {
+  int jobs = 1;                        // jobs running at once
+  int threads = 0;                     // OpenMP threads shared by the running jobs (0 = all cores)
+  int64_t max_patches = 2'000'000;     // larger jobs are refused (RESOURCE_EXHAUSTED)
+  uint64_t max_memory = 0;             // bytes per job by EstimateJobBytes (0 = half the RAM)
+  uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
+  size_t max_queued = 1000;            // queued jobs beyond this are refused
+  double checkpoint_seconds = 1.0;     // at most one row-block and one solver checkpoint per job
+                                       // per interval (0 = after every block / iteration)
+  int solve_delay_ms = 0;              // testing: sleep after each solver iteration (widens the
+                                       // window in which a test can kill the server mid-solve)
+  int snapshot_interval_ms = 100;      // at most one snapshot per job per this interval (the
+                                       // newest; the last iteration's always), 0 = every one
+  RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
+  int block_delay_ms = 0;              // testing: sleep after each row block built on the server
+};
+
+class JobManager {
+ public:
+  JobManager(JobStore& store, ManagerOptions options);
+  ~JobManager();  // Shutdown()
+  JobManager(const JobManager&) = delete;
+  JobManager& operator=(const JobManager&) = delete;
+
+  // Requeues unfinished jobs and starts the workers.
+  absl::Status Start();
+  // Stops the workers: running jobs checkpoint and stay RUNNING in the store, to be
+  // resumed by the next Start. Idempotent.
+  void Shutdown();
+
+  const ManagerOptions& options() const { return options_; }
+
+  // Parses and stores an uploaded scene, OBJ + MTL or Mesh (INVALID_ARGUMENT with the
+  // loader's message; DATA_LOSS when it does not hash to header.sha256()).
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene);
+  // Validates and queues a job (or returns the job of an earlier submit with the same
+  // request id). Everything that can be refused is refused here, before any work.
+  absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request);
+  // Cancels a queued or running job (a finished job is returned unchanged).
+  absl::StatusOr<v1::Job> Cancel(const std::string& job_id);
+  absl::StatusOr<v1::Job> Get(const std::string& job_id);
+  // The texts of a stored scene (NOT_FOUND when no scene has that address).
+  absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
+  absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
+  // The event hub of a job (live, or a closed one-event history for a finished job).
+  absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);
+  // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that); with
+  // `report_only`, only the header and the report (GetResultRequest.report_only).
+  absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id,
+                                                      bool report_only = false);
+
+ private:
+  struct Running {
+    std::atomic<bool> stop{false};
+    std::atomic<bool> cancelled{false};  // stop is for a cancel: the job's files will go
+    bool cancel_requested = false;       // guarded by mu_
+  };
+
+  absl::Status CheckLimits(const v1::SubmitJobRequest& request);
+  void WorkerLoop();
+  void RunOne(const std::string& job_id);
+  // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`
+  // (SUCCEEDED, its result written in place but not yet fsynced: JobStore::PutResult
+  // of a prepared file) the state is committed, and the commit made durable while that fsync runs;
+  // the event is published once both are durable.
+  void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message,
+                  std::future<absl::Status>* result_synced = nullptr);
+  // On Start: every SUCCEEDED job whose result was never marked durable (an OS crash may
+  // have cut short its fsync, which runs beside the SUCCEEDED commit's) has its result file
+  // read and verified; when it is missing or corrupt, the job goes back to QUEUED (with a
+  // message saying why) and computes its result again: the same B, the computation being
+  // deterministic (rows still stored are reused; a solver checkpoint is not, so that cg,
+  // whose resume agrees only within the tolerance, restarts as the first run did).
+  absl::Status CheckResultsAtStart();
+  // On Start: queues a stored QUEUED or RUNNING job and rebuilds its event history.
+  absl::Status RequeueAtStart(const v1::Job& job);
+  std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
+  // A job's event history rebuilt from the store (after a restart, or when its finished hub
+  // left memory): numbered after `base` (JobStore::NextHistoryBase), its first event the
+  // job's stored state and phase; closed (and retired) when that state is terminal.
+  std::shared_ptr<JobHub> RebuildHubLocked(const v1::Job& job, uint64_t base);
+  // Notes that a job's hub is closed; only the newest kFinishedHubsKept closed hubs stay in
+  // memory (with their last snapshot), older ones are dropped (watchers holding one keep it;
+  // a later Hub() rebuilds a one-event history from the store).
+  void RetireHubLocked(const std::string& job_id);
+
+  JobStore& store_;
+  SceneCache scenes_{store_};  // shared by the limits check and the jobs' start
+  // The stored bytes of the last results of jobs that succeeded here (up to
+  // kRecentResultBytes each): GetResult right after a job ends skips reading, verifying
+  // and decompressing its file.
+  RecentMap<std::string> recent_results_{2};
+  const ManagerOptions options_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::string> queue_;
+  std::map<std::string, std::shared_ptr<Running>> running_;
+  std::map<std::string, std::shared_ptr<JobHub>> hubs_;
+  std::deque<std::string> finished_hubs_;  // closed hubs in hubs_, oldest first
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace radflux

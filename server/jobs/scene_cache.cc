@@ -1,0 +1,33 @@
+#include "server/jobs/scene_cache.h"
+
+#include "wire/stored_scene.h"
+
+namespace radflux {
+
+uint64_t LoadedScene::PatchCount(const MeshOptions& options) const {
+  const std::pair<int64_t, double> key{options.target_patches, options.max_edge};
+  {
+    std::lock_guard lock(mu_);
+    if (auto it = counts_.find(key); it != counts_.end()) return it->second;
+  }
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+  const uint64_t count = mesh.ok() ? mesh->size() : 0;
+  std::lock_guard lock(mu_);
+  counts_.emplace(key, count);
+  return count;
+}
+
+absl::StatusOr<std::shared_ptr<const LoadedScene>> SceneCache::Get(const std::string& sha256) {
+  if (std::shared_ptr<const LoadedScene> cached = recent_.Get(sha256)) return cached;
+  absl::StatusOr<StoredScene> stored = store_.GetScene(sha256);
+  if (!stored.ok()) return stored.status();
+  absl::StatusOr<Scene> loaded = LoadStoredScene(*stored);
+  if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
+  auto scene = std::make_shared<LoadedScene>();
+  scene->name = stored->name;
+  scene->scene = *std::move(loaded);
+  recent_.Put(sha256, scene);
+  return scene;
+}
+
+}  // namespace radflux

@@ -1,0 +1,51 @@
+// SceneCache: the solver Scenes of the most recently used stored scenes, by content
+// address. A stored scene never changes under its address, so a cached Scene is the one
+// LoadStoredScene would return now; SubmitJob's limits check and the job's start then read,
+// verify and parse a scene once instead of twice per job, and not at all for a scene the
+// server solved just before (warm state that `radflux solve` pays in every process).
+// Holds at most `capacity` scenes. Thread-safe.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include "absl/status/statusor.h"
+#include "server/jobs/recent_map.h"
+#include "server/store/job_store.h"
+#include "solver/mesh/subdivide.h"
+#include "solver/scene/scene.h"
+
+namespace radflux {
+
+// A stored scene as loaded: its upload name and its solver Scene, and the patch counts of
+// meshing it, each counted once (SubmitJob's limits check and the job's start both need
+// it; counting is subdividing, ~1 ms for the Cornell box at 8,500 patches).
+struct LoadedScene {
+  std::string name;
+  Scene scene;
+
+  // The patch count of SubdivideScene(scene, options), 0 when it fails. Thread-safe.
+  uint64_t PatchCount(const MeshOptions& options) const;
+
+ private:
+  mutable std::mutex mu_;                                          // guards counts_
+  mutable std::map<std::pair<int64_t, double>, uint64_t> counts_;  // by target_patches, max_edge
+};
+
+class SceneCache {
+ public:
+  explicit SceneCache(JobStore& store, size_t capacity = 2) : store_(store), recent_(capacity) {}
+
+  // The scene stored under `sha256`, as LoadStoredScene returns it (not validated): NOT_FOUND
+  // when no scene has that address, INVALID_ARGUMENT when it does not load.
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> Get(const std::string& sha256);
+
+ private:
+  JobStore& store_;
+  RecentMap<LoadedScene> recent_;
+};
+
+}  // namespace radflux

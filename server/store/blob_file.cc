@@ -1,0 +1,161 @@
+#include "server/store/blob_file.h"
+
+#include <fcntl.h>
+#include <openssl/evp.h>
+#include <unistd.h>
+#include <zstd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "wire/scene_hash.h"
+
+namespace radflux {
+namespace {
+
+constexpr std::string_view kMagic = "RFBLOB1\n";
+constexpr size_t kHashHexSize = 64;
+constexpr int kZstdLevel = 1;  // fastest: row blocks are written while rows are built
+
+absl::Status ErrnoError(std::string_view what, const std::string& path) {
+  return absl::InternalError(
+      absl::StrCat(std::string(what), " ", path, ": ", std::strerror(errno)));
+}
+
+// Writes all of `data` to fd.
+bool WriteAll(int fd, std::string_view data) {
+  while (!data.empty()) {
+    const ssize_t n = ::write(fd, data.data(), data.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data.remove_prefix(static_cast<size_t>(n));
+  }
+  return true;
+}
+
+std::string ParentDir(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
+
+}  // namespace
+
+bool SyncPath(const std::string& path) {
+  const int fd = ::open(path.empty() ? "." : path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+struct BlobBuilder::Hash {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx{EVP_MD_CTX_new(), EVP_MD_CTX_free};
+};
+
+BlobBuilder::BlobBuilder() : hash_(std::make_unique<Hash>()) {
+  EVP_DigestInit_ex(hash_->ctx.get(), EVP_sha256(), nullptr);
+}
+BlobBuilder::~BlobBuilder() = default;
+BlobBuilder::BlobBuilder(BlobBuilder&&) noexcept = default;
+BlobBuilder& BlobBuilder::operator=(BlobBuilder&&) noexcept = default;
+
+absl::Status BlobBuilder::Append(std::string_view data) {
+  const size_t at = frames_.size();
+  frames_.resize(at + ZSTD_compressBound(data.size()));
+  const size_t size =
+      ZSTD_compress(frames_.data() + at, frames_.size() - at, data.data(), data.size(), kZstdLevel);
+  if (ZSTD_isError(size)) {
+    frames_.resize(at);
+    return absl::InternalError(ZSTD_getErrorName(size));
+  }
+  frames_.resize(at + size);
+  EVP_DigestUpdate(hash_->ctx.get(), data.data(), data.size());
+  raw_size_ += data.size();
+  return absl::OkStatus();
+}
+
+std::string BlobBuilder::File() const {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_MD_CTX_copy_ex(ctx.get(), hash_->ctx.get());
+  return absl::StrCat(std::string(kMagic), raw_size_, "\n", DigestHex(ctx.get()), "\n", frames_);
+}
+
+namespace {
+
+absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
+  BlobBuilder blob;
+  if (absl::Status s = blob.Append(data); !s.ok()) return s;
+  return blob.File();
+}
+
+}  // namespace
+
+absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
+  absl::StatusOr<std::string> blob = EncodeBlob(data);
+  if (!blob.ok()) return blob.status();
+  return WriteBuiltBlobFile(path, *blob);
+}
+
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file) {
+  const std::string temp = path + ".tmp";
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return ErrnoError("cannot create", temp);
+  const bool ok = WriteAll(fd, file) && ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok) return ErrnoError("cannot write", temp);
+  if (::rename(temp.c_str(), path.c_str()) != 0) return ErrnoError("cannot rename", temp);
+  SyncPath(ParentDir(path));  // the rename itself
+  return absl::OkStatus();
+}
+
+absl::Status CreateDurableFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return ErrnoError("cannot create", path);
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  const std::string dir = ParentDir(path);
+  if (!ok || !SyncPath(dir) || !SyncPath(ParentDir(dir))) return ErrnoError("cannot sync", path);
+  return absl::OkStatus();
+}
+
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return ErrnoError("cannot open", path);
+  const bool ok = WriteAll(fd, file) && ::ftruncate(fd, static_cast<off_t>(file.size())) == 0;
+  ::close(fd);
+  if (!ok) return ErrnoError("cannot write", path);
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::string> ReadBlobFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat("no such blob: ", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string file = buffer.str();
+  const auto corrupt = [&](std::string_view why) {
+    return absl::DataLossError(absl::StrCat("corrupt blob ", path, ": ", std::string(why)));
+  };
+  if (file.compare(0, kMagic.size(), kMagic) != 0) return corrupt("bad magic");
+  const size_t size_end = file.find('\n', kMagic.size());
+  if (size_end == std::string::npos) return corrupt("truncated header");
+  const std::string size_text = file.substr(kMagic.size(), size_end - kMagic.size());
+  const size_t hash_begin = size_end + 1;
+  if (file.size() < hash_begin + kHashHexSize + 1) return corrupt("truncated header");
+  const std::string hash = file.substr(hash_begin, kHashHexSize);
+  const size_t body = hash_begin + kHashHexSize + 1;
+  char* end = nullptr;
+  const unsigned long long raw_size = std::strtoull(size_text.c_str(), &end, 10);
+  if (end == size_text.c_str() || *end != '\0') return corrupt("bad size");
+  std::string raw(raw_size, '\0');
+  const size_t got =
+      ZSTD_decompress(raw.data(), raw.size(), file.data() + body, file.size() - body);
+  if (ZSTD_isError(got) || got != raw_size) return corrupt("bad compressed data");
+  if (Sha256Hex(raw) != hash) return corrupt("checksum mismatch");
+  return raw;
+}
+
+}  // namespace radflux

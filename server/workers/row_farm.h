@@ -1,0 +1,117 @@
+// RowFarm: where a job's row phase meets the worker nodes. The job runner opens the phase
+// with the blocks still to build; its own threads and every connected worker take blocks
+// from the same LeaseTable. A remote lease has a deadline; a block whose worker leaves,
+// is dropped, or runs past the deadline is leased again (logged with the block). The first
+// result of a block is stored, a late duplicate is discarded. Results from workers are
+// checked (lease, job, block, first row, row count, SHA-256, decoding) before they are
+// stored; a mismatch is an error that drops the worker. Thread-safe.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "radflux/v1/worker.pb.h"
+#include "server/store/stored_codec.h"
+#include "server/workers/lease_table.h"
+
+namespace radflux {
+
+// What a worker needs to build the blocks of a job.
+struct FarmJob {
+  std::string job_id;
+  std::string scene_sha256;
+  v1::SolveOptions options;
+  uint32_t patch_count = 0;
+  uint32_t block_size = 0;
+};
+
+class RowFarm {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // Receives the first result of each block (on the thread that delivered it).
+  using BlockSink = std::function<void(uint32_t block, StoredRowBlock rows)>;
+
+  // `lease_seconds`: how long a worker may hold a block before it is leased again.
+  explicit RowFarm(double lease_seconds = 300) : lease_seconds_(lease_seconds) {}
+
+  // --- the job runner's side ---
+  // Opens a job's row phase over `missing` blocks; `sink` gets every block built remotely.
+  void Open(const FarmJob& job, const std::vector<uint32_t>& missing, BlockSink sink);
+  // Ends the phase (done or stopped): later results for the job are discarded.
+  void Close(const std::string& job_id);
+  // The next block for a server thread. Waits while every remaining block is out with a
+  // worker (expiring overdue leases meanwhile); nullopt when all are done or *stop is set.
+  std::optional<uint32_t> NextLocal(const std::string& job_id, const std::atomic<bool>* stop);
+  // Claims a block a server thread built: true = store it; false = a worker was first.
+  bool ClaimLocal(const std::string& job_id, uint32_t block);
+  // After the claimed block was handed to the store.
+  void FinishBlock(const std::string& job_id, uint32_t block);
+  bool AllDone(const std::string& job_id);
+
+  // --- the worker service's side ---
+  uint64_t AddWorker(int threads, const std::string& name);
+  // Releases the worker's leases (each logged with `reason`) and forgets it.
+  void RemoveWorker(uint64_t worker, const std::string& reason);
+  // A lease for the worker when it has a free thread and a block is pending; waits up to
+  // `wait` for one (nullopt on timeout or Shutdown).
+  std::optional<v1::BlockLease> NextLease(uint64_t worker, std::chrono::milliseconds wait);
+  // Checks and stores a worker's result. OK also for a discarded duplicate or a result of
+  // a job that is no longer in its row phase; an error means: drop this worker.
+  absl::Status Accept(uint64_t worker, const v1::BlockResult& result);
+  // Wakes every waiter (shutdown); NextLease returns nullopt from then on.
+  void Shutdown();
+
+  // Counters for logs and benches.
+  struct Stats {
+    uint64_t remote_blocks = 0, local_blocks = 0, duplicates = 0, released = 0;
+    uint64_t wire_bytes = 0, remote_rows = 0;
+    double remote_build_seconds = 0;  // as the workers reported them
+    double accept_seconds = 0;        // server time checking and decoding remote blocks
+  };
+  Stats stats();
+
+ private:
+  struct Job {
+    FarmJob spec;
+    LeaseTable table;
+    BlockSink sink;
+    int sinking = 0;  // results being handed to `sink` (Close waits for them)
+  };
+  struct Issued {  // a lease as handed to a worker
+    std::string job_id;
+    uint32_t block = 0, first_row = 0, row_count = 0;
+    bool active = true;  // still counted against the worker's threads
+  };
+  struct Worker {
+    int threads = 1;
+    std::string name;
+    int active = 0;
+    std::map<uint64_t, Issued> issued;  // by lease id
+  };
+  absl::Status CheckResult(const Issued& issued, uint32_t patch_count,
+                           const v1::BlockResult& result, StoredRowBlock* rows);
+  void LogRelease(const std::string& job_id, const Job& job, const std::vector<uint32_t>& blocks,
+                  const std::string& why);
+  void ExpireLocked(Clock::time_point now);
+
+  const double lease_seconds_;
+  std::mutex mu_;
+  std::condition_variable cv_;  // notified on every state change
+  std::map<std::string, std::unique_ptr<Job>> jobs_;
+  std::map<uint64_t, Worker> workers_;
+  uint64_t next_worker_ = 1;
+  uint64_t next_lease_ = 1;
+  bool shutdown_ = false;
+  Stats stats_;
+};
+
+}  // namespace radflux
