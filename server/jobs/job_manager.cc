@@ -275,6 +275,9 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   event.set_state(state);
   event.set_phase(phase);
   event.set_message(message);
+  if (state == v1::JOB_STATE_SUCCEEDED && job.has_converged()) {
+    event.set_converged(job.converged());
+  }
   hub->Publish(event);
   if (IsTerminal(state)) {
     hub->Close();
@@ -385,7 +388,8 @@ void JobManager::RunOne(const std::string& job_id) {
       // The result's fsync, beside the commit's (a no-op when it was stored atomically).
       std::future<absl::Status> synced =
           std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
-      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "", &synced);
+      job.set_converged(result->converged);
+      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, result->message, &synced);
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
     }

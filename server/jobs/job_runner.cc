@@ -7,6 +7,7 @@
 #include <optional>
 #include <thread>
 
+#include "absl/strings/str_format.h"
 #include "server/jobs/progress_throttle.h"
 #include "server/jobs/row_budget.h"
 #include "server/store/result_codec.h"
@@ -319,6 +320,12 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   report_json["workers"] = WorkersJson(farm_report);
   const std::string report = report_json.dump(2);
   absl::StatusOr<EncodedResult> encoded = encoder.get().Finish(result.solve, report);
+  if (encoded.ok() && !result.solve.converged) {
+    encoded->converged = false;
+    encoded->message =
+        absl::StrFormat("not converged: residual %.3g after %d iterations (tolerance %.3g)",
+                        result.solve.residual, result.solve.iterations, options->solver.tolerance);
+  }
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
       "result encoding {:.1f}",
