@@ -1,6 +1,6 @@
-// load_time FILE...: how long LoadScene takes on each scene file (any format it reads), as
-// the median of 7 loads, with the face, material and file counts of the result. No import
-// rules, no meshing: the loader alone.
+// load_time FILE...: how long LoadScene takes on each scene file, any format it reads (the
+// format's loader plus the import rules; no meshing: see load_mesh for OBJ by phase), as the
+// median of 7 loads, with the face, material and file counts of the result.
 //   build/release/bench/load_time ../shared/scenes/renderpark/salon/classroom.mgf
 #include <algorithm>
 #include <chrono>

@@ -155,4 +155,41 @@ Point2 InvertUniformTriangleSample(double b0, double b1) {
   return {2 * b0, b1 + b0};
 }
 
+double SampleLinear(double u, double a, double b) {
+  if (u == 0 && a == 0) return 0;
+  // The root of the CDF (a (2x - x^2) + b x^2) / (a + b) = u, in the form without
+  // cancellation when a and b are close.
+  const double x = u * (a + b) / (a + std::sqrt((1 - u) * a * a + u * b * b));
+  return std::min(x, 0x1.fffffffffffffp-1);
+}
+
+double LinearPdf(double x, double a, double b) {
+  if (x < 0 || x > 1) return 0;
+  return 2 * ((1 - x) * a + x * b) / (a + b);
+}
+
+double InvertLinearSample(double x, double a, double b) {
+  return x * (a * (2 - x) + b * x) / (a + b);
+}
+
+Point2 SampleBilinear(Point2 u, const std::array<double, 4>& w) {
+  const double y = SampleLinear(u.y, w[0] + w[1], w[2] + w[3]);
+  const double x = SampleLinear(u.x, (1 - y) * w[0] + y * w[2], (1 - y) * w[1] + y * w[3]);
+  return {x, y};
+}
+
+double BilinearPdf(Point2 p, const std::array<double, 4>& w) {
+  if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) return 0;
+  const double sum = w[0] + w[1] + w[2] + w[3];
+  return 4 *
+         ((1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] +
+          p.x * p.y * w[3]) /
+         sum;
+}
+
+Point2 InvertBilinearSample(Point2 p, const std::array<double, 4>& w) {
+  return {InvertLinearSample(p.x, (1 - p.y) * w[0] + p.y * w[2], (1 - p.y) * w[1] + p.y * w[3]),
+          InvertLinearSample(p.y, w[0] + w[1], w[2] + w[3])};
+}
+
 }  // namespace radflux

@@ -150,4 +150,18 @@ inline std::pair<double, double> SampleUniformTriangle(Point2 u) {
 }
 Point2 InvertUniformTriangleSample(double b0, double b1);
 
+// x in [0, 1] with density proportional to (1 - x) a + x b (a, b >= 0, not both 0), its pdf
+// and inverse.
+double SampleLinear(double u, double a, double b);
+double LinearPdf(double x, double a, double b);
+double InvertLinearSample(double x, double a, double b);
+
+// A point of [0, 1]^2 with density proportional to the bilinear interpolation of the corner
+// weights w = {w(0,0), w(1,0), w(0,1), w(1,1)} (>= 0, not all 0): y from its linear marginal,
+// then x given y. With its pdf and inverse (pbrt-v4's bilinear warp: composed with a
+// solid-angle map it approximates cosine-weighted sampling of a light's solid angle).
+Point2 SampleBilinear(Point2 u, const std::array<double, 4>& w);
+double BilinearPdf(Point2 p, const std::array<double, 4>& w);
+Point2 InvertBilinearSample(Point2 p, const std::array<double, 4>& w);
+
 }  // namespace radflux

@@ -1,13 +1,13 @@
 // monte_carlo: k cosine-weighted rays from stratified points on patch i; each ray
-// that hits the front of patch j adds 1/k to F_ij. Emitter columns are computed
-// analytically instead (their direct light would be the noisiest term) and MC hits
-// on emitters are dropped, so the two never double count.
-#include <optional>
+// that hits the front of patch j adds 1/k to F_ij. Emitter columns come from light
+// sampling instead (their direct light would be the noisiest term): a fixed budget of
+// light samples per row, whatever the number of emitter patches (light_sampling.h). MC
+// hits on emitters are dropped, so the two never double count.
 #include <vector>
 
 #include "solver/core/sampling.h"
-#include "solver/formfactor/analytic_pair.h"
 #include "solver/formfactor/builders.h"
+#include "solver/formfactor/light_sampling.h"
 
 namespace radflux {
 namespace {
@@ -23,7 +23,7 @@ class MonteCarloBuilder final : public RowBuilder {
   // random offsets (Cranley-Patterson rotation), which keeps them stratified and
   // makes the estimate unbiased at a few additions per ray.
   MonteCarloBuilder(const RowContext& context, const FormFactorOptions& options)
-      : context_(context), options_(options) {
+      : context_(context), options_(options), lights_(context) {
     const uint32_t k = static_cast<uint32_t>(options.rays);
     for (uint32_t r = 0; r < k; ++r) {
       positions_.push_back(MultiJitteredSample(r, k, kPositionPattern));
@@ -32,8 +32,6 @@ class MonteCarloBuilder final : public RowBuilder {
       direction_x_.push_back(static_cast<float>(d.x));
       direction_y_.push_back(static_cast<float>(d.y));
     }
-    emitters_ = EmitterPatches(context);
-    if (!emitters_.empty()) pairs_.emplace(context);
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
@@ -82,17 +80,23 @@ class MonteCarloBuilder final : public RowBuilder {
       const uint32_t j = ray.FrontPatch();  // a back side absorbs the ray
       if (j != kNoPatch && !context_.emitter[j]) row.Add(j, weight);
     }
-    if (emitters_.empty()) return stream.size();
-    return stream.size() + pairs_->AddColumns(i, emitters_, options_.samples, options_.seed, row);
+    const uint64_t light_rays =
+        lights_.AddEmitterColumns(i, options_.samples, kLightSamplesPerPoint, options_.seed, row);
+    // The two parts are independent estimates: where emitters fill much of the hemisphere
+    // their noise can add up to more than 1, which no row may (rho F B must converge for
+    // every rho < 1); such a row is scaled back to 1 (a closed room's rows sum to 1 exactly).
+    double sum = 0;
+    for (uint32_t j : row.Touched()) sum += row.Value(j);
+    if (sum > 1) row.Scale(1 / sum);
+    return stream.size() + light_rays;
   }
 
  private:
   const RowContext& context_;
   FormFactorOptions options_;
-  std::optional<AnalyticPairs> pairs_;  // the emitter columns, when there are emitters
+  LightSampler lights_;  // the emitter columns
   std::vector<Point2> positions_;
   std::vector<float> direction_x_, direction_y_;  // the unshifted direction samples, in float
-  std::vector<uint32_t> emitters_;
 };
 
 }  // namespace

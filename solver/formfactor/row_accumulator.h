@@ -27,6 +27,11 @@ class RowAccumulator {
     value_[j] += v;
   }
 
+  // Multiplies every entry of the row so far by factor > 0.
+  void Scale(double factor) {
+    for (uint32_t j : touched_) value_[j] *= factor;
+  }
+
   // The row so far (read-only; for checks that need the double values before Flush).
   double Value(uint32_t j) const { return value_[j]; }
   const std::vector<uint32_t>& Touched() const { return touched_; }

@@ -26,6 +26,8 @@ struct RowContext {
   const RayCaster* caster = nullptr;
   std::vector<uint8_t> needs_row;  // 1 where rho > 0 in some band: only those get rows
   std::vector<uint8_t> emitter;    // 1 where the patch emits
+  std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;
+                                   // empty: every emitter counts as 1)
   double ray_epsilon = 0;          // ray origin offset along the normal, scene units
 };
 

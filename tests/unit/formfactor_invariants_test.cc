@@ -45,11 +45,12 @@ TEST(FormFactorInvariants, ClosedCubeRowsSumToOne) {
     double worst = 0;
     for (uint32_t i = 0; i < f.rows; ++i) worst = std::max(worst, std::abs(f.RowSum(i) - 1));
     std::printf("  %-12s max |row sum - 1| = %.2e\n", std::string(MethodName(m)).c_str(), worst);
-    // monte_carlo: statistical (k = 1024). hemicube: its cells partition the hemisphere,
-    // but the lamp's column is the exact point form factor, so a row misses 1 by the
+    // monte_carlo: statistical (k = 1024 rays, and 16 s = 256 light samples for the lamp's
+    // columns, which add their own noise). hemicube: its cells
+    // partition the hemisphere, but the lamp's column is the exact point form factor, so a row misses 1 by the
     // cells' aliasing of the lamp's outline (a few cells of 1/r^2 each, r = 64). analytic:
     // exact per-point factors, no occluders here.
-    const double tolerance = m == FormFactorMethod::kMonteCarlo ? 0.02
+    const double tolerance = m == FormFactorMethod::kMonteCarlo ? 0.03
                              : m == FormFactorMethod::kHemicube ? 5e-3
                                                                 : 2e-3;
     EXPECT_LT(worst, tolerance) << MethodName(m);

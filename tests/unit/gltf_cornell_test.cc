@@ -183,9 +183,13 @@ TEST(GltfCornellBox, SameTrianglesAsObjAndAsGltfGiveBitIdenticalRadiosity) {
       differing += result.solve.radiosity[p] != reference.solve.radiosity[p];
     }
     EXPECT_EQ(differing, 0u) << name << ": patches whose B differs in any bit";
-    // And the glTF scene's solve conserves energy (the open front lets light escape).
-    const EnergyBalance balance = ComputeEnergyBalance(result.System(), result.solve.radiosity);
-    EXPECT_LT(balance.RelativeImbalance(), 0.005) << name;
+    // And the glTF scene's solve conserves energy (the open front lets light escape), within
+    // the tolerance that follows from its 64-ray rows' noise (at 400 patches the imbalance
+    // runs 0.3-1.5% over seeds, with analytic or light-sampled lamp columns alike).
+    const EnergyBalance balance =
+        ComputeEnergyBalance(result.System(), result.solve.radiosity, 64);
+    EXPECT_TRUE(balance.Ok()) << name << " imbalance " << balance.RelativeImbalance()
+                              << " tolerance " << balance.Tolerance();
   }
 }
 

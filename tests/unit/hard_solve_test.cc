@@ -132,11 +132,14 @@ TEST(HardSolve, SmallLampClosedRoomEverySolverAtRhoNearOne) {
             r->fallback_reason.empty() ? "" : (" fallback: " + r->fallback_reason).c_str());
         EXPECT_TRUE(r->converged) << what;
         EXPECT_LE(r->residual, 1e-6) << what;
-        // A bound where max rho * row sum < 1 (rho = 0.99); at rho = 0.999 the analytic lamp
-        // columns lift some row sums past 1 / rho and the estimate comes from the observed
-        // contraction rate, which is no bound: measured within 2x of the error here.
+        // A bound where max rho * row sum < 1; where some row sums pass 1 / rho the estimate
+        // comes from the observed contraction rate, which is no bound: measured within 2x of
+        // the error here. (Monte Carlo rows are scaled back to sum at most 1, so at these rho
+        // it is a bound.)
         const double allowed = r->error_estimate_method == "bound" ? 1 + 1e-6 : 3;
-        EXPECT_EQ(r->error_estimate_method, rho < 0.995 ? "bound" : "rate") << what;
+        double max_row_sum = 0;
+        for (uint32_t i = 0; i < f.rows; ++i) max_row_sum = std::max(max_row_sum, f.RowSum(i));
+        EXPECT_EQ(r->error_estimate_method, rho * max_row_sum < 1 ? "bound" : "rate") << what;
         EXPECT_LE(err, r->error_estimate * allowed + 1e-12) << what;
         EXPECT_LT(err, 1e-6 / (1 - rho) * 10) << what;
         const EnergyBalance balance = ComputeEnergyBalance(system, r->radiosity, k);

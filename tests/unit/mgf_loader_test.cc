@@ -5,7 +5,9 @@
 #include <string>
 
 #include "gtest/gtest.h"
+#include "solver/scene/import_rules.h"
 #include "solver/scene/mgf_transform.h"
+#include "solver/scene/validation.h"
 
 namespace radflux {
 namespace {
@@ -170,6 +172,26 @@ TEST(MgfLoader, FaceWithHoleBecomesOneFace) {
   ASSERT_TRUE(s.ok()) << s.status();
   ASSERT_EQ(s->faces.size(), 1u);
   EXPECT_NEAR(PolygonNewellNormal(FacePolygon(*s, s->faces[0])).z / 2, 15, 1e-12);
+}
+
+TEST(MgfLoader, FaceWithHoleKeepsItsAreaThroughTheImportRules) {
+  // The bridged contour touches itself along the bridge; ear clipping must cover the square
+  // minus the hole exactly, and the result must validate.
+  absl::StatusOr<Scene> s = Load(
+      "m lamp =\n sides 1\n ed 100\n"
+      "v a =\n p 0 0 0\nv b =\n p 4 0 0\nv c =\n p 4 4 0\nv d =\n p 0 4 0\n"
+      "v e =\n p 1 1 0\nv f =\n p 1 2 0\nv g =\n p 2 2 0\nv h =\n p 2 1 0\n"
+      "fh a b c d - e f g h\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_TRUE(ApplyImportRules(ImportOptions{}, *s).ok());
+  EXPECT_TRUE(ValidateScene(*s).ok()) << ValidateScene(*s);
+  double area = 0;
+  for (const Face& f : s->faces) {
+    const Vec3 n = PolygonNewellNormal(FacePolygon(*s, f));
+    EXPECT_GT(n.z, 0);
+    area += Length(n) / 2;
+  }
+  EXPECT_NEAR(area, 15, 1e-12);
 }
 
 TEST(MgfLoader, ErrorsNameFileAndLine) {

@@ -1,11 +1,13 @@
 // RenderPark's MGF scenes (../shared/scenes/renderpark/) as the MGF loader reads them
-// (before the import rules): the face counts (checked by hand for corridor, examp1 and floor_gloss from their f statements and
-// primitives at 16 segments), emitters present, and what the conversion left out logged.
+// (before the import rules): the face counts (checked by hand for corridor, examp1 and floor_gloss
+// from their f statements and primitives at 16 segments), emitters present, and what the conversion
+// left out logged.
 #include <string>
 
 #include "gtest/gtest.h"
 #include "solver/scene/load_scene.h"
 #include "solver/scene/mgf_loader.h"
+#include "solver/scene/validation.h"
 
 namespace radflux {
 namespace {
@@ -71,6 +73,18 @@ TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_EQ(scene->source, kDir + "cube.mgf");
   EXPECT_GT(EmitterFaces(*scene), 0u);
+}
+
+TEST(MgfRenderPark, EverySceneValidatesAfterTheImportRules) {
+  // The loader hands over non-convex (corridor's floor) and non-planar (office2, classroom)
+  // polygons as MGF gives them; LoadScene's import rules make every scene valid.
+  for (const char* file : {"cube.mgf", "corridor.mgf", "examp1.mgf", "floor_gloss.mgf",
+                           "office2/office2.mgf", "salon/classroom.mgf"}) {
+    absl::StatusOr<Scene> scene = LoadScene(kDir + file, ImportOptions{});
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_TRUE(ValidateScene(*scene).ok()) << ValidateScene(*scene);
+    EXPECT_GT(EmitterFaces(*scene), 0u) << file;
+  }
 }
 
 TEST(MgfRenderPark, SidesGiveTwoSidedMaterials) {

@@ -121,5 +121,44 @@ TEST(Sampling, PatternSeedsDependOnSeedAndIndex) {
   EXPECT_EQ(PatternSeed(5, 9, 1), PatternSeed(5, 9, 1));
 }
 
+TEST(Sampling, BilinearInvertsAndItsPdfIsItsDensity) {
+  for (const std::array<double, 4>& w :
+       {std::array<double, 4>{1, 1, 1, 1}, {0.01, 1, 0.5, 2}, {3, 0.2, 0.01, 0.7}}) {
+    // Round trip, and the pdf against a histogram of 65,536 stratified samples on 4 x 4 cells
+    // (each cell's expected share is the bilinear pdf's integral over it, by a midpoint rule
+    // on 16 x 16 points; a cell's count is within a few of it, far below the 2% tolerance).
+    std::array<double, 16> count{};
+    const uint32_t n = 65536;
+    for (uint32_t i = 0; i < n; ++i) {
+      const Point2 u = MultiJitteredSample(i, n, 29);
+      const Point2 p = SampleBilinear(u, w);
+      ASSERT_GE(p.x, 0);
+      ASSERT_LT(p.x, 1);
+      ASSERT_GE(p.y, 0);
+      ASSERT_LT(p.y, 1);
+      if (i % 64 == 0) {
+        const Point2 back = InvertBilinearSample(p, w);
+        EXPECT_NEAR(back.x, u.x, 1e-9);
+        EXPECT_NEAR(back.y, u.y, 1e-9);
+      }
+      count[static_cast<size_t>(4 * std::floor(4 * p.y) + std::floor(4 * p.x))] += 1.0 / n;
+    }
+    for (int cy = 0; cy < 4; ++cy) {
+      for (int cx = 0; cx < 4; ++cx) {
+        double share = 0;
+        for (int a = 0; a < 16; ++a) {
+          for (int b = 0; b < 16; ++b) {
+            share += BilinearPdf({(cx + (a + 0.5) / 16) / 4, (cy + (b + 0.5) / 16) / 4}, w) /
+                     (16.0 * 16 * 16);
+          }
+        }
+        EXPECT_NEAR(count[4 * cy + cx], share, 0.02 * share) << cx << "," << cy;
+      }
+    }
+  }
+  EXPECT_NEAR(LinearPdf(0.25, 1, 3), 2 * 1.5 / 4, 1e-15);
+  EXPECT_NEAR(InvertLinearSample(SampleLinear(0.3, 0.2, 5), 0.2, 5), 0.3, 1e-12);
+}
+
 }  // namespace
 }  // namespace radflux

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The Cornell box's defaults against an independent path tracer (Blender's Cycles):
+# per-surface mean radiance of radflux's linear picture against Cycles' picture from the same
+# camera, and the whole process's time (median of RUNS runs).
+#
+# Needs Blender (a bench tool, not a build dependency; not in scripts/setup.sh):
+#   apt-get install -y --no-install-recommends blender python3-numpy
+# and optionally hyperfine for the timing (else a loop of `date`).
+#
+# Usage: bench/cornell_vs_cycles.sh [extra radflux solve flags...]
+#   OUT=dir (default /tmp/radflux-cycles), SIZE=128x128, SPP=4096 (Cycles samples per pixel),
+#   RUNS=20, BIN=build/ci/client/radflux. The two Cycles renders (seeds 1 and 2, ~6-9 min each
+#   here) are reused when OUT already has them for the same SIZE and SPP.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${OUT:-/tmp/radflux-cycles}
+size=${SIZE:-128x128}
+spp=${SPP:-4096}
+runs=${RUNS:-20}
+bin=${BIN:-build/ci/client/radflux}
+scene=scenes/cornell_box.obj
+mkdir -p "$out"
+
+# radflux's default camera for this scene, spelled out so that Cycles gets the same one.
+pos=278,274.4,-778.4
+look=278,274.4,279.6
+fov=39.3077
+camera=(--camera-pos "$pos" --camera-look-at "$look" --fov-deg "$fov" --size "$size")
+
+for seed in 1 2; do
+  ref="$out/cycles_${size}_${spp}_seed$seed"
+  if [ ! -f "$ref.npy" ]; then
+    blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
+      "$scene" "$ref" --pos "$pos" --look "$look" --up 0,1,0 --fov "$fov" --size "$size" \
+      --samples "$spp" --seed "$seed" --threads 2 > "$ref.log" 2>&1
+  fi
+done
+
+# The masks: the same scene with every object emitting its code k (radiance k) and
+# reflecting nothing, rendered by radflux with the same camera.
+/usr/bin/python3 - "$scene" "$out/flat" <<'EOF'
+import os, sys
+scene, flat = sys.argv[1], sys.argv[2]
+codes = ["floor", "ceiling", "back_wall", "red_wall", "green_wall", "light", "short_block",
+         "tall_block"]
+lines, obj = [], None
+for line in open(scene):
+    p = line.split()
+    if p and p[0] == "mtllib":
+        line = f"mtllib {os.path.basename(flat)}.mtl\n"
+    elif p and p[0] == "o":
+        obj = p[1]
+    elif p and p[0] == "usemtl":
+        line = f"usemtl code_{obj}\n"
+    lines.append(line)
+open(flat + ".obj", "w").writelines(lines)
+with open(flat + ".mtl", "w") as f:
+    for k, name in enumerate(codes, start=1):
+        f.write(f"newmtl code_{name}\nKd 0 0 0\nKe {k} {k} {k}\n")
+EOF
+"$bin" solve "$out/flat.obj" --render "$out/mask.pfm" "${camera[@]}" -q
+
+# radflux's picture at the defaults (plus any flags given), and the comparison.
+"$bin" solve "$scene" --render "$out/radflux.pfm" "${camera[@]}" -q "$@"
+/usr/bin/python3 bench/cornell_vs_cycles.py "$out/mask.pfm" "$out/radflux.pfm" \
+  "$out/cycles_${size}_${spp}_seed1.npy" "$out/cycles_${size}_${spp}_seed2.npy" \
+  --json "$out/compare.json"
+
+# The whole process at the defaults, no outputs: median of RUNS runs.
+if command -v hyperfine > /dev/null; then
+  hyperfine -N -w 2 -r "$runs" --export-json "$out/time.json" \
+    "$bin solve $scene -q $*" | grep -E "Time|Range"
+  /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results'][0]; \
+print(f\"median {r['median']*1000:.1f} ms over {len(r['times'])} runs\")" "$out/time.json"
+else
+  for ((r = 0; r < runs; ++r)); do
+    s=$(date +%s.%N); "$bin" solve "$scene" -q "$@"; e=$(date +%s.%N)
+    echo "$s $e"
+  done | awk '{print ($2 - $1) * 1000}' | sort -n | awk '{t[NR] = $1} END {
+    printf "median %.1f ms over %d runs\n", (NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2), NR}'
+fi

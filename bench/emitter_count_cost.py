@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""Cost per row against the number of emitter patches (issue 20: direct light at any number
+of emitters). A closed 4 x 3 x 4 room whose walls and floor are 48 x 48 faces each (one patch
+per face), lit by (a) one small lamp patch, (b) a luminous ceiling of N x N faces, (c) the
+same ceiling split into 2 N^2 triangles; every run has the same non-emitter rows. Prints,
+per case: emitter patches, rows (the white faces; the lamp case has a white ceiling too),
+rays per row, rows seconds and microseconds per row (from the report, median of RUNS runs).
+
+Usage: bench/emitter_count_cost.py [--bin build/ci/client/radflux] [--n 64] [--runs 5]
+       [--threads 1] [--out /tmp/radflux-emitters]
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+
+MTL = "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n"
+
+
+def grid(material, origin, ex, ey, g, out, triangles=False):
+    """g x g faces on origin + a ex + b ey, front side ex x ey; appends OBJ lines to out."""
+    for a in range(g):
+        for b in range(g):
+            p = [origin[k] + ex[k] * a / g + ey[k] * b / g for k in range(3)]
+            q = [[p[k] + ex[k] * da / g + ey[k] * db / g for k in range(3)]
+                 for da, db in ((0, 0), (1, 0), (1, 1), (0, 1))]
+            first = out["next"]
+            out["lines"].append(f"usemtl {material}")
+            out["lines"] += [f"v {v[0]:.9g} {v[1]:.9g} {v[2]:.9g}" for v in q]
+            out["next"] += 4
+            if triangles:
+                out["lines"].append(f"f {first} {first + 1} {first + 2}")
+                out["lines"].append(f"f {first} {first + 2} {first + 3}")
+            else:
+                out["lines"].append(f"f {first} {first + 1} {first + 2} {first + 3}")
+
+
+def room(path, ceiling, n):
+    """The room with ceiling 'lamp' (one small lamp patch under a white ceiling),
+    'quads' (N x N emitting faces) or 'triangles' (2 N^2)."""
+    out = {"lines": [f"mtllib {os.path.basename(path)[:-4]}.mtl"], "next": 1}
+    w, h, d, g = 4.0, 3.0, 4.0, 48
+    grid("white", (0, 0, 0), (0, 0, d), (w, 0, 0), g, out)        # floor, facing +y
+    grid("white", (0, 0, 0), (w, 0, 0), (0, h, 0), g, out)        # z = 0, facing +z
+    grid("white", (0, 0, d), (0, h, 0), (w, 0, 0), g, out)        # z = d, facing -z
+    grid("white", (0, 0, 0), (0, h, 0), (0, 0, d), g, out)        # x = 0, facing +x
+    grid("white", (w, 0, 0), (0, 0, d), (0, h, 0), g, out)        # x = w, facing -x
+    if ceiling == "lamp":
+        grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)    # white ceiling, facing -y
+        grid("lamp", (1.8, h - 0.01, 1.8), (0.4, 0, 0), (0, 0, 0.4), 1, out)
+    else:
+        grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), n, out, ceiling == "triangles")
+    with open(path, "w") as f:
+        f.write("\n".join(out["lines"]) + "\n")
+    with open(path[:-4] + ".mtl", "w") as f:
+        f.write(MTL)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", default="build/ci/client/radflux")
+    ap.add_argument("--n", type=int, default=64)
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--out", default="/tmp/radflux-emitters")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    print(f"{'case':28s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} {'rows s':>8s} "
+          f"{'us/row':>7s}")
+    for ceiling in ("lamp", "quads", "triangles"):
+        scene = os.path.join(a.out, f"room_{ceiling}.obj")
+        room(scene, ceiling, a.n)
+        report = os.path.join(a.out, f"room_{ceiling}.json")
+        seconds = []
+        for _ in range(a.runs):
+            subprocess.run([a.bin, "solve", scene, "-q", "--threads", str(a.threads),
+                            "--report", report], check=True)
+            r = json.load(open(report))
+            seconds.append(r["seconds"]["rows"])
+        emitters = {"lamp": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n}[ceiling]
+        rows = (6 if ceiling == "lamp" else 5) * 48 * 48  # the white faces: one row each
+        rays = r["rays"]
+        median = statistics.median(seconds)
+        print(f"{ceiling + ' ceiling':28s} {emitters:8d} {rows:6d} {rays / rows:9.2f} "
+              f"{median:8.3f} {1e6 * median / rows:7.1f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+// EmitterShape: one emitter patch as a light source: its polygon, power and the
+// solid-angle sampler that fits it (Urena et al.'s for rectangles, Arvo's for triangles and
+// for the two halves of other quads).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "solver/core/sampling.h"
+#include "solver/mesh/patch_mesh.h"
+
+namespace radflux {
+
+struct EmitterShape {
+  uint32_t patch = 0;
+  std::array<Vec3, 4> corner;  // ccw; corner[3] == corner[2] for a triangle
+  uint32_t corners = 0;        // 3 or 4
+  Vec3 normal;                 // unit, the emitting (front) side
+  double area = 0;             // scene units^2
+  double power = 0;            // E A summed over bands, W (importance only)
+  bool rectangle = false;      // a quad with parallel, orthogonal sides
+};
+
+// The shape of patch p of `mesh` emitting `exitance` (W/m^2, summed over bands).
+EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance);
+
+// Lambert's exact form factor from the differential area at x (unit normal n) to the
+// emitter (the part in front of x); 0 when x is not in front of the emitting side.
+double EmitterFormFactor(const EmitterShape& shape, const Vec3& x, const Vec3& n);
+
+// Where the ray from x along direction w meets the emitter, into `point`; false when it
+// misses it (or meets its back side).
+bool EmitterHit(const EmitterShape& shape, const Vec3& x, const Vec3& w, Vec3& point);
+
+// The emitter's unoccluded contribution at receiver point x with unit normal n, up to a
+// constant: pi E F(x -> shape) = power / area * pi * F, with F Lambert's exact point-to-polygon
+// form factor of the part in front of x; 0 when x is not in front of the emitting side.
+double EmitterImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n);
+
+// A point on the emitter seen from receiver point x with unit normal n, and its pdf per
+// steradian (0 when the emitter subtends no solid angle at x): the solid-angle map of the
+// shape (uniform, pdf 1 / solid angle) composed with a bilinear warp of u whose corner
+// weights are the receiver's cosines towards the corners (at least 0.01), so that the
+// density roughly follows cos(theta_x) and an estimate of cos / pdf varies little.
+struct EmitterSample {
+  Vec3 point;
+  double pdf = 0;
+};
+EmitterSample SampleEmitterSolidAngle(const EmitterShape& shape, const Vec3& x, const Vec3& n,
+                                      Point2 u);
+
+}  // namespace radflux

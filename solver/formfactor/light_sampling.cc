@@ -1,0 +1,170 @@
+#include "solver/formfactor/light_sampling.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "solver/core/sampling.h"
+
+namespace radflux {
+namespace {
+
+// Pattern streams of the light samples, apart from every other use of (seed, i).
+constexpr uint64_t kLightPointStream = 21;
+constexpr uint64_t kLightChoiceStream = 22;
+constexpr uint64_t kLightDirectionStream = 23;
+constexpr uint64_t kRejectionStream = 24;
+
+// From this unoccluded form factor on, a light sample's direction is drawn exactly in
+// proportion to the receiver's cosine within the emitter (cosine-weighted directions until
+// one meets it: 1 / F tries on average, at most kMaxTries): its estimate is then F V / P, free
+// of the spread of cos / pdf, which is large where an emitter fills much of the hemisphere.
+// Below it the emitter is small, the cosine varies little across it, and the warped
+// solid-angle sample is used (also when every try misses: still unbiased, as that event does
+// not depend on the fallback's direction).
+constexpr double kRejectionFormFactor = 0.02;
+constexpr int kMaxTries = 256;
+
+// A cosine-weighted direction around frame.n that meets the emitter, by rejection; the
+// point it meets into `point`. False when kMaxTries directions miss.
+bool CosineDirectionOnEmitter(const EmitterShape& emitter, const Vec3& x, const Frame& frame,
+                              uint32_t pattern, Vec3& point) {
+  for (uint32_t t = 0; t < kMaxTries; ++t) {
+    const Vec3 w = frame.ToWorld(
+        SampleCosineHemisphere({RandomFloat(2 * t, pattern), RandomFloat(2 * t + 1, pattern)}));
+    if (EmitterHit(emitter, x, w, point)) return true;
+  }
+  return false;
+}
+
+std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
+  std::vector<EmitterShape> shapes;
+  for (uint32_t j = 0; j < context.emitter.size(); ++j) {
+    if (!context.emitter[j]) continue;
+    const double exitance = j < context.emission.size() ? context.emission[j] : 1.0;
+    shapes.push_back(MakeEmitterShape(*context.mesh, j, exitance));
+  }
+  return shapes;
+}
+
+// A shadow ray from origin to just short of target.
+StreamRay ShadowRay(const Vec3& origin, const Vec3& target) {
+  StreamRay ray;
+  ray.SetOrigin(origin);
+  ray.SetDirection(target - origin);
+  ray.t_far = static_cast<float>(1 - 1e-6);
+  return ray;
+}
+
+// A light sample waiting for its shadow ray: the column and the value it adds if visible.
+struct PendingSample {
+  uint32_t column = 0;
+  double value = 0;
+};
+
+}  // namespace
+
+LightSampler::LightSampler(const RowContext& context)
+    : context_(context), tree_(EmitterShapes(context)) {}
+
+// Chooses emitters for one receiver point x: among up to kExactEmitters emitters in
+// proportion to their exact unoccluded contributions, computed once per point (a bounded
+// cost: beyond that count the tree walks instead, whose cost grows as log(emitters)).
+class LightSampler::PointChooser {
+ public:
+  static constexpr size_t kExactEmitters = 16;
+
+  PointChooser(const LightTree& tree, const Vec3& x, const Vec3& n) : tree_(tree), x_(x), n_(n) {
+    if (tree.size() > kExactEmitters) return;
+    exact_ = true;
+    for (uint32_t k = 0; k < tree.size(); ++k) {
+      total_ += EmitterImportance(tree.Emitter(k), x, n);
+      cdf_[k] = total_;
+    }
+  }
+
+  std::optional<LightTree::Choice> operator()(double u) const {
+    if (!exact_) return tree_.Choose(x_, n_, u);
+    if (!(total_ > 0)) return std::nullopt;
+    const double target = u * total_;
+    uint32_t k = 0;
+    while (k + 1 < tree_.size() && !(target < cdf_[k])) ++k;
+    const double importance = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0);
+    if (!(importance > 0)) return std::nullopt;
+    return LightTree::Choice{k, importance / total_};
+  }
+
+ private:
+  const LightTree& tree_;
+  Vec3 x_, n_;
+  bool exact_ = false;
+  double total_ = 0;
+  std::array<double, kExactEmitters> cdf_{};
+};
+
+uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
+                                         RowAccumulator& row) const {
+  if (tree_.empty() || points < 1 || per_point < 1) return 0;
+  const PatchMesh& mesh = *context_.mesh;
+  const Vec3 n = mesh.patches[i].normal;
+  const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
+  // Per-thread scratch, reused row to row.
+  thread_local std::vector<Point2> on_patch, directions;
+  thread_local std::vector<StreamRay> rays;
+  thread_local std::vector<PendingSample> pending;
+  on_patch.resize(static_cast<size_t>(points));
+  directions.resize(count);
+  rays.clear();
+  pending.clear();
+  MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
+  MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
+  const uint32_t choice_pattern = PatternSeed(seed, i, kLightChoiceStream);
+  const PatchPointSampler sample_point(mesh, i);
+  const Frame frame = Frame::FromNormal(n);
+  for (size_t p = 0; p < on_patch.size(); ++p) {
+    const Vec3 x = sample_point(on_patch[p]);
+    const PointChooser choose(tree_, x, n);
+    for (uint32_t k = 0; k < static_cast<uint32_t>(per_point); ++k) {
+      // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
+      const uint32_t s = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point) + k;
+      const uint32_t stratum =
+          PermuteIndex(k, static_cast<uint32_t>(per_point), choice_pattern + s);
+      const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
+      const auto choice = choose(std::min(u, 0x1.fffffffffffffp-1));
+      if (!choice) continue;
+      const EmitterShape& emitter = tree_.Emitter(choice->emitter);
+      if (emitter.patch == i) continue;
+      const double form_factor = EmitterFormFactor(emitter, x, n);
+      if (!(form_factor > 0)) continue;
+      Vec3 target;
+      double value;  // the sample's F_ij estimate, if its ray is unoccluded
+      if (form_factor >= kRejectionFormFactor &&
+          CosineDirectionOnEmitter(emitter, x, frame, PatternSeed(seed ^ s, i, kRejectionStream),
+                                   target)) {
+        value = form_factor / choice->probability;
+      } else {
+        const EmitterSample sample = SampleEmitterSolidAngle(emitter, x, n, directions[s]);
+        if (!(sample.pdf > 0)) continue;
+        const Vec3 d = sample.point - x;
+        const double cos_x = Dot(n, d) / Length(d);
+        if (!(cos_x > 0)) continue;
+        target = sample.point;
+        value = cos_x / (std::numbers::pi * sample.pdf * choice->probability);
+      }
+      rays.push_back(
+          ShadowRay(x + n * context_.ray_epsilon, target + emitter.normal * context_.ray_epsilon));
+      pending.push_back({emitter.patch, value / static_cast<double>(count)});
+    }
+  }
+  context_.caster->OccludedStream(rays);
+  for (size_t r = 0; r < rays.size(); ++r) {
+    if (!rays[r].Occluded()) row.Add(pending[r].column, pending[r].value);
+  }
+  return rays.size();
+}
+
+}  // namespace radflux

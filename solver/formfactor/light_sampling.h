@@ -1,0 +1,53 @@
+// Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
+// each of the row's light samples takes a point x on the receiver patch i (stratified; a few
+// samples share each point), one emitter j chosen with probability P(j | x) (by the
+// LightTree, or among at most 16 emitters by their exact unoccluded contributions), a direction in
+// the solid angle Omega_j that j subtends at x with pdf (uniform, 1 / Omega_j, warped towards the
+// receiver's cosine: SampleEmitterSolidAngle), and one shadow ray. The sample adds
+//     cos(theta_x) V / (pi pdf P(j | x) budget)
+// to F_ij. Its expectation over x, j and the direction is
+//     (1 / A_i) integral_{A_i} (1 / pi) integral_{Omega_j} cos(theta_x) V dw dA = F_ij
+// for every emitter patch j (the emitters that cannot light x have P = 0 and F = 0). Where
+// F_j(x), Lambert's exact unoccluded form factor from x, is not small, the direction is
+// instead drawn exactly in proportion to cos(theta_x) within j (by rejection from the
+// cosine-weighted hemisphere) and the sample adds F_j(x) V / (P(j | x) budget), with the same
+// expectation and no spread at all where j is unoccluded. So
+// the row stays an unbiased form-factor row, whatever the number of emitter patches, at
+// `budget` shadow rays. The rays that leave i by the cosine-weighted sampling of the rest of
+// the row must drop their emitter hits (monte_carlo does), so that nothing is counted twice.
+#pragma once
+
+#include <cstdint>
+
+#include "solver/formfactor/light_tree.h"
+#include "solver/formfactor/row_builder.h"
+
+namespace radflux {
+
+// monte_carlo's light samples at each of its s (--samples) points on the receiver: a row
+// casts 16 s shadow rays for its emitter columns (64 at the default s = 4), whatever the
+// number of emitter patches.
+inline constexpr int kLightSamplesPerPoint = 16;
+
+class LightSampler {
+ public:
+  // The emitter patches of `context`, with their power from context.emission.
+  explicit LightSampler(const RowContext& context);
+
+  bool empty() const { return tree_.empty(); }
+
+  // Adds the estimate of F_ij for the emitter patches j (j != i) to `row` from `points`
+  // stratified points on i with `per_point` light samples each, seeded from (seed, i);
+  // returns the shadow rays cast (at most points * per_point, whatever the number of
+  // emitter patches).
+  uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
+                             RowAccumulator& row) const;
+
+ private:
+  class PointChooser;
+
+  const RowContext& context_;
+  LightTree tree_;
+};
+
+}  // namespace radflux

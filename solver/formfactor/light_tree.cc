@@ -1,0 +1,203 @@
+#include "solver/formfactor/light_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "solver/formfactor/polygon_form_factor.h"
+
+namespace radflux {
+namespace {
+
+// cos(max(0, angle)) for an angle in radians, and 0 from a right angle on: the cosine
+// bound of a direction known only to within a cone.
+double ClampedCosine(double angle) {
+  if (angle >= std::numbers::pi / 2) return 0;
+  return std::cos(std::max(0.0, angle));
+}
+
+double SafeAcos(double c) { return std::acos(std::clamp(c, -1.0, 1.0)); }
+
+}  // namespace
+
+LightTree::LightTree(std::vector<EmitterShape> emitters) : emitters_(std::move(emitters)) {
+  if (emitters_.empty()) return;
+  std::vector<uint32_t> order(emitters_.size());
+  for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  leaf_of_.resize(emitters_.size());
+  nodes_.reserve(2 * emitters_.size());
+  Build(order, 0, order.size(), 0);
+}
+
+// The subtree of emitters order[begin, end): split at the median of the centroids along
+// the widest axis of their box (deterministic: ties broken by index).
+uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t parent) {
+  const uint32_t index = static_cast<uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  Vec3 lo = emitters_[order[begin]].corner[0], hi = lo, normal_sum;
+  double power = 0;
+  for (size_t k = begin; k < end; ++k) {
+    const EmitterShape& e = emitters_[order[k]];
+    for (const Vec3& c : e.corner) {
+      lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
+      hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
+    }
+    normal_sum += e.normal * e.area;
+    power += e.power;
+  }
+  Node node;
+  node.parent = parent;
+  node.lo = lo;
+  node.hi = hi;
+  node.centre = (lo + hi) * 0.5;
+  node.radius = Length(hi - lo) * 0.5;
+  node.power = power;
+  const double normal_length = Length(normal_sum);
+  node.axis = normal_length > 0 ? normal_sum / normal_length : Vec3{0, 0, 1};
+  node.cos_spread = normal_length > 0 ? 1.0 : -1.0;
+  for (size_t k = begin; k < end && normal_length > 0; ++k) {
+    node.cos_spread = std::min(node.cos_spread, Dot(node.axis, emitters_[order[k]].normal));
+  }
+  BoundPlanar(order, begin, end, node);
+  if (end - begin == 1) {
+    node.emitter = order[begin];
+    leaf_of_[order[begin]] = index;
+  } else {
+    const Vec3 extent = hi - lo;
+    const int axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    auto centre = [&](uint32_t k) {
+      const EmitterShape& e = emitters_[k];
+      return ((e.corner[0] + e.corner[2]) * 0.5)[axis];
+    };
+    std::sort(order.begin() + begin, order.begin() + end, [&](uint32_t a, uint32_t b) {
+      return std::make_pair(centre(a), a) < std::make_pair(centre(b), b);
+    });
+    // The split nearest the median that keeps emitters of one coordinate together, so that
+    // the halves of a regular grid (a split lamp) are whole rows or columns: their bounding
+    // rectangles are then tiled and their importance exact.
+    const double tolerance = 1e-9 * extent[axis];
+    auto splits_between = [&](size_t m) {
+      return centre(order[m]) - centre(order[m - 1]) > tolerance;
+    };
+    size_t middle = begin + (end - begin) / 2;
+    for (size_t step = 0; step < (end - begin) / 2; ++step) {
+      if (splits_between(middle - step)) {
+        middle -= step;
+        break;
+      }
+      if (middle + step < end && splits_between(middle + step)) {
+        middle += step;
+        break;
+      }
+    }
+    node.left = Build(order, begin, middle, index);
+    node.right = Build(order, middle, end, index);
+  }
+  nodes_[index] = node;
+  return index;
+}
+
+// Sets node.planar and its bounding rectangle when every corner of the emitters
+// order[begin, end) lies within 1e-9 of the box's diagonal of the first one's plane and
+// every normal is node.axis (to 1e-12).
+void LightTree::BoundPlanar(const std::vector<uint32_t>& order, size_t begin, size_t end,
+                            Node& node) const {
+  if (!(node.cos_spread >= 1 - 1e-12)) return;
+  const Frame frame = Frame::FromNormal(node.axis);
+  const double offset = Dot(emitters_[order[begin]].corner[0], node.axis);
+  const double tolerance = 1e-9 * Length(node.hi - node.lo);
+  double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+  for (size_t k = begin; k < end; ++k) {
+    for (const Vec3& c : emitters_[order[k]].corner) {
+      if (std::abs(Dot(c, node.axis) - offset) > tolerance) return;
+      const double s = Dot(c, frame.s), t = Dot(c, frame.t);
+      s0 = std::min(s0, s), s1 = std::max(s1, s), t0 = std::min(t0, t), t1 = std::max(t1, t);
+    }
+  }
+  const Vec3 base = node.axis * offset;
+  // Counter-clockwise about the axis (s x t = axis): the form factor ignores winding anyway.
+  node.bounds_rectangle = {base + frame.s * s0 + frame.t * t0, base + frame.s * s1 + frame.t * t0,
+                           base + frame.s * s1 + frame.t * t1, base + frame.s * s0 + frame.t * t1};
+  node.bounds_area = (s1 - s0) * (t1 - t0);
+  node.planar = node.bounds_area > 0;
+}
+
+double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) const {
+  if (node.emitter >= 0) return EmitterImportance(emitters_[node.emitter], x, n);
+  // A node of two leaves: their exact sum, so that no walk ends at a pair that cannot light x.
+  const Node& left = nodes_[node.left];
+  const Node& right = nodes_[node.right];
+  if (left.emitter >= 0 && right.emitter >= 0) {
+    return EmitterImportance(emitters_[left.emitter], x, n) +
+           EmitterImportance(emitters_[right.emitter], x, n);
+  }
+  if (node.planar) {
+    if (!(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return 0;  // x behind the plane
+    const double form_factor = PointToPolygonFormFactor(x, n, node.bounds_rectangle);
+    return node.power / node.bounds_area * std::numbers::pi * form_factor;
+  }
+  // Every corner of the node's box behind (or on) x's tangent plane: nothing to see.
+  bool any_front = false;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
+                      k & 4 ? node.hi.z : node.lo.z};
+    any_front |= Dot(corner - x, n) > 0;
+  }
+  if (!any_front) return 0;
+  const Vec3 d = node.centre - x;
+  const double distance2 = Dot(d, d);
+  const double radius2 = node.radius * node.radius;
+  // x inside the sphere: no cosine bound; the distance term alone steers towards the nearer
+  // part (any positive weight keeps the choice unbiased; only the bounds must be conservative).
+  if (distance2 <= radius2) return node.power / std::max(distance2, 1e-2 * radius2);
+  const double distance = std::sqrt(distance2);
+  const double spread = std::asin(node.radius / distance);  // half-angle of the sphere at x
+  const Vec3 towards = d / distance;
+  const double receiver = ClampedCosine(SafeAcos(Dot(n, towards)) - spread);
+  const double emitter =
+      ClampedCosine(SafeAcos(-Dot(node.axis, towards)) - SafeAcos(node.cos_spread) - spread);
+  return node.power * receiver * emitter / distance2;
+}
+
+std::optional<LightTree::Choice> LightTree::Choose(const Vec3& x, const Vec3& n, double u) const {
+  if (nodes_.empty()) return std::nullopt;
+  uint32_t at = 0;
+  double probability = 1;
+  if (nodes_[0].emitter >= 0 && !(Importance(nodes_[0], x, n) > 0)) return std::nullopt;
+  while (nodes_[at].emitter < 0) {
+    const Node& node = nodes_[at];
+    const double left = Importance(nodes_[node.left], x, n);
+    const double right = Importance(nodes_[node.right], x, n);
+    if (!(left + right > 0)) return std::nullopt;
+    const double p_left = left / (left + right);
+    if (u < p_left) {
+      at = node.left;
+      probability *= p_left;
+      u = std::min(u / p_left, 0x1.fffffffffffffp-1);
+    } else {
+      at = node.right;
+      probability *= 1 - p_left;
+      u = std::min((u - p_left) / (1 - p_left), 0x1.fffffffffffffp-1);
+    }
+  }
+  if (!(probability > 0)) return std::nullopt;
+  return Choice{static_cast<uint32_t>(nodes_[at].emitter), probability};
+}
+
+double LightTree::Probability(const Vec3& x, const Vec3& n, uint32_t k) const {
+  uint32_t at = leaf_of_[k];
+  if (at == 0) return Importance(nodes_[0], x, n) > 0 ? 1 : 0;
+  double probability = 1;
+  while (at != 0) {
+    const Node& parent = nodes_[nodes_[at].parent];
+    const double left = Importance(nodes_[parent.left], x, n);
+    const double right = Importance(nodes_[parent.right], x, n);
+    if (!(left + right > 0)) return 0;
+    probability *= (at == parent.left ? left : right) / (left + right);
+    at = nodes_[at].parent;
+  }
+  return probability;
+}
+
+}  // namespace radflux
