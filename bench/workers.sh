@@ -17,7 +17,8 @@ trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 run() {
   local threads=$1 workers=$2 log=$work/server_$1_$2.log
   rm -rf "$work/data"
-  "$radfluxd" --listen 127.0.0.1:0 --data-dir "$work/data" --threads "$threads" >"$log" 2>&1 &
+  "$radfluxd" --listen 127.0.0.1:0 --data-dir "$work/data" --threads "$threads" \
+    --worker-token bench-worker-token >"$log" 2>&1 &
   local server=$!
   local addr=""
   for _ in $(seq 100); do
@@ -27,7 +28,8 @@ run() {
   done
   local pids=()
   for i in $(seq "$workers"); do
-    "$radfluxd" --worker --server "$addr" --threads 1 >"$work/worker_$i.log" 2>&1 &
+    "$radfluxd" --worker --server "$addr" --threads 1 --worker-token bench-worker-token \
+      >"$work/worker_$i.log" 2>&1 &
     pids+=($!)
   done
   for i in $(seq "$workers"); do

@@ -32,4 +32,14 @@ inline int ReportStatus(const char* verb, const absl::Status& status) {
   return status.code() == absl::StatusCode::kInvalidArgument ? 2 : 1;
 }
 
+// The same for a service job whose solve stopped short: `radflux VERB: job ID not converged:
+// ...` with the server's message (it gives the residual reached; the job's result is there
+// as for any SUCCEEDED job); returns kExitNotConverged.
+inline int ReportJobNotConverged(const char* verb, const std::string& job_id,
+                                 const std::string& message) {
+  std::fprintf(stderr, "radflux %s: job %s %s\n", verb, job_id.c_str(),
+               message.empty() ? "not converged" : message.c_str());
+  return kExitNotConverged;
+}
+
 }  // namespace radflux::cli

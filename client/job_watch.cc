@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "absl/strings/str_cat.h"
+#include "client/exit_status.h"
 #include "wire/proto_convert.h"
 
 namespace radflux::cli {
@@ -64,6 +65,7 @@ struct WatchProgress {
   uint64_t last_sequence = 0;  // of the last event (not snapshot) received
   v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
   std::string message;
+  bool converged = true;  // false when the final event says the solve stopped short
   int64_t snapshots = 0;
 };
 
@@ -91,6 +93,7 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
     progress->last_sequence = event.sequence();
     progress->state = event.state();
     progress->message = event.message();
+    progress->converged = !event.has_converged() || event.converged();
     PrintEvent(event);
     if (IsTerminal(event.state())) {
       context->TryCancel();
@@ -106,7 +109,8 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
 // snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
 // `snapshot_every` iterations (without a directory they are only counted). When the stream
 // drops after its first event (a server restart), it is reopened after the last event seen,
-// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED.
+// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED,
+// kExitNotConverged when it SUCCEEDED short of its tolerance (one line says so).
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
              const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
              int reconnect_seconds) {
@@ -146,6 +150,7 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
               << (progress.message.empty() ? "" : ": " + progress.message) << "\n";
     return 1;
   }
+  if (!progress.converged) return ReportJobNotConverged("watch", job_id, progress.message);
   return 0;
 }
 

@@ -29,7 +29,8 @@ struct OutputArgs {
 // snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
 // `snapshot_every` iterations (without a directory they are only counted). When the stream
 // drops after its first event (a server restart), it is reopened after the last event seen,
-// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED.
+// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED,
+// kExitNotConverged when it SUCCEEDED short of its tolerance (one line says so).
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
              const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
              int reconnect_seconds);

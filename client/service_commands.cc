@@ -127,9 +127,11 @@ bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
 }
 
 // `radflux result`: the outputs of `radflux solve` from a finished job. `prefetched` is the
-// job's geometry when the caller already has it (else it is fetched when needed).
+// job's geometry when the caller already has it (else it is fetched when needed). A job whose
+// solve stopped short of its tolerance gets its outputs too, then kExitNotConverged (with one
+// line saying so unless `say_not_converged` is false: the caller said it already).
 int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
-              const JobGeometry* prefetched = nullptr) {
+              const JobGeometry* prefetched = nullptr, bool say_not_converged = true) {
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
   // The mesh and B are streamed only for the outputs that need them (most of the bytes).
   absl::StatusOr<StreamedResult> result =
@@ -162,6 +164,10 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
       return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
   std::cout << result->patch_count << " patches\n";
+  if (result->job.has_converged() && !result->job.converged()) {
+    return say_not_converged ? ReportJobNotConverged("result", job_id, result->job.message())
+                             : kExitNotConverged;
+  }
   return 0;
 }
 
@@ -183,8 +189,8 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
   const JobGeometry* g = geometry ? &*geometry : nullptr;
   const int watched =
       WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every, reconnect_seconds);
-  if (watched != 0 || !wants_result) return watched;
-  return GetResult(client, job_id, args, g);
+  if ((watched != 0 && watched != kExitNotConverged) || !wants_result) return watched;
+  return GetResult(client, job_id, args, g, /*say_not_converged=*/watched == 0);
 }
 
 // The verb's connection, for the rest of the process: never destroyed, because destroying
@@ -346,7 +352,9 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     const grpc::Status status = client.stub().ListJobs(client.Context().get(), request, &response);
     if (!status.ok()) return void(exit_code = Report(status, *c));
     for (const v1::Job& job : response.jobs()) {
-      std::cout << job.job_id() << "  " << v1::JobState_Name(job.state()) << "  "
+      const bool short_of_tolerance = job.has_converged() && !job.converged();
+      std::cout << job.job_id() << "  " << v1::JobState_Name(job.state())
+                << (short_of_tolerance ? " NOT_CONVERGED" : "") << "  "
                 << v1::Phase_Name(job.phase()) << "  patches " << job.patches() << "  "
                 << job.message() << "\n";
     }

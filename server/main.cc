@@ -1,7 +1,8 @@
 // radfluxd: the radflux gRPC server.
 //   radfluxd --listen HOST:PORT --data-dir DIR [--jobs N] [--threads N] [--token T]
 //            [--tls-cert F --tls-key F [--tls-client-ca F]] [--max-patches N]
-//            [--max-memory BYTES] [--worker-token T] [--lease-seconds S]
+//            [--max-memory BYTES] [--worker-token T | --allow-workers-without-token]
+//            [--lease-seconds S] [--verify-fraction F]
 //   radfluxd --worker --server HOST:PORT [--threads N] [--worker-token T] [--tls-ca F]
 //            [--tls-cert F --tls-key F]
 //   (a worker node: builds row blocks for the server, see server/worker_node.h)
@@ -64,6 +65,8 @@ struct Flags {
   // Worker nodes: the server's side, and the worker role.
   std::string worker_token;
   double lease_seconds = 300;
+  double verify_fraction = radflux::kDefaultVerifyFraction;
+  bool allow_workers_without_token = false;
   bool worker = false;
   radflux::WorkerNodeOptions node;
 };
@@ -75,13 +78,14 @@ int Serve(const Flags& flags) {
     spdlog::error("{}", std::string(store.status().message()));
     return 1;
   }
-  radflux::RowFarm farm(flags.lease_seconds);
+  radflux::RowFarm farm(flags.lease_seconds, flags.verify_fraction);
   radflux::ManagerOptions manager_options = flags.manager;
   manager_options.farm = &farm;
   radflux::JobManager manager(**store, manager_options);
   radflux::WorkQueue work(kWorkThreads);
   radflux::RadiosityService service(manager, work, flags.token);
-  radflux::WorkerService worker_service(farm, manager, flags.worker_token, !flags.token.empty());
+  radflux::WorkerService worker_service(farm, manager, flags.worker_token,
+                                        flags.allow_workers_without_token);
   const std::shared_ptr<grpc::ServerCredentials> credentials =
       radflux::ServerCredentialsFromFiles(flags.tls_cert, flags.tls_key, flags.tls_client_ca);
   if (!credentials) {
@@ -206,7 +210,15 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 3600000));
   app.add_option("--worker-token", flags.worker_token,
                  "server: require this bearer token of workers (without it, workers are refused "
-                 "when --token is set); worker: send it");
+                 "unless --allow-workers-without-token); worker: send it");
+  app.add_flag("--allow-workers-without-token", flags.allow_workers_without_token,
+               "server without --worker-token: accept any worker that reaches the port (their "
+               "rows are still verified)");
+  app.add_option("--verify-fraction", flags.verify_fraction,
+                 "the fraction of each worker row block's rows the server recomputes and "
+                 "compares bit for bit (at least one row per block; 0 = none; rows summing "
+                 "above 1 are always recomputed)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--lease-seconds", flags.lease_seconds,
                  "a row block leased to a worker is leased again after this many seconds")
       ->check(CLI::Range(0.1, 86400.0));

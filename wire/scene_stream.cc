@@ -16,13 +16,11 @@ absl::StatusOr<StoredScene> ReadSceneChunks(grpc::ClientReaderInterface<v1::Scen
     data += chunk.data();
   }
   if (absl::Status s = FromGrpcStatus(reader.Finish()); !s.ok()) return s;
-  const uint64_t expected = header.obj_size() + header.mtl_size() + header.mesh_size();
-  if (data.size() != expected) {
-    return absl::DataLossError(
-        absl::StrCat("scene ", sha256, ": got ", data.size(), " bytes, expected ", expected));
+  absl::StatusOr<StoredScene> scene = SplitScenePayload(header, data);
+  if (!scene.ok()) {
+    return absl::DataLossError(absl::StrCat("scene ", sha256, ": ", scene.status().message()));
   }
-  StoredScene scene = SplitScenePayload(header, data);
-  if (StoredSceneHash(scene) != sha256) {
+  if (StoredSceneHash(*scene) != sha256) {
     return absl::DataLossError("scene " + sha256 + " does not hash to its address");
   }
   return scene;

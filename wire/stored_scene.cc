@@ -61,7 +61,31 @@ std::vector<v1::SceneChunk> ToSceneChunks(const StoredScene& scene, const std::s
   return chunks;
 }
 
-StoredScene SplitScenePayload(const v1::SceneHeader& header, const std::string& data) {
+absl::StatusOr<uint64_t> ScenePayloadSize(const v1::SceneHeader& header) {
+  uint64_t texts = 0;
+  uint64_t total = 0;
+  if (__builtin_add_overflow(header.obj_size(), header.mtl_size(), &texts) ||
+      __builtin_add_overflow(texts, header.mesh_size(), &total)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("a scene header's sizes overflow 64 bits (obj_size ", header.obj_size(),
+                     ", mtl_size ", header.mtl_size(), ", mesh_size ", header.mesh_size(), ")"));
+  }
+  if (header.mesh_size() > 0 && texts > 0) {
+    return absl::InvalidArgumentError(
+        "a scene header declares obj_size/mtl_size (OBJ + MTL text) or mesh_size "
+        "(a serialized Mesh), not both");
+  }
+  return total;
+}
+
+absl::StatusOr<StoredScene> SplitScenePayload(const v1::SceneHeader& header,
+                                              const std::string& data) {
+  const absl::StatusOr<uint64_t> size = ScenePayloadSize(header);
+  if (!size.ok()) return absl::DataLossError(size.status().message());
+  if (data.size() != *size) {
+    return absl::DataLossError(absl::StrCat("scene payload of ", data.size(),
+                                            " bytes, its header declares ", *size));
+  }
   StoredScene scene;
   scene.name = header.name();
   scene.obj = data.substr(0, header.obj_size());

@@ -3,6 +3,7 @@
 // place that knows both forms, used by the server, worker nodes and the client alike.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,13 @@ absl::StatusOr<Scene> LoadStoredScene(const StoredScene& scene);
 // then data chunks of at most 1 MiB whose concatenation is obj + mtl, or the mesh.
 std::vector<v1::SceneChunk> ToSceneChunks(const StoredScene& scene, const std::string& sha256);
 
-// The payload of an upload or download split by its header's sizes (the caller checked
-// that data.size() is their sum).
-StoredScene SplitScenePayload(const v1::SceneHeader& header, const std::string& data);
+// The payload size a header declares: obj_size + mtl_size + mesh_size. INVALID_ARGUMENT when
+// the sum overflows 64 bits or the header declares both forms (OBJ + MTL texts and a Mesh).
+absl::StatusOr<uint64_t> ScenePayloadSize(const v1::SceneHeader& header);
+
+// The payload of an upload or download split by its header's sizes; DATA_LOSS (never an
+// exception) when data.size() is not their sum or the sizes are not valid (ScenePayloadSize).
+absl::StatusOr<StoredScene> SplitScenePayload(const v1::SceneHeader& header,
+                                              const std::string& data);
 
 }  // namespace radflux

@@ -4,13 +4,15 @@
 
 namespace radflux {
 
-grpc::Status CheckBearerToken(const grpc::ServerContextBase& context, const std::string& token) {
+grpc::Status CheckBearerToken(const grpc::ServerContextBase& context, const std::string& token,
+                              const std::string& flag) {
   if (token.empty()) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto it = metadata.find("authorization");
   if (it == metadata.end()) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
-                        "missing bearer token (this server needs --token)");
+                        "missing bearer token (this server needs the token of its " + flag +
+                            ": pass it with " + flag + ")");
   }
   const std::string expected = "Bearer " + token;
   const grpc::string_ref& got = it->second;

@@ -8,7 +8,9 @@
 namespace radflux {
 
 // OK when `token` is empty (auth off) or the call carries "authorization: Bearer <token>";
-// UNAUTHENTICATED with a message saying which is wrong otherwise. Constant-time compare.
-grpc::Status CheckBearerToken(const grpc::ServerContextBase& context, const std::string& token);
+// UNAUTHENTICATED with a message saying which is wrong otherwise (for a missing token: that
+// the server needs the one of its `flag`). Constant-time compare.
+grpc::Status CheckBearerToken(const grpc::ServerContextBase& context, const std::string& token,
+                              const std::string& flag = "--token");
 
 }  // namespace radflux

@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "server/api/auth.h"
+#include "server/api/rpc_guard.h"
 #include "server/jobs/watch_reactor.h"
 #include "wire/proto_convert.h"
 #include "wire/stored_scene.h"
@@ -29,53 +30,63 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   }
 
   void OnReadDone(bool ok) override {
-    if (!ok) return Complete();
-    if (first_) {
-      first_ = false;
-      if (!chunk_.has_header())
-        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
-                    "the first chunk of an upload must carry its header");
-      header_ = chunk_.header();
-      if (header_.mesh_size() > 0 && header_.obj_size() + header_.mtl_size() > 0) {
-        return Fail(grpc::StatusCode::INVALID_ARGUMENT,
-                    "a scene header declares obj_size/mtl_size (OBJ + MTL text) or mesh_size "
-                    "(a serialized Mesh), not both");
-      }
-      expected_ = header_.obj_size() + header_.mtl_size() + header_.mesh_size();
-      if (expected_ > manager_.options().max_upload) {
-        return Fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
-                    absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
-                                 manager_.options().max_upload, " bytes (--max-upload)"));
-      }
-      data_.reserve(expected_);
-    }
-    if (data_.size() + chunk_.data().size() > expected_) {
-      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload is longer than the ", expected_,
-                                                            " bytes its header declares"));
-    }
-    data_ += chunk_.data();
-    StartRead(&chunk_);
+    const absl::Status read = GuardCall("UploadScene", [&] { return ReadChunk(ok); });
+    if (!read.ok()) return Fail(read);
+    if (!finished_) StartRead(&chunk_);
   }
 
   void OnDone() override { delete this; }
 
  private:
-  void Fail(grpc::StatusCode code, const std::string& message) {
-    Finish(grpc::Status(code, message));
+  // Takes one chunk (`ok` false: the stream ended); an error ends the upload with it.
+  absl::Status ReadChunk(bool ok) {
+    if (!ok) return Complete();
+    if (first_) {
+      first_ = false;
+      if (!chunk_.has_header())
+        return absl::InvalidArgumentError("the first chunk of an upload must carry its header");
+      header_ = chunk_.header();
+      absl::StatusOr<uint64_t> size = ScenePayloadSize(header_);
+      if (!size.ok()) return size.status();
+      expected_ = *size;
+      if (expected_ > manager_.options().max_upload) {
+        return absl::ResourceExhaustedError(
+            absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
+                         manager_.options().max_upload, " bytes (--max-upload)"));
+      }
+      data_.reserve(expected_);
+    }
+    if (chunk_.data().size() > expected_ - data_.size()) {
+      return absl::DataLossError(
+          absl::StrCat("upload is longer than the ", expected_, " bytes its header declares"));
+    }
+    data_ += chunk_.data();
+    return absl::OkStatus();
   }
 
-  void Complete() {
-    if (first_) return Fail(grpc::StatusCode::INVALID_ARGUMENT, "empty upload");
+  void Fail(const absl::Status& status) {
+    finished_ = true;
+    Finish(ToGrpcStatus(status));
+  }
+
+  // The stream ended: store the scene off the reactor thread.
+  absl::Status Complete() {
+    if (first_) return absl::InvalidArgumentError("empty upload");
     if (data_.size() != expected_) {
-      return Fail(grpc::StatusCode::DATA_LOSS, absl::StrCat("upload truncated: got ", data_.size(),
-                                                            " of ", expected_, " bytes"));
+      return absl::DataLossError(
+          absl::StrCat("upload truncated: got ", data_.size(), " of ", expected_, " bytes"));
     }
+    finished_ = true;
     work_.Post([this] {
-      absl::StatusOr<v1::SceneRef> ref =
-          manager_.AddScene(header_, SplitScenePayload(header_, data_));
+      absl::StatusOr<v1::SceneRef> ref = GuardCall("UploadScene", [&] {
+        absl::StatusOr<StoredScene> scene = SplitScenePayload(header_, data_);
+        if (!scene.ok()) return absl::StatusOr<v1::SceneRef>(scene.status());
+        return manager_.AddScene(header_, *std::move(scene));
+      });
       if (ref.ok()) *response_ = *ref;
       Finish(ToGrpcStatus(ref.status()));
     });
+    return absl::OkStatus();
   }
 
   JobManager& manager_;
@@ -84,6 +95,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   v1::SceneChunk chunk_;
   v1::SceneHeader header_;
   bool first_ = true;
+  bool finished_ = false;  // Finish was called or is posted: read no more
   uint64_t expected_ = 0;
   std::string data_;
 };
@@ -95,7 +107,7 @@ class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
  public:
   ChunkStreamReactor(WorkQueue& work, std::function<absl::StatusOr<std::vector<T>>()> produce) {
     work.Post([this, produce = std::move(produce)] {
-      absl::StatusOr<std::vector<T>> chunks = produce();
+      absl::StatusOr<std::vector<T>> chunks = GuardCall("a streamed call", produce);
       {
         std::lock_guard lock(mu_);
         if (chunks.ok())
@@ -178,7 +190,9 @@ grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const s
     reactor->Finish(auth);
     return reactor;
   }
-  queue.Post([reactor, work = std::move(work)] { reactor->Finish(ToGrpcStatus(work())); });
+  queue.Post([reactor, work = std::move(work)] {
+    reactor->Finish(ToGrpcStatus(GuardCall("a unary call", work)));
+  });
   return reactor;
 }
 
@@ -217,7 +231,8 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* RadiosityService::WatchJob(
     return new Error(grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "malformed WatchJobRequest"));
   }
   if (grpc::Status valid = CheckWatchRequest(request); !valid.ok()) return new Error(valid);
-  absl::StatusOr<std::shared_ptr<JobHub>> hub = manager_.Hub(request.job_id());
+  absl::StatusOr<std::shared_ptr<JobHub>> hub =
+      GuardCall("WatchJob", [&] { return manager_.Hub(request.job_id()); });
   if (!hub.ok()) return new Error(ToGrpcStatus(hub.status()));
   return new WatchReactor(*std::move(hub), request);
 }

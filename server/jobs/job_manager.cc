@@ -9,6 +9,8 @@
 #include <cmath>
 #include <future>
 
+#include <google/protobuf/util/message_differencer.h>
+
 #include "absl/strings/str_cat.h"
 #include "server/jobs/cpu_time.h"
 #include "server/jobs/job_runner.h"
@@ -107,6 +109,24 @@ void JobManager::Shutdown() {
   workers_.clear();
 }
 
+namespace {
+
+// `earlier`, the job of request.request_id(), when the request is the one that made it;
+// FAILED_PRECONDITION when the same id comes with another scene or other options.
+absl::StatusOr<v1::Job> SameRequest(const v1::Job& earlier, const v1::SubmitJobRequest& request) {
+  if (earlier.scene_sha256() == request.scene_sha256() &&
+      google::protobuf::util::MessageDifferencer::Equals(earlier.options(), request.options())) {
+    return earlier;
+  }
+  return absl::FailedPreconditionError(absl::StrCat(
+      "request_id \"", request.request_id(), "\" was used for another request (job ",
+      earlier.job_id(), ": scene ", earlier.scene_sha256().substr(0, 12),
+      earlier.scene_sha256() == request.scene_sha256() ? " with other options" : "",
+      "); a new request needs a new request_id"));
+}
+
+}  // namespace
+
 absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
   // A job is made durable before any client hears of it (it may be one whose first submit
   // is still making it durable).
@@ -114,9 +134,13 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     if (absl::Status s = store_.SyncCommits(); job.ok() && !s.ok()) return s;
     return job;
   };
+  if (request.request_id().size() > kMaxRequestIdBytes) {
+    return absl::InvalidArgumentError(absl::StrCat("request_id of ", request.request_id().size(),
+                                                   " bytes: at most ", kMaxRequestIdBytes));
+  }
   if (!request.request_id().empty()) {
     absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
-    if (earlier.ok()) return durable(earlier);
+    if (earlier.ok()) return durable(SameRequest(*earlier, request));
   }
   const auto check_start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckLimits(request); !s.ok()) return s;
@@ -139,7 +163,8 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
   // Committed without its fsync, queued, and then made durable: the job starts (its first
   // steps need no durable row) while the fsync runs, and the client hears of it only after.
   absl::StatusOr<v1::Job> created = store_.CreateJob(job, /*sync=*/false);
-  if (!created.ok() || created->job_id() != job.job_id()) return durable(created);  // or retry
+  if (!created.ok()) return durable(created);
+  if (created->job_id() != job.job_id()) return durable(SameRequest(*created, request));  // a retry
   const auto sync_start = std::chrono::steady_clock::now();
   {
     std::lock_guard lock(mu_);
@@ -250,6 +275,9 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   event.set_state(state);
   event.set_phase(phase);
   event.set_message(message);
+  if (state == v1::JOB_STATE_SUCCEEDED && job.has_converged()) {
+    event.set_converged(job.converged());
+  }
   hub->Publish(event);
   if (IsTerminal(state)) {
     hub->Close();
@@ -360,7 +388,8 @@ void JobManager::RunOne(const std::string& job_id) {
       // The result's fsync, beside the commit's (a no-op when it was stored atomically).
       std::future<absl::Status> synced =
           std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
-      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, "", &synced);
+      job.set_converged(result->converged);
+      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, result->message, &synced);
     } else {
       Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
     }

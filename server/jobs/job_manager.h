@@ -44,6 +44,9 @@ struct ManagerOptions {
   int block_delay_ms = 0;              // testing: sleep after each row block built on the server
 };
 
+// The longest request_id a submit may carry.
+inline constexpr size_t kMaxRequestIdBytes = 128;
+
 class JobManager {
  public:
   JobManager(JobStore& store, ManagerOptions options);
@@ -63,7 +66,9 @@ class JobManager {
   // loader's message; DATA_LOSS when it does not hash to header.sha256()).
   absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene);
   // Validates and queues a job (or returns the job of an earlier submit with the same
-  // request id). Everything that can be refused is refused here, before any work.
+  // request id and the same scene and options; the same id with another request is
+  // FAILED_PRECONDITION, an id longer than kMaxRequestIdBytes INVALID_ARGUMENT).
+  // Everything that can be refused is refused here, before any work.
   absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request);
   // Cancels a queued or running job (a finished job is returned unchanged).
   absl::StatusOr<v1::Job> Cancel(const std::string& job_id);

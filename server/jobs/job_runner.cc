@@ -7,11 +7,13 @@
 #include <optional>
 #include <thread>
 
+#include "absl/strings/str_format.h"
 #include "server/jobs/progress_throttle.h"
 #include "server/jobs/row_budget.h"
 #include "server/store/result_codec.h"
 #include "server/store/row_block_writer.h"
 #include "server/store/row_sink.h"
+#include "server/workers/row_check.h"
 #include "server/workers/row_farm.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
@@ -54,12 +56,13 @@ RowSink MakeRowSink(const v1::Job& job, uint32_t n, uint32_t block_count, uint64
                                  std::make_unique<FileBlockSpill>(c.store->JobDir(job.job_id()))));
 }
 
-// All row blocks of the job: stored ones are read back, missing ones built (in parallel)
-// and handed to `writer` as each completes; all go to the sink.
+// All row blocks of the job: stored ones are read back (and rebuilt when malformed), missing
+// ones built (in parallel, here and by workers, whose blocks are verified) and handed to
+// `writer` as each completes; all go to the sink. What the workers did in *farm_report.
 absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& prepared,
                                         const FormFactorOptions& options, uint64_t row_budget,
                                         const RunContext& c, RowBlockWriter& writer,
-                                        ProgressThrottle& throttle) {
+                                        ProgressThrottle& throttle, FarmReport* farm_report) {
   const auto start = Clock::now();
   const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
@@ -73,6 +76,13 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
       [&](StoredRowBlock stored) {
         const uint32_t b = stored.block.first_row / block_size;
         if (b >= block_count || stored.block.first_row != b * block_size || sink.Has(b)) return;
+        const uint32_t count = std::min(block_size, n - stored.block.first_row);
+        if (absl::StatusOr<std::vector<uint32_t>> shape =
+                CheckRowBlock(stored.block, stored.block.first_row, count, n);
+            !shape.ok()) {
+          unreadable.push_back(shape.status());
+          return;
+        }
         done += stored.block.RowCount();
         if (absl::Status s = sink.Put(b, std::make_shared<const StoredRowBlock>(std::move(stored)));
             !s.ok() && sink_error.ok()) {
@@ -118,8 +128,14 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   // the server's own threads take blocks from it too, so a job finishes without workers.
   RowFarm own_farm;
   RowFarm& farm = c.farm ? *c.farm : own_farm;
-  farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size}, missing,
-            store_block);
+  // Workers' rows are checked against this server's own, row by row (one scratch each).
+  const RowRebuilder rebuild = [&](uint32_t first, uint32_t count) {
+    RowAccumulator row(n);
+    RowBlockStats stats;
+    return BuildRowBlock(*builder, prepared.rows, options.cutoff, first, count, row, stats);
+  };
+  farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size, rebuild},
+            missing, store_block);
   ParallelFor(threads, 1, threads, [&](int64_t, int64_t) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];
     if (!row) row = std::make_unique<RowAccumulator>(n);
@@ -137,13 +153,24 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
     }
   });
   const bool all_done = farm.AllDone(job.job_id());
-  farm.Close(job.job_id());
+  *farm_report = farm.Close(job.job_id());
   if (!all_done && !Stopped(c)) return absl::InternalError("row phase ended with blocks missing");
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   if (!sink_error.ok()) return sink_error;
   absl::StatusOr<JobRows> rows = sink.Finish();
   if (rows.ok()) rows->seconds = SecondsSince(start);
   return rows;
+}
+
+// The report's "workers" section: rows from workers, how many were verified here and at
+// what cost, and every block rejected (with its worker and why).
+nlohmann::json WorkersJson(const FarmReport& r) {
+  return {{"remote_rows", r.remote_rows},
+          {"verified_rows", r.verified_rows},
+          {"verify_seconds", r.verify_seconds},
+          {"remote_build_seconds", r.remote_build_seconds},
+          {"rejected_blocks", r.rejected_blocks},
+          {"rejected", r.rejected}};
 }
 
 // Every iterative method resumes from a checkpoint: jacobi and gauss_seidel from B
@@ -265,8 +292,9 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
     const RunContext& c;
     ~FinishWriter() { writer.Finish(!(c.cancelled && c.cancelled->load())); }
   } finish_writer{writer, c};
-  absl::StatusOr<JobRows> rows =
-      BuildStoredRows(job, p, options->form_factors, *row_budget, c, writer, throttle);
+  FarmReport farm_report;
+  absl::StatusOr<JobRows> rows = BuildStoredRows(job, p, options->form_factors, *row_budget, c,
+                                                 writer, throttle, &farm_report);
   if (!rows.ok()) return rows.status();
 
   throttle.Flush();
@@ -288,8 +316,16 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   result.timings.rows = rows->seconds;
   result.timings.solve = SecondsSince(solve_start);
   const auto encode_start = Clock::now();
-  const std::string report = MakeJobReport(result, *options, (*loaded)->name).dump(2);
+  nlohmann::json report_json = MakeJobReport(result, *options, (*loaded)->name);
+  report_json["workers"] = WorkersJson(farm_report);
+  const std::string report = report_json.dump(2);
   absl::StatusOr<EncodedResult> encoded = encoder.get().Finish(result.solve, report);
+  if (encoded.ok() && !result.solve.converged) {
+    encoded->converged = false;
+    encoded->message =
+        absl::StrFormat("not converged: residual %.3g after %d iterations (tolerance %.3g)",
+                        result.solve.residual, result.solve.iterations, options->solver.tolerance);
+  }
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
       "result encoding {:.1f}",

@@ -31,6 +31,10 @@ absl::StatusOr<std::vector<v1::ResultChunk>> DecodeResultChunks(
 struct EncodedResult {
   std::string bytes;
   std::string file;  // BlobBuilder::File() of bytes (blob_file.h)
+  // Whether the solve reached its tolerance; if not, the job's message ("not converged:
+  // residual R after N iterations (tolerance T)"). Set by RunStoredJob.
+  bool converged = true;
+  std::string message;
 };
 
 // EncodeResultChunks(MakeResultChunks(mesh, solve, report)) and its blob file in two steps,

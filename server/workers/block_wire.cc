@@ -3,10 +3,12 @@
 #include <openssl/sha.h>
 #include <zstd.h>
 
+#include <algorithm>
+
+#include "absl/strings/str_cat.h"
+
 namespace radflux {
 namespace {
-
-constexpr unsigned long long kMaxRawBytes = 1ull << 31;  // a block larger than 2 GiB is refused
 
 std::string Sha256(const std::string& data) {
   std::string digest(SHA256_DIGEST_LENGTH, '\0');
@@ -26,12 +28,27 @@ void PackRowBlock(const StoredRowBlock& rows, v1::BlockResult& result) {
   result.set_sha256(Sha256(raw));
 }
 
-absl::StatusOr<StoredRowBlock> UnpackRowBlock(const v1::BlockResult& result) {
+uint64_t MaxRowBlockBytes(uint32_t rows, uint32_t patch_count) {
+  // EncodeRowBlock: tag, first row, three sized vectors (offsets, columns, values), stats.
+  constexpr uint64_t kFixed = 4 + 4 + 3 * 8 + 3 * 8;
+  constexpr uint64_t kEntryBytes = sizeof(uint32_t) + sizeof(float);
+  const uint64_t entries = uint64_t{rows} * patch_count;  // < 2^64: no overflow
+  if (entries > kMaxRowBlockBytes / kEntryBytes) return kMaxRowBlockBytes;
+  const uint64_t bytes = kFixed + (uint64_t{rows} + 1) * sizeof(uint64_t) + entries * kEntryBytes;
+  return std::min(bytes, kMaxRowBlockBytes);
+}
+
+absl::StatusOr<StoredRowBlock> UnpackRowBlock(const v1::BlockResult& result,
+                                              uint64_t max_raw_bytes) {
   const std::string& packed = result.rows_zstd();
   const unsigned long long raw_size = ZSTD_getFrameContentSize(packed.data(), packed.size());
-  if (raw_size == ZSTD_CONTENTSIZE_ERROR || raw_size == ZSTD_CONTENTSIZE_UNKNOWN ||
-      raw_size > kMaxRawBytes) {
+  if (raw_size == ZSTD_CONTENTSIZE_ERROR || raw_size == ZSTD_CONTENTSIZE_UNKNOWN) {
     return absl::DataLossError("rows are not a zstd frame of a known size");
+  }
+  if (raw_size > max_raw_bytes) {
+    return absl::DataLossError(absl::StrCat("rows declare ", raw_size,
+                                            " bytes uncompressed, more than the ", max_raw_bytes,
+                                            " bytes a block of this lease can take"));
   }
   std::string raw(raw_size, '\0');
   const size_t got = ZSTD_decompress(raw.data(), raw.size(), packed.data(), packed.size());

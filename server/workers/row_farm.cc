@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <iterator>
+
 #include "absl/strings/str_cat.h"
 #include "server/workers/block_wire.h"
 
@@ -21,16 +24,17 @@ int64_t UnixMsIn(double seconds) {
 
 void RowFarm::Open(const FarmJob& job, const std::vector<uint32_t>& missing, BlockSink sink) {
   std::lock_guard lock(mu_);
-  jobs_[job.job_id] = std::make_unique<Job>(Job{job, LeaseTable(missing), std::move(sink), 0});
+  jobs_[job.job_id] = std::make_unique<Job>(Job{job, LeaseTable(missing), std::move(sink), 0, {}, {}});
   cv_.notify_all();
 }
 
-void RowFarm::Close(const std::string& job_id) {
+FarmReport RowFarm::Close(const std::string& job_id) {
   std::unique_lock lock(mu_);
   const auto it = jobs_.find(job_id);
-  if (it == jobs_.end()) return;
+  if (it == jobs_.end()) return {};
   Job* job = it->second.get();
-  cv_.wait(lock, [&] { return job->sinking == 0; });  // a sink may still use the runner's state
+  cv_.wait(lock, [&] { return job->sinking == 0; });  // a check or sink may use the runner's state
+  FarmReport report = std::move(job->report);
   jobs_.erase(job_id);
   cv_.notify_all();
   const Stats& t = stats_;  // since the server started
@@ -43,6 +47,17 @@ void RowFarm::Close(const std::string& job_id) {
       t.remote_blocks ? t.remote_build_seconds / static_cast<double>(t.remote_blocks) : 0.0,
       t.remote_blocks ? t.accept_seconds / static_cast<double>(t.remote_blocks) : 0.0, t.duplicates,
       t.released);
+  if (report.remote_rows > 0 || report.rejected_blocks > 0) {
+    spdlog::info(
+        "job {}: verified {} of {} worker rows in {:.3f} s ({:.2f}% of the {:.3f} s the workers "
+        "reported building them), {} block(s) rejected",
+        job_id, report.verified_rows, report.remote_rows, report.verify_seconds,
+        report.remote_build_seconds > 0
+            ? 100 * report.verify_seconds / report.remote_build_seconds
+            : 0.0,
+        report.remote_build_seconds, report.rejected_blocks);
+  }
+  return report;
 }
 
 std::optional<uint32_t> RowFarm::NextLocal(const std::string& job_id,
@@ -114,6 +129,7 @@ std::optional<v1::BlockLease> RowFarm::NextLease(uint64_t worker, std::chrono::m
     ExpireLocked(Clock::now());
     for (auto& [job_id, job] : jobs_) {
       if (w->second.active >= w->second.threads) break;
+      if (job->banned.contains(worker)) continue;
       const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                std::chrono::duration<double>(lease_seconds_));
       const std::optional<uint32_t> block = job->table.Take(worker, deadline);
@@ -139,34 +155,64 @@ std::optional<v1::BlockLease> RowFarm::NextLease(uint64_t worker, std::chrono::m
   return std::nullopt;
 }
 
-absl::Status RowFarm::CheckResult(const Issued& issued, uint32_t patch_count,
-                                  const v1::BlockResult& r, StoredRowBlock* rows) {
-  absl::StatusOr<StoredRowBlock> unpacked = UnpackRowBlock(r);
-  if (!unpacked.ok()) {
-    return absl::DataLossError(absl::StrCat("row block ", issued.block, " of job ", issued.job_id,
-                                            ": ", unpacked.status().message()));
-  }
+absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::BlockResult& r,
+                                  StoredRowBlock* rows) {
+  const uint32_t patch_count = job.spec.patch_count;
+  absl::StatusOr<StoredRowBlock> unpacked =
+      UnpackRowBlock(r, MaxRowBlockBytes(issued.row_count, patch_count));
+  if (!unpacked.ok()) return unpacked.status();
   const RowBlock& block = unpacked->block;
-  if (block.first_row != issued.first_row || block.RowCount() != issued.row_count) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("row block ", issued.block, " of job ", issued.job_id, ": wrong rows (",
-                     block.RowCount(), " rows from ", block.first_row, ", leased ",
-                     issued.row_count, " from ", issued.first_row, ")"));
-  }
-  for (uint32_t c : block.col) {
-    if (c >= patch_count) {
-      return absl::InvalidArgumentError(absl::StrCat("row block ", issued.block, " of job ",
-                                                     issued.job_id, ": column ", c,
-                                                     " >= ", patch_count, " patches"));
+  absl::StatusOr<std::vector<uint32_t>> high_sum =
+      CheckRowBlock(block, issued.first_row, issued.row_count, patch_count);
+  if (!high_sum.ok()) return high_sum.status();
+  if (job.spec.rebuild) {
+    std::vector<uint32_t> sample;
+    {
+      std::lock_guard lock(mu_);
+      sample = SampleRows(issued.first_row, issued.row_count, verify_fraction_, rng_);
     }
+    std::vector<uint32_t> check;
+    std::set_union(sample.begin(), sample.end(), high_sum->begin(), high_sum->end(),
+                   std::back_inserter(check));
+    const auto start = Clock::now();
+    const absl::Status same = VerifyRows(block, check, job.spec.rebuild);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    {
+      std::lock_guard lock(mu_);
+      job.report.verified_rows += check.size();
+      job.report.verify_seconds += seconds;
+    }
+    if (!same.ok()) return same;
   }
   *rows = *std::move(unpacked);
   return absl::OkStatus();
 }
 
+void RowFarm::Reject(uint64_t worker, const Issued& issued, Job& job, const absl::Status& why) {
+  std::lock_guard lock(mu_);
+  const auto w = workers_.find(worker);
+  const std::string who =
+      absl::StrCat("worker ", worker, " (", w == workers_.end() ? "gone" : w->second.name, ")");
+  spdlog::error("job {}: row block {} from {} rejected, the worker is banned from the job: {}",
+                issued.job_id, issued.block, who, std::string(why.message()));
+  job.banned.insert(worker);
+  ++job.report.rejected_blocks;
+  job.report.rejected.push_back(
+      absl::StrCat(who, " block ", issued.block, ": ", why.message()));
+  LogRelease(issued.job_id, job, job.table.Release(worker), who + " was banned from the job");
+  cv_.notify_all();
+}
+
+void RowFarm::EndUse(Job* job) {
+  if (job == nullptr) return;
+  std::lock_guard lock(mu_);
+  --job->sinking;
+  cv_.notify_all();
+}
+
 absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
   Issued issued;
-  uint32_t patch_count = 0;
+  Job* job = nullptr;  // kept alive until EndUse: Close waits for it
   {
     std::lock_guard lock(mu_);
     const auto w = workers_.find(worker);
@@ -180,9 +226,19 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
     w->second.issued.erase(it);
     if (issued.active) --w->second.active;
     cv_.notify_all();  // a thread of this worker is free again
-    const auto job = jobs_.find(issued.job_id);
-    if (job != jobs_.end()) patch_count = job->second->spec.patch_count;
+    const auto found = jobs_.find(issued.job_id);
+    if (found != jobs_.end() && !found->second->banned.contains(worker)) {
+      job = found->second.get();
+      ++job->sinking;
+    }
   }
+  const absl::Status status = AcceptFor(worker, issued, job, r);
+  EndUse(job);
+  return status;
+}
+
+absl::Status RowFarm::AcceptFor(uint64_t worker, const Issued& issued, Job* job,
+                                const v1::BlockResult& r) {
   if (r.job_id() != issued.job_id || r.block_index() != issued.block ||
       r.first_row() != issued.first_row || r.row_count() != issued.row_count) {
     return absl::InvalidArgumentError(absl::StrCat(
@@ -190,11 +246,10 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
         r.block_index(), " rows ", r.first_row(), "+", r.row_count(), ", leased job ",
         issued.job_id, " block ", issued.block, " rows ", issued.first_row, "+", issued.row_count));
   }
-  if (patch_count == 0) return absl::OkStatus();  // the job left its row phase: discard
+  if (job == nullptr) return absl::OkStatus();  // out of its row phase, or banned: discard
   if (r.too_large()) {
     std::lock_guard lock(mu_);
-    const auto job = jobs_.find(issued.job_id);
-    if (job != jobs_.end()) job->second->table.MakeLocalOnly(issued.block);
+    job->table.MakeLocalOnly(issued.block);
     spdlog::warn("job {}: row block {} too large for the wire, built on the server", issued.job_id,
                  issued.block);
     cv_.notify_all();
@@ -202,14 +257,15 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
   }
   StoredRowBlock rows;
   const auto check_start = Clock::now();
-  if (absl::Status s = CheckResult(issued, patch_count, r, &rows); !s.ok()) return s;
+  if (absl::Status s = CheckResult(issued, *job, r, &rows); !s.ok()) {
+    Reject(worker, issued, *job, s);
+    // Bytes that do not even decode: the connection itself is broken or hostile.
+    return s.code() == absl::StatusCode::kDataLoss ? s : absl::OkStatus();
+  }
   const double check_seconds = std::chrono::duration<double>(Clock::now() - check_start).count();
-  BlockSink sink;
   {
     std::lock_guard lock(mu_);
-    const auto job = jobs_.find(issued.job_id);
-    if (job == jobs_.end()) return absl::OkStatus();
-    if (!job->second->table.Claim(issued.block)) {
+    if (!job->table.Claim(issued.block)) {
       ++stats_.duplicates;
       spdlog::info("job {}: row block {} from worker {} discarded: a late duplicate", issued.job_id,
                    issued.block, worker);
@@ -220,16 +276,12 @@ absl::Status RowFarm::Accept(uint64_t worker, const v1::BlockResult& r) {
     stats_.wire_bytes += r.ByteSizeLong();
     stats_.remote_build_seconds += r.build_seconds();
     stats_.accept_seconds += check_seconds;
-    ++job->second->sinking;
-    sink = job->second->sink;
+    job->report.remote_rows += issued.row_count;
+    job->report.remote_build_seconds += r.build_seconds();
   }
-  sink(issued.block, std::move(rows));
+  job->sink(issued.block, std::move(rows));
   std::lock_guard lock(mu_);
-  const auto job = jobs_.find(issued.job_id);
-  if (job != jobs_.end()) {
-    --job->second->sinking;
-    job->second->table.Finish(issued.block);
-  }
+  job->table.Finish(issued.block);
   cv_.notify_all();
   return absl::OkStatus();
 }

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "server/api/auth.h"
+#include "server/api/rpc_guard.h"
 #include "wire/proto_convert.h"
 #include "wire/stored_scene.h"
 
@@ -18,11 +19,13 @@ constexpr int kMaxWorkerThreads = 4096;
 }  // namespace
 
 grpc::Status WorkerService::Authenticate(const grpc::ServerContext& context) const {
-  if (worker_token_.empty() && client_token_set_) {
+  if (worker_token_.empty() && !allow_without_token_) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
-                        "this server takes no workers (it has --token but no --worker-token)");
+                        "this server takes no workers: it has no --worker-token (start it with "
+                        "--worker-token TOKEN and the workers with the same --worker-token, or "
+                        "with --allow-workers-without-token to let any worker in)");
   }
-  return CheckBearerToken(context, worker_token_);
+  return CheckBearerToken(context, worker_token_, "--worker-token");
 }
 
 grpc::Status WorkerService::Connect(
@@ -55,7 +58,8 @@ grpc::Status WorkerService::Connect(
     v1::WorkerMessage message;
     while (stream->Read(&message)) {
       if (!message.has_result()) continue;
-      const absl::Status accepted = farm_.Accept(id, message.result());
+      const absl::Status accepted =
+          GuardCall("a worker result", [&] { return farm_.Accept(id, message.result()); });
       if (!accepted.ok()) {
         drop = ToGrpcStatus(accepted);  // the writer returns it once it sees `done`
         break;

@@ -4,7 +4,8 @@
 // whose result is malformed or mismatched is dropped with the reason logged; its blocks,
 // like those of a worker that disconnects, are leased again. Calls must carry the worker
 // token (not the client token); with no worker token configured, workers are refused
-// whenever a client token is set (a client token must never register a worker).
+// unless the server was started with --allow-workers-without-token (then anyone who
+// reaches the port may be a worker: their rows are still checked, see RowFarm).
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -19,11 +20,13 @@ namespace radflux {
 
 class WorkerService final : public v1::Worker::Service {
  public:
-  WorkerService(RowFarm& farm, JobManager& manager, std::string worker_token, bool client_token_set)
+  // `allow_without_token`: with an empty `worker_token`, accept any worker (else refuse all).
+  WorkerService(RowFarm& farm, JobManager& manager, std::string worker_token,
+                bool allow_without_token)
       : farm_(farm),
         manager_(manager),
         worker_token_(std::move(worker_token)),
-        client_token_set_(client_token_set) {}
+        allow_without_token_(allow_without_token) {}
 
   grpc::Status Connect(
       grpc::ServerContext* context,
@@ -37,7 +40,7 @@ class WorkerService final : public v1::Worker::Service {
   RowFarm& farm_;
   JobManager& manager_;
   const std::string worker_token_;
-  const bool client_token_set_;
+  const bool allow_without_token_;
 };
 
 }  // namespace radflux

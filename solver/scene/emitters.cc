@@ -10,7 +10,9 @@
 namespace radflux {
 
 absl::Status ApplyEmitOptions(const std::vector<std::pair<std::string, Rgb>>& emit, Scene& scene) {
-  for (const auto& [name, radiance] : emit) {
+  for (const auto& entry : emit) {
+    const std::string& name = entry.first;
+    const Rgb& radiance = entry.second;
     auto it = std::find_if(scene.materials.begin(), scene.materials.end(),
                            [&](const Material& m) { return m.name == name; });
     if (it == scene.materials.end()) {

@@ -185,6 +185,10 @@ const Affine& MgfInterpreter::Transform() const {
 absl::Status MgfInterpreter::Object(const std::vector<std::string>& words) {
   if (words.size() > 2) return Invalid("'o' takes at most one name");
   if (words.size() == 2) {
+    if (object_path_.size() >= limits_.max_object_depth) {
+      return Invalid(absl::StrCat("objects nested deeper than ", limits_.max_object_depth,
+                                  " (an 'o' without its closing 'o'?)"));
+    }
     object_path_.push_back(words[1]);
   } else if (object_path_.empty()) {
     return Invalid("'o' ends an object but none is open");

@@ -13,7 +13,7 @@
 // statement each face came from.
 //
 // Errors: INVALID_ARGUMENT with one line "file:line: what is wrong". Include cycles,
-// includes nested deeper than MgfLimits::max_include_depth, and files that would execute
+// includes or objects (o) nested deeper than the limits below, and files that would execute
 // more statements or make more faces than the limits (huge xf arrays) are refused.
 #pragma once
 
@@ -32,6 +32,7 @@ struct MgfLimits {
   uint64_t max_statements = 10'000'000;  // statements executed (each array element counts)
   uint64_t max_faces = 5'000'000;        // faces made, primitives' facets included
   int max_include_depth = 32;            // includes within includes
+  size_t max_object_depth = 64;          // objects (o) open at once
   int max_curve_segments = 1024;         // largest ImportOptions::curve_segments accepted
 };
 

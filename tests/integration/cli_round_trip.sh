@@ -15,6 +15,23 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 [ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
 grep -q '"iterations"' "$DIR/report.json"
 "$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"
+# A job whose solve stops short of its tolerance has its result, but watch, result and list
+# say so at once, and watch and result exit 3 (one line with the residual reached).
+code=0
+"$CLI" submit "$SCENE" --patches 200 --rays 64 --max-iterations 1 --watch --server "$ADDR" \
+  >"$DIR/short.out" 2>"$DIR/short.err" || code=$?
+[ "$code" -eq 3 ] || { echo "submit --watch of a job short of its tolerance exited $code"; exit 1; }
+grep -q "radflux watch: job job-[0-9a-f]* not converged: residual .* after 1 iterations" \
+  "$DIR/short.err"
+SHORT=$(tail -n 1 "$DIR/short.out")
+code=0
+"$CLI" --server "$ADDR" result "$SHORT" --patch-values "$DIR/short.csv" 2>"$DIR/short.err" || code=$?
+[ "$code" -eq 3 ] || { echo "result of a job short of its tolerance exited $code"; exit 1; }
+[ "$(wc -l <"$DIR/short.err")" -eq 1 ]
+grep -q "radflux result: job $SHORT not converged: residual" "$DIR/short.err"
+[ "$(wc -l <"$DIR/short.csv")" -gt 150 ]
+"$CLI" list --server "$ADDR" | grep -q "$SHORT.*JOB_STATE_SUCCEEDED NOT_CONVERGED.*not converged"
+"$CLI" list --server "$ADDR" | grep "$JOB" | grep -qv "NOT_CONVERGED"
 # Options the service cannot carry are refused, not silently dropped.
 if "$CLI" submit "$SCENE" --solver hierarchical --server "$ADDR" 2>"$DIR/err"; then
   echo "submit --solver hierarchical succeeded"; exit 1

@@ -233,6 +233,10 @@ TEST(MgfLoader, HugeArraysAreRefusedNotRun) {
   std::string many = "v a =\n p 0 0 0\nfh";
   for (int i = 0; i < 600; ++i) many += " a";
   EXPECT_EQ(Error(Load(many + "\n")), "main.mgf:3: 'fh' with more than 512 vertices");
+  // Found by the fuzzer (a 10 s timeout): objects opened in an array and never closed made
+  // every element join an ever longer name.
+  EXPECT_EQ(Error(Load("xf -a 100000 -t 1 0 0\no room\nxf\n")),
+            "main.mgf:2: objects nested deeper than 64 (an 'o' without its closing 'o'?)");
   ImportOptions options;
   options.curve_segments = 100000;
   EXPECT_FALSE(LoadMgfText("", "x.mgf", options, MgfReaderFromMap({})).ok());
