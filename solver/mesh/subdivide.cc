@@ -15,38 +15,57 @@ int Steps(double length, double h) {
   return std::max(1, static_cast<int>(std::ceil(length / h - 1e-9)));
 }
 
-// Subdivision counts of one face at edge length h: (nu, nv) for a quad, (n, n) otherwise.
-std::pair<int, int> FaceSteps(const std::vector<Vec3>& p, double h) {
+// The lengths that decide how finely a face is split (measured once per face, so choosing
+// the edge length is cheap arithmetic however many times it is tried).
+struct FaceExtent {
+  double u = 0, v = 0;     // quad: the longer of each pair of opposite edges; else u = v =
+                           // the longest edge (and centroid distance, for a fan)
+  double longest_edge = 0;
+  int fan = 1;             // patches per step^2: 1 for a triangle or quad, k for a k-gon fan
+  double reach = 0;        // the farthest vertex from the first (bounds the bisection)
+  bool quad = false;
+  bool emitter = false;
+};
+
+FaceExtent MeasureExtent(const std::vector<Vec3>& p, bool emitter) {
+  FaceExtent e;
+  e.emitter = emitter;
+  for (const Vec3& q : p) e.reach = std::max(e.reach, Length(q - p[0]));
+  for (size_t i = 0; i < p.size(); ++i) e.longest_edge = std::max(e.longest_edge, Length(p[(i + 1) % p.size()] - p[i]));
   if (p.size() == 4) {
-    return {Steps(std::max(Length(p[1] - p[0]), Length(p[2] - p[3])), h),
-            Steps(std::max(Length(p[3] - p[0]), Length(p[2] - p[1])), h)};
+    e.quad = true;
+    e.u = std::max(Length(p[1] - p[0]), Length(p[2] - p[3]));
+    e.v = std::max(Length(p[3] - p[0]), Length(p[2] - p[1]));
+    return e;
   }
-  double longest = 0;
-  Vec3 c;
-  for (const Vec3& q : p) c += q / static_cast<double>(p.size());
-  for (size_t i = 0; i < p.size(); ++i) {
-    longest = std::max(longest, Length(p[(i + 1) % p.size()] - p[i]));
-    if (p.size() > 4) longest = std::max(longest, Length(p[i] - c));
+  double longest = e.longest_edge;
+  if (p.size() > 4) {
+    Vec3 c;
+    for (const Vec3& q : p) c += q / static_cast<double>(p.size());
+    for (const Vec3& q : p) longest = std::max(longest, Length(q - c));
+    e.fan = static_cast<int>(p.size());
   }
-  const int n = Steps(longest, h);
-  return {n, n};
+  e.u = e.v = longest;
+  return e;
 }
 
 // Emitters are meshed no finer than kMaxEmitterSteps along an edge: their radiosity is
 // almost all their own uniform E, so finer patches buy nothing, and every emitter patch
 // costs an analytic column in every monte_carlo row.
-double FaceEdgeLength(const std::vector<Vec3>& p, bool emitter, double h) {
-  if (!emitter || h <= 0) return h;
-  double longest = 0;
-  for (size_t i = 0; i < p.size(); ++i) longest = std::max(longest, Length(p[(i + 1) % p.size()] - p[i]));
-  return std::max(h, longest / kMaxEmitterSteps);
+double FaceEdgeLength(const FaceExtent& e, double h) {
+  if (!e.emitter || h <= 0) return h;
+  return std::max(h, e.longest_edge / kMaxEmitterSteps);
 }
 
-int64_t FacePatchCount(const std::vector<Vec3>& p, double h) {
-  const auto [nu, nv] = FaceSteps(p, h);
-  if (p.size() == 4) return int64_t{nu} * nv;
-  const int64_t fan = p.size() == 3 ? 1 : static_cast<int64_t>(p.size());
-  return fan * nu * nu;
+// Subdivision counts of one face at edge length h: (nu, nv) for a quad, (n, n) otherwise.
+std::pair<int, int> FaceSteps(const FaceExtent& e, double h) {
+  const double edge = FaceEdgeLength(e, h);
+  return {Steps(e.u, edge), Steps(e.v, edge)};
+}
+
+int64_t FacePatchCount(const FaceExtent& e, double h) {
+  const auto [nu, nv] = FaceSteps(e, h);
+  return int64_t{e.fan} * nu * nv;
 }
 
 // Builds one face's vertices and patches into the mesh.
@@ -72,6 +91,12 @@ class FaceMesher {
 
   // Triangle fan (a single triangle when p has 3 vertices), each subdivided n x n.
   void Fan(const std::vector<Vec3>& p, int n) {
+    if (p.size() == 3 && n == 1) {  // the common case, without the key map: the same
+      const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());  // vertex order
+      mesh_.positions.insert(mesh_.positions.end(), {p[2], p[0], p[1]});
+      Emit({base + 1, base + 2, base, base});
+      return;
+    }
     if (p.size() == 3) {
       Triangle(p[0], p[1], p[2], n, [&](int a, int b) { return Key(0, a, b); });
       return;
@@ -132,26 +157,20 @@ class FaceMesher {
   std::map<Key, uint32_t> ids_;
 };
 
-double ChooseEdgeLength(const Scene& scene, const MeshOptions& options) {
+double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOptions& options) {
   if (options.max_edge > 0) return options.max_edge;
   if (options.target_patches <= 0) return 0;
-  std::vector<std::vector<Vec3>> polygons;
-  std::vector<bool> emitter;
   double longest = 0;
-  for (const Face& face : scene.faces) {
-    polygons.push_back(FacePolygon(scene, face));
-    emitter.push_back(scene.materials[face.material].IsEmitter());
-    for (const Vec3& q : polygons.back()) longest = std::max(longest, Length(q - polygons.back()[0]));
-  }
+  for (const FaceExtent& e : extents) longest = std::max(longest, e.reach);
   auto count = [&](double h) {
     int64_t total = 0;
-    for (size_t f = 0; f < polygons.size(); ++f) {
-      total += FacePatchCount(polygons[f], FaceEdgeLength(polygons[f], emitter[f], h));
-    }
+    for (const FaceExtent& e : extents) total += FacePatchCount(e, h);
     return total;
   };
   // Bisect (log scale) for the boundary where count(h) falls to <= target; pick the closer side.
   double lo = longest * 1e-7, hi = longest * 2;
+  const int64_t fewest = count(hi);  // every face one patch (or one fan)
+  if (fewest >= options.target_patches) return hi;
   for (int it = 0; it < 100; ++it) {
     const double mid = std::sqrt(lo * hi);
     (count(mid) > options.target_patches ? lo : hi) = mid;
@@ -166,14 +185,22 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
   if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
     return absl::InvalidArgumentError("patch count and max edge length must be >= 0");
   }
-  const double h = ChooseEdgeLength(scene, options);
+  std::vector<FaceExtent> extents;
+  extents.reserve(scene.faces.size());
+  std::vector<Vec3> polygon;
+  for (const Face& face : scene.faces) {
+    FacePolygonInto(scene, face, polygon);
+    extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
+  }
+  const double h = ChooseEdgeLength(extents, options);
   PatchMesh mesh;
+  mesh.face_first_patch.reserve(scene.faces.size() + 1);
+  mesh.face_first_vertex.reserve(scene.faces.size() + 1);
   for (uint32_t f = 0; f < scene.faces.size(); ++f) {
     mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
     mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
-    const std::vector<Vec3> polygon = FacePolygon(scene, scene.faces[f]);
-    const bool emitter = scene.materials[scene.faces[f].material].IsEmitter();
-    const auto [nu, nv] = FaceSteps(polygon, FaceEdgeLength(polygon, emitter, h));
+    FacePolygonInto(scene, scene.faces[f], polygon);
+    const auto [nu, nv] = FaceSteps(extents[f], h);
     if (int64_t{nu} * nv > (int64_t{1} << 31)) {
       return absl::ResourceExhaustedError(absl::StrCat(scene.DescribeFace(f),
                                                        ": subdivision would exceed 2^31 patches"));

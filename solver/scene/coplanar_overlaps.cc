@@ -4,7 +4,6 @@
 #include <cmath>
 #include <tuple>
 
-#include "solver/scene/face_shape.h"
 
 namespace radflux {
 namespace {
@@ -151,9 +150,10 @@ std::vector<FaceOverlap> FindCoplanarOverlaps(const Scene& scene) {
   const double step = std::max(1e-5 * Length(hi - lo), 1e-300);
   std::vector<PlaneKey> keys;
   keys.reserve(scene.faces.size());
+  std::vector<Vec3> polygon;
   for (uint32_t f = 0; f < scene.faces.size(); ++f) {
-    const std::vector<Vec3> polygon = FacePolygon(scene, scene.faces[f]);
-    Vec3 n = MeasureFace(polygon).normal;
+    FacePolygonInto(scene, scene.faces[f], polygon);
+    Vec3 n = Normalize(PolygonNewellNormal(polygon));
     const double major = std::abs(n.x) >= std::max(std::abs(n.y), std::abs(n.z)) ? n.x
                          : std::abs(n.y) >= std::abs(n.z)                        ? n.y
                                                                                  : n.z;

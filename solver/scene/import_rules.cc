@@ -52,6 +52,14 @@ absl::Status FixMaterials(const ImportOptions& options, Scene& scene) {
   return absl::OkStatus();
 }
 
+bool HasRepeats(const Scene& scene, const Face& face) {
+  const size_t n = face.vertices.size();
+  for (size_t k = 0; k < n; ++k) {
+    if (scene.positions[face.vertices[k]] == scene.positions[face.vertices[(k + 1) % n]]) return true;
+  }
+  return false;
+}
+
 // `face.vertices` without a vertex at the same position as the one before it (cyclically).
 std::vector<uint32_t> WithoutRepeats(const Scene& scene, const Face& face) {
   std::vector<uint32_t> kept;
@@ -68,20 +76,21 @@ struct FaceTallies {
   Tally repeated, zero_area, non_planar, non_convex;
 };
 
-// Appends to `out` what face f becomes: itself, its triangles, or nothing.
-absl::Status FixFace(const ImportOptions& options, const Scene& scene, size_t f, FaceTallies& tally,
-                     std::vector<Face>& out) {
-  Face face = scene.faces[f];
-  if (face.vertices.size() >= 3 && !options.strict) {
-    std::vector<uint32_t> kept = WithoutRepeats(scene, face);
-    if (kept.size() != face.vertices.size()) tally.repeated.Add(scene.FaceLocation(f));
-    face.vertices = std::move(kept);
+// Appends to `out` what face f becomes: itself, its triangles, or nothing. `polygon` is
+// scratch space.
+absl::Status FixFace(const ImportOptions& options, Scene& scene, size_t f, FaceTallies& tally,
+                     std::vector<Vec3>& polygon, std::vector<Face>& out) {
+  Face face = std::move(scene.faces[f]);
+  if (face.vertices.size() >= 3 && !options.strict && HasRepeats(scene, face)) {
+    tally.repeated.Add(scene.FaceLocation(f));
+    face.vertices = WithoutRepeats(scene, face);
   }
-  const std::vector<Vec3> polygon = FacePolygon(scene, face);
+  FacePolygonInto(scene, face, polygon);
   FaceShape shape;
   shape.degenerate = true;  // fewer than 3 distinct vertices
   if (face.vertices.size() >= 3) shape = MeasureFace(polygon);
   if (!shape.finite || (options.strict && (shape.degenerate || !shape.planar || !shape.convex))) {
+    scene.faces[f] = std::move(face);  // as it was, for the message
     return ValidateFace(scene, f);
   }
   if (shape.degenerate) {
@@ -107,8 +116,9 @@ absl::Status FixFaces(const ImportOptions& options, Scene& scene) {
   FaceTallies tally;
   std::vector<Face> faces;
   faces.reserve(scene.faces.size());
+  std::vector<Vec3> polygon;
   for (size_t f = 0; f < scene.faces.size(); ++f) {
-    if (absl::Status s = FixFace(options, scene, f, tally, faces); !s.ok()) return s;
+    if (absl::Status s = FixFace(options, scene, f, tally, polygon, faces); !s.ok()) return s;
   }
   scene.faces = std::move(faces);
   tally.repeated.Log(scene.import_log, "repeated_vertices_removed",

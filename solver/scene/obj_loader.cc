@@ -6,6 +6,7 @@
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <string_view>
 
 #include "absl/strings/str_cat.h"
 #include "tiny_obj_loader.h"
@@ -28,43 +29,71 @@ struct SourceScan {
   int bad_vertex_line = 0;  // first 'v' line with a NaN or infinite coordinate, 0 if none
 };
 
-bool HasNonFiniteCoordinate(std::istringstream& words) {
-  std::string token;
-  for (int k = 0; k < 3 && words >> token; ++k) {
-    const double value = std::strtod(token.c_str(), nullptr);
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// The words of `line` after its keyword: leading blanks and trailing blanks dropped.
+std::string_view Rest(std::string_view line) {
+  while (!line.empty() && IsBlank(line.front())) line.remove_prefix(1);
+  while (!line.empty() && IsBlank(line.back())) line.remove_suffix(1);
+  return line;
+}
+
+// Whether one of the first three numbers of a 'v' line is NaN or infinite (strtod is only
+// called when a letter that such a number needs appears: most lines never pay for it).
+bool HasNonFiniteCoordinate(std::string_view rest) {
+  if (rest.find_first_of("nNiIeE") == std::string_view::npos) return false;
+  const std::string words(rest);
+  const char* p = words.c_str();
+  for (int k = 0; k < 3; ++k) {
+    char* end = nullptr;
+    const double value = std::strtod(p, &end);
+    if (end == p) return false;
     if (!std::isfinite(value)) return true;
+    p = end;
   }
   return false;
 }
 
 SourceScan ScanSource(const std::string& text) {
   SourceScan scan;
-  std::vector<FaceOrigin>& origins = scan.faces;
-  std::istringstream in(text);
-  std::string line, keyword;
   FaceOrigin current;
-  for (int number = 1; std::getline(in, line); ++number) {
-    std::istringstream words(line);
-    if (!(words >> keyword)) continue;
-    if (keyword == "v") {
-      if (scan.bad_vertex_line == 0 && HasNonFiniteCoordinate(words)) scan.bad_vertex_line = number;
-      continue;
-    }
-    std::string rest;
-    std::getline(words >> std::ws, rest);
-    while (!rest.empty() && (rest.back() == '\r' || rest.back() == ' ')) rest.pop_back();
-    if (keyword == "o") {
-      current.object = rest;
-    } else if (keyword == "g") {
-      current.group = rest;
-    } else if (keyword == "usemtl") {
-      current.usemtl = rest;
-    } else if (keyword == "f") {
+  size_t start = 0;
+  for (int number = 1; start < text.size(); ++number) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + start, end - start);
+    start = end + 1;
+    while (!line.empty() && IsBlank(line.front())) line.remove_prefix(1);
+    size_t word = 0;
+    while (word < line.size() && !IsBlank(line[word])) ++word;
+    const std::string_view keyword = line.substr(0, word);
+    if (keyword == "f") {
       current.line = number;
-      origins.push_back(current);
+      scan.faces.push_back(current);
+    } else if (keyword == "v") {
+      if (scan.bad_vertex_line == 0 && HasNonFiniteCoordinate(line.substr(word))) {
+        scan.bad_vertex_line = number;
+      }
+    } else if (keyword == "o") {
+      current.object = Rest(line.substr(word));
+    } else if (keyword == "g") {
+      current.group = Rest(line.substr(word));
+    } else if (keyword == "usemtl") {
+      current.usemtl = Rest(line.substr(word));
     }
   }
   return scan;
+}
+
+constexpr uint32_t kNone = 0xffffffffu;
+
+// InternName, skipping the lookup when `name` is the name interned last (`last`): faces
+// come in runs of one object and group.
+uint32_t Intern(std::vector<std::string>& names, std::map<std::string, uint32_t>& index,
+                const std::string& name, uint32_t& last) {
+  if (last != kNone && names[last] == name) return last;
+  last = InternName(names, index, name);
+  return last;
 }
 
 // tinyobjloader's warnings (e.g. a missing .mtl file) on one line, as " (a; b)".
@@ -107,6 +136,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
   }
   const std::vector<FaceOrigin>& origins = scan.faces;
   std::map<std::string, uint32_t> object_index, group_index;
+  uint32_t last_object = kNone, last_group = kNone;
   size_t face_number = 0;
   for (const auto& shape : reader.GetShapes()) {
     size_t offset = 0;
@@ -117,8 +147,8 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
       if (face_number < origins.size()) origin = origins[face_number];
       Face face;
       face.source_line = origin.line;
-      face.object = InternName(scene.objects, object_index, origin.object);
-      face.group = InternName(scene.groups, group_index, origin.group);
+      face.object = Intern(scene.objects, object_index, origin.object, last_object);
+      face.group = Intern(scene.groups, group_index, origin.group, last_group);
       for (size_t k = 0; k < arity; ++k) {
         const int v = shape.mesh.indices[offset + k].vertex_index;
         if (v < 0 || static_cast<size_t>(v) >= vertex_count) {

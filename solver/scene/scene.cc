@@ -36,6 +36,11 @@ Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon) {
   return n;
 }
 
+void FacePolygonInto(const Scene& scene, const Face& face, std::vector<Vec3>& polygon) {
+  polygon.clear();
+  for (uint32_t v : face.vertices) polygon.push_back(scene.positions[v]);
+}
+
 std::vector<Vec3> FacePolygon(const Scene& scene, const Face& face) {
   std::vector<Vec3> polygon;
   polygon.reserve(face.vertices.size());

@@ -64,5 +64,7 @@ uint32_t InternName(std::vector<std::string>& names, std::map<std::string, uint3
 // Newell normal of a polygon (unnormalised; length = 2 * area for a planar polygon).
 Vec3 PolygonNewellNormal(const std::vector<Vec3>& polygon);
 std::vector<Vec3> FacePolygon(const Scene& scene, const Face& face);
+// FacePolygon written into `polygon`, reusing its storage (no allocation in a loop).
+void FacePolygonInto(const Scene& scene, const Face& face, std::vector<Vec3>& polygon);
 
 }  // namespace radflux
