@@ -99,6 +99,7 @@ def main():
     ap.add_argument('--skip-view3d', action='store_true', help='reuse the last View3D output')
     ap.add_argument('extra', nargs='*')
     a = ap.parse_args()
+    a.view3d, a.radflux = os.path.abspath(a.view3d), os.path.abspath(a.radflux)
     os.makedirs(a.workdir, exist_ok=True)
     model = os.path.join(a.workdir, 'room%d.vs3' % a.n)
     surfaces = grid_room_vs3(a.n, model)
