@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/core/gauss_legendre.h"
 #include "solver/formfactor/polygon_form_factor.h"
 
 namespace radflux {
@@ -35,23 +36,11 @@ struct GaussRule {
   double x[kMaxGauss], w[kMaxGauss];
 };
 GaussRule MakeGaussRule(int n) {
+  const GaussLegendre legendre(n);
   GaussRule rule{};
   for (int i = 0; i < n; ++i) {
-    double z = std::cos(3.141592653589793 * (i + 0.75) / (n + 0.5)), dp = 1;
-    for (int iteration = 0; iteration < 100; ++iteration) {  // Newton on P_n
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    rule.x[i] = 0.5 * (1 - z);
-    rule.w[i] = 1 / ((1 - z * z) * dp * dp);  // 2 / ((1 - z^2) P'^2), halved for [0, 1]
+    rule.x[i] = 0.5 * (1 - legendre.x[i]);
+    rule.w[i] = 0.5 * legendre.w[i];
   }
   return rule;
 }

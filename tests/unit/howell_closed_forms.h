@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/core/gauss_legendre.h"
+
 namespace radflux::testing {
 
 // C-11: identical, parallel, directly opposed rectangles a x b at distance c.
@@ -47,29 +49,7 @@ inline double PointToCornerRectangle(double a, double b, double c) {
   return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * std::numbers::pi);
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre recurrence).
-struct GaussLegendre {
-  std::vector<double> x, w;
-  explicit GaussLegendre(int n) {
-    for (int i = 1; i <= n; ++i) {
-      double z = std::cos(std::numbers::pi * (i - 0.25) / (n + 0.5)), dp = 1;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1, p1 = z;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (z * p1 - p0) / (z * z - 1);
-        const double dz = p1 / dp;
-        z -= dz;
-        if (std::abs(dz) < 1e-16) break;
-      }
-      x.push_back(z);
-      w.push_back(2 / ((1 - z * z) * dp * dp));
-    }
-  }
-};
+using radflux::GaussLegendre;
 
 namespace detail {
 
