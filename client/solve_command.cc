@@ -132,7 +132,8 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* solve = app.add_subcommand(
       "solve", "Solve a scene in-process (no server): mesh, form factors, radiosity, outputs");
-  solve->add_option("SCENE", args->scene, "scene file (.obj with its .mtl)")->required();
+  solve->add_option("SCENE", args->scene, "scene file (.obj with its .mtl, .gltf, .glb, .mgf)")
+      ->required();
   AddJobFlags(*solve, args->job);
   AddImportFlags(*solve, args->import);
   AddOutputFlags(*solve, args->output);
