@@ -37,13 +37,7 @@ bool PairKernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny, do
 // t in (0, 1 - 1e-6) along target - origin.
 StreamRay ShadowRay(const RowContext& context, const Vec3& x, const Vec3& nx, const Vec3& y,
                     const Vec3& ny) {
-  const Vec3 origin = x + nx * context.ray_epsilon;
-  const Vec3 target = y + ny * context.ray_epsilon;
-  StreamRay ray;
-  ray.SetOrigin(origin);
-  ray.SetDirection(target - origin);
-  ray.t_far = static_cast<float>(1 - 1e-6);
-  return ray;
+  return StreamRay::Segment(x + nx * context.ray_epsilon, y + ny * context.ray_epsilon);
 }
 
 // Patch `of` against the plane of patch `plane`: its corners' distances along the plane's

@@ -51,15 +51,6 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
   return shapes;
 }
 
-// A shadow ray from origin to just short of target.
-StreamRay ShadowRay(const Vec3& origin, const Vec3& target) {
-  StreamRay ray;
-  ray.SetOrigin(origin);
-  ray.SetDirection(target - origin);
-  ray.t_far = static_cast<float>(1 - 1e-6);
-  return ray;
-}
-
 // A light sample waiting for its shadow ray: the column and the value it adds if visible.
 struct PendingSample {
   uint32_t column = 0;
@@ -155,8 +146,8 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
         target = sample.point;
         value = cos_x / (std::numbers::pi * sample.pdf * choice->probability);
       }
-      rays.push_back(
-          ShadowRay(x + n * context_.ray_epsilon, target + emitter.normal * context_.ray_epsilon));
+      rays.push_back(StreamRay::Segment(x + n * context_.ray_epsilon,
+                                        target + emitter.normal * context_.ray_epsilon));
       pending.push_back({emitter.patch, value / static_cast<double>(count)});
     }
   }

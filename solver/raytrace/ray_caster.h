@@ -49,6 +49,15 @@ struct alignas(16) StreamRay {
     dir_x = static_cast<float>(d.x), dir_y = static_cast<float>(d.y),
     dir_z = static_cast<float>(d.z);
   }
+  // A shadow ray from `origin` to just short of `target`: t in (0, 1 - 1e-6) along
+  // target - origin, so the target's own surface never occludes it.
+  static StreamRay Segment(const Vec3& origin, const Vec3& target) {
+    StreamRay ray;
+    ray.SetOrigin(origin);
+    ray.SetDirection(target - origin);
+    ray.t_far = static_cast<float>(1 - 1e-6);
+    return ray;
+  }
   // Makes the ray ready to trace again (no hit yet, t_far back to infinity).
   void ResetHit() {
     t_far = std::numeric_limits<float>::infinity();
