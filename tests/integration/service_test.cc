@@ -135,7 +135,8 @@ TEST_F(ServiceTest, ThrottledProgressEndsEachPhaseWithItsNewestEvent) {
 }
 
 TEST_F(ServiceTest, CancelMidRowsEndsCancelledAndCleansFiles) {
-  StartServer();
+  // 20 ms a row block (188 blocks): the cancel lands mid-rows however fast the machine is.
+  StartServer({"--testing-block-delay-ms", "20"});
   const std::string sha = UploadCornell();
   v1::SolveOptions options = SmallOptions(3000, "cg");
   options.set_rays(512);
