@@ -129,7 +129,20 @@ bool JobStore::HasScene(const std::string& sha256) {
 
 absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
-  if (!scene.mesh.empty()) {
+  if (!scene.files.empty()) {
+    v1::SceneHeader index;  // the files' paths and sizes; their bytes follow in .bundle.rfb
+    std::string data;
+    for (const BundleFile& file : scene.files) {
+      v1::BundleFile* entry = index.add_files();
+      entry->set_path(file.path);
+      entry->set_size(file.data.size());
+      data += file.data;
+    }
+    if (absl::Status s = WriteBlobFile(base + ".files.rfb", index.SerializeAsString()); !s.ok()) {
+      return s;
+    }
+    if (absl::Status s = WriteBlobFile(base + ".bundle.rfb", data); !s.ok()) return s;
+  } else if (!scene.mesh.empty()) {
     if (absl::Status s = WriteBlobFile(base + ".mesh.rfb", scene.mesh); !s.ok()) return s;
   } else {
     if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
@@ -145,6 +158,17 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
   return absl::OkStatus();
 }
 
+absl::StatusOr<StoredScene> JobStore::GetBundle(const std::string& base, const std::string& name) {
+  absl::StatusOr<std::string> index = ReadBlobFile(base + ".files.rfb");
+  if (!index.ok()) return index.status();
+  absl::StatusOr<std::string> data = ReadBlobFile(base + ".bundle.rfb");
+  if (!data.ok()) return data.status();
+  v1::SceneHeader header;
+  if (!header.ParseFromString(*index)) return absl::DataLossError(base + ".files.rfb: corrupt");
+  header.set_name(name);
+  return SplitScenePayload(header, *data);
+}
+
 absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
   StoredScene scene;
   {
@@ -158,6 +182,7 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
     scene.name = st.Column(0);
   }
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  if (std::error_code ec; fs::exists(base + ".files.rfb", ec)) return GetBundle(base, scene.name);
   if (std::error_code ec; fs::exists(base + ".mesh.rfb", ec)) {
     absl::StatusOr<std::string> mesh = ReadBlobFile(base + ".mesh.rfb");
     if (!mesh.ok()) return mesh.status();
