@@ -41,8 +41,10 @@ void Add(const std::string& dir, const std::string& name, std::vector<std::strin
   }
 }
 
-// The textures an MTL file names, relative to its folder.
-void AddMtlTextures(const std::string& mtl_path, std::vector<std::string>& files) {
+// The textures an MTL file names, relative to the OBJ's folder `dir` (as tinyobjloader
+// reads them, and the OBJ loader after it).
+void AddMtlTextures(const std::string& mtl_path, const std::string& dir,
+                    std::vector<std::string>& files) {
   std::ifstream in(mtl_path, std::ios::binary);
   std::map<std::string, int> names;
   std::vector<tinyobj::material_t> materials;
@@ -50,7 +52,7 @@ void AddMtlTextures(const std::string& mtl_path, std::vector<std::string>& files
   tinyobj::LoadMtl(&names, &materials, &in, &warning, &error);
   for (const tinyobj::material_t& m : materials) {
     for (const std::string* texture : {&m.diffuse_texname, &m.emissive_texname, &m.alpha_texname}) {
-      Add(Folder(mtl_path), *texture, files);
+      Add(dir, *texture, files);
     }
   }
 }
@@ -65,7 +67,7 @@ void AddObjReferences(const std::string& path, const std::string& text,
     for (absl::string_view name : absl::StrSplit(line.substr(7), ' ', absl::SkipWhitespace())) {
       const size_t before = files.size();
       Add(Folder(path), std::string(absl::StripAsciiWhitespace(name)), files);
-      if (files.size() > before) AddMtlTextures(files.back(), files);
+      if (files.size() > before) AddMtlTextures(files.back(), Folder(path), files);
     }
   }
 }

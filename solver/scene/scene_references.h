@@ -11,7 +11,7 @@ namespace radflux {
 
 // Every file that the scene file `path` names and that is on disk (found as FindFile finds
 // it), `path` itself left out, each once, in the order first named:
-//   .obj   its mtllib files, and their textures (map_Kd, map_Ke, map_d), relative to the MTL;
+//   .obj   its mtllib files, and their textures (map_Kd, map_Ke, map_d), relative to the OBJ;
 //   .gltf, .glb   buffers and images named by a relative URI (data: URIs are inline);
 //   .mgf   its includes, recursively (found by the MGF interpreter itself);
 //   .stl   its groups side file (SCENE.stl.groups);

@@ -247,5 +247,29 @@ TEST(SceneBundle, AddressIgnoresTheOrderOfTheNamedFilesButNotTheirPathsOrBytes) 
       << "sizes keep the split between files";
 }
 
+// What `radflux submit` sends for its import flags is what the server reads back.
+TEST(ImportOptionsProto, RoundTripsEveryFieldAndUnsetMeansTheDefaults) {
+  ImportOptions options;
+  options.max_reflectance = 0.7;
+  options.strict = true;
+  options.two_sided = true;
+  options.curve_segments = 24;
+  options.emit = {{"lamp", {1, 2, 3}}, {"sky", {0, 0.5, 0}}};
+  absl::StatusOr<ImportOptions> back = FromProto(ToProto(options));
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->max_reflectance, 0.7);
+  EXPECT_TRUE(back->strict && back->two_sided);
+  EXPECT_EQ(back->curve_segments, 24);
+  EXPECT_EQ(back->emit, options.emit);
+  absl::StatusOr<ImportOptions> unset = FromProto(v1::ImportOptions{});
+  ASSERT_TRUE(unset.ok());
+  EXPECT_EQ(unset->max_reflectance, ImportOptions{}.max_reflectance);
+  EXPECT_EQ(unset->curve_segments, ImportOptions{}.curve_segments);
+  v1::ImportOptions negative = ToProto(options);
+  negative.mutable_emit(1)->mutable_radiance()->set_green(-1);
+  EXPECT_NE(FromProto(negative).status().message().find("--emit 'sky=0,-1,0'"), std::string::npos)
+      << FromProto(negative).status();
+}
+
 }  // namespace
 }  // namespace radflux
