@@ -35,7 +35,7 @@ one() {  # SERVER_INDEX WATCHERS: "index watchers job_thread_ms process_ms to_la
       2>"$D/w_$w.err" >/dev/null &
     pids+=($!)
   done
-  while [ "$( (grep -l JOB_STATE_QUEUED "$D"/w_*.err 2>/dev/null || true) | wc -l)" -lt "$n" ]; do
+  while [ "$( (grep -l "^\[[0-9]*\] queued" "$D"/w_*.err 2>/dev/null || true) | wc -l)" -lt "$n" ]; do
     sleep 0.05
   done
   "$R" cancel "$blocker" --server "$A" >/dev/null
