@@ -15,6 +15,7 @@
 #include "client/output_flags.h"
 #include "client/scene_upload.h"
 #include "client/service_client.h"
+#include "client/view/view_command.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/validation.h"
@@ -243,6 +244,17 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     if (!status.ok()) return void(exit_code = Report(status, *c));
     std::cout << job.job_id() << " " << v1::JobState_Name(job.state()) << "\n";
   });
+
+  auto* view = app.add_subcommand(
+      "view", "a live 3D view in the browser of a job (JOB), a saved result (RESULT.glb) or "
+              "the server's jobs (no argument), served on 127.0.0.1");
+  auto view_args = std::make_shared<ViewArgs>();
+  view->add_option("target", view_args->target, "job id or .glb file (default: the job list)");
+  view->add_option("--port", view_args->port, "port on 127.0.0.1 (default: a free one)")
+      ->check(CLI::Range(0, 65535));
+  AddReconnectFlag(*view, view_args->reconnect_seconds);
+  AddConnectionFlags(*view, *c);
+  view->callback([=, &exit_code] { exit_code = RunView(*c, *view_args); });
 
   auto* list = app.add_subcommand("list", "list jobs, newest first");
   auto page_size = std::make_shared<int>(100);
