@@ -66,7 +66,8 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
 }
 
 absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
-  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = scenes_.Get(request.scene_sha256(), request.options().import_options());
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
+      scenes_.Get(request.scene_sha256(), request.options().import_options());
   if (!loaded.ok()) return loaded.status();
   const Scene& scene = (*loaded)->scene;
   absl::StatusOr<JobOptions> options = FromProto(request.options());

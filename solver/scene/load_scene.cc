@@ -29,8 +29,9 @@ std::string Extension(const std::string& path) {
 }
 
 absl::Status UnknownFormat(const std::string& path) {
-  return absl::InvalidArgumentError(absl::StrCat(path, ": unknown scene format '", Extension(path),
-                                                 "' (supported: .obj, .gltf, .glb, .mgf, .stl, .vs3)"));
+  return absl::InvalidArgumentError(
+      absl::StrCat(path, ": unknown scene format '", Extension(path),
+                   "' (supported: .obj, .gltf, .glb, .mgf, .stl, .vs3)"));
 }
 
 absl::StatusOr<Scene> SceneOfVs3(absl::StatusOr<Vs3Model> model) {
@@ -100,9 +101,9 @@ absl::StatusOr<Scene> LoadBundleByExtension(const SceneBundle& bundle,
   }
   if (ext == "stl") {
     const auto groups = bundle.files.find(bundle.main + ".groups");
-    return LoadStlBytes(bytes, bundle.main,
-                        groups == bundle.files.end() ? std::nullopt
-                                                     : std::optional<std::string>(groups->second));
+    return LoadStlBytes(
+        bytes, bundle.main,
+        groups == bundle.files.end() ? std::nullopt : std::optional<std::string>(groups->second));
   }
   if (ext == "vs3") return SceneOfVs3(LoadVs3Text(bytes, bundle.main));
   return UnknownFormat(bundle.main);

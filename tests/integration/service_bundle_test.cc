@@ -114,8 +114,9 @@ std::vector<std::string> Paths(const std::vector<BundleFile>& files) {
 std::string WriteCornell(BundleTest& t) {
   t.Write("room/mats/box.mtl",
           absl::StrReplaceAll(testing::kMtl, {{"Kd 0.75 0.75 0.75", "Kd 1 1 1"}}));
-  return t.Write("room/box.obj", absl::StrReplaceAll(testing::kObj, {{"mtllib cornell_box.mtl",
-                                                                      "mtllib mats/box.mtl"}}));
+  return t.Write(
+      "room/box.obj",
+      absl::StrReplaceAll(testing::kObj, {{"mtllib cornell_box.mtl", "mtllib mats/box.mtl"}}));
 }
 
 TEST_F(BundleTest, ObjWithMtlInASubfolderSolvesAsLocallyAndImportFlagsActTheSame) {
@@ -150,17 +151,16 @@ std::string WriteGltf(BundleTest& t) {
   testing::GltfBuilder b;
   const int positions = b.AddPositions({0, 0, 1, 0, 1, 1, 1, 1, 1, 1, 0, 1,  //
                                         0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
-  const int lamp = b.AddMaterial({{"name", "lamp"},
-                                  {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}},
-                                                            {"metallicFactor", 0}}}});
-  const int wall = b.AddMaterial({{"name", "wall"},
-                                  {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}},
-                                                            {"metallicFactor", 0}}}});
+  const int lamp = b.AddMaterial(
+      {{"name", "lamp"},
+       {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"metallicFactor", 0}}}});
+  const int wall = b.AddMaterial(
+      {{"name", "wall"},
+       {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}}, {"metallicFactor", 0}}}});
   const int mesh = b.AddMesh(
-      "squares", {testing::GltfBuilder::Primitive(positions, b.AddIndices({0, 1, 2, 0, 2, 3}), 4,
-                                                  lamp),
-                  testing::GltfBuilder::Primitive(positions, b.AddIndices({4, 5, 6, 4, 6, 7}), 4,
-                                                  wall)});
+      "squares",
+      {testing::GltfBuilder::Primitive(positions, b.AddIndices({0, 1, 2, 0, 2, 3}), 4, lamp),
+       testing::GltfBuilder::Primitive(positions, b.AddIndices({4, 5, 6, 4, 6, 7}), 4, wall)});
   b.SetScene({b.AddNode({{"mesh", mesh}, {"name", "squares"}})});
   t.Write("gltf/buffers/squares.bin", b.bin());
   return t.Write("gltf/squares.gltf", b.Gltf("buffers/squares.bin"));
@@ -201,10 +201,10 @@ TEST_F(BundleTest, MgfWithIncludesSolvesAsLocally) {
   Write("mgf/parts/lamp.mgf",
         "i ../mats/lamp.mgf\nv l0 =\n p 0 0 1\nv l1 =\n p 0 1 1\nv l2 =\n p 1 1 1\n"
         "v l3 =\n p 1 0 1\nf l0 l1 l2 l3\n");
-  const std::string main = Write(
-      "mgf/scene.mgf",
-      "m floor =\n c\n  cxy .4 .35\n rd .6\nv f0 =\n p 0 0 0\nv f1 =\n p 1 0 0\n"
-      "v f2 =\n p 1 1 0\nv f3 =\n p 0 1 0\nf f0 f1 f2 f3\ni parts/lamp.mgf\n");
+  const std::string main =
+      Write("mgf/scene.mgf",
+            "m floor =\n c\n  cxy .4 .35\n rd .6\nv f0 =\n p 0 0 0\nv f1 =\n p 1 0 0\n"
+            "v f2 =\n p 1 1 0\nv f3 =\n p 0 1 0\nf f0 f1 f2 f3\ni parts/lamp.mgf\n");
   absl::StatusOr<std::vector<BundleFile>> files = ReadSceneBundle(main);
   ASSERT_TRUE(files.ok()) << files.status();
   EXPECT_EQ(Paths(*files),
@@ -231,8 +231,9 @@ TEST_F(BundleTest, PathsThatEscapeTheBundleAreRefusedNamingThePath) {
   // disk: the include below exists there, and is still not found.
   s = UploadBundle({{"in/scene.mgf", "i ../../../../../../../etc/hostname\n"}}, &ref);
   EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_NE(s.error_message().find("in/scene.mgf:1: cannot include '../../../../../../etc/hostname'"),
-            std::string::npos)
+  EXPECT_NE(
+      s.error_message().find("in/scene.mgf:1: cannot include '../../../../../../etc/hostname'"),
+      std::string::npos)
       << s.error_message();
 }
 

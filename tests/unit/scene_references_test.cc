@@ -45,13 +45,12 @@ TEST_F(SceneReferencesTest, ObjNamesItsMtlAndTheTexturesFoundIgnoringCase) {
 TEST_F(SceneReferencesTest, GltfNamesItsBuffersAndImagesButNotDataUris) {
   Write("bin/scene data.bin", "b");
   Write("img/a.png", "p");
-  const std::string gltf = Write(
-      "s.gltf", R"({"buffers":[{"uri":"bin/scene%20data.bin"},{"uri":"data:,x"}],)"
-                R"("images":[{"uri":"img/a.png"}]})");
+  const std::string gltf =
+      Write("s.gltf", R"({"buffers":[{"uri":"bin/scene%20data.bin"},{"uri":"data:,x"}],)"
+                      R"("images":[{"uri":"img/a.png"}]})");
   absl::StatusOr<std::vector<std::string>> files = SceneReferences(gltf);
   ASSERT_TRUE(files.ok()) << files.status();
-  EXPECT_EQ(*files,
-            (std::vector<std::string>{dir_ + "/bin/scene data.bin", dir_ + "/img/a.png"}));
+  EXPECT_EQ(*files, (std::vector<std::string>{dir_ + "/bin/scene data.bin", dir_ + "/img/a.png"}));
 }
 
 TEST_F(SceneReferencesTest, MgfIncludesAreFollowedAndAMissingOneIsTheLoadersError) {
