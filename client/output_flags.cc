@@ -1,17 +1,21 @@
 #include "client/output_flags.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/output/final_gather.h"
 #include "solver/output/gltf_writer.h"
 #include "solver/output/image.h"
 #include "solver/output/patch_values_csv.h"
 #include "solver/output/ply_writer.h"
 #include "solver/output/render.h"
 #include "solver/output/tone_map.h"
+#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux::cli {
 namespace {
@@ -34,6 +38,24 @@ std::pair<int, int> ParseSize(const std::string& size) {
   char x = 0;
   if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x') return {0, 0};
   return {w, h};
+}
+
+// The picture of --render: Gouraud-shaded B, or with --gather N the final gather.
+absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                                    const std::vector<Rgb>& radiosity, const Camera& camera,
+                                    int threads) {
+  if (f.gather == 0) {
+    RenderOptions options;
+    options.threads = threads;
+    return RenderPatchRadiosity(mesh, radiosity, camera, options);
+  }
+  auto caster = EmbreeRayCaster::Create(mesh);
+  if (!caster.ok()) return caster.status();
+  GatherOptions options;
+  options.rays = f.gather;
+  options.threads = threads;
+  return RenderFinalGather(mesh, **caster, ComputePatchAttributes(scene, mesh), radiosity, camera,
+                           options);
 }
 
 }  // namespace
@@ -62,6 +84,10 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
       app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve"),
       app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
           ->capture_default_str(),
+      app.add_option("--gather", f.gather,
+                     "--render by final gather: N rays per pixel into the solution plus light "
+                     "sampled on the emitters (0 = Gouraud-shaded B)")
+          ->capture_default_str(),
   };
   for (CLI::Option* option : added) option->group(kOutputGroup);
 }
@@ -89,6 +115,10 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
         absl::StrCat("--size '", f.size, "': expected WxH with 1..16384 pixels each"));
   }
   if (!(f.metres_per_unit > 0)) return absl::InvalidArgumentError("--metres-per-unit must be > 0");
+  if (f.gather < 0 || f.gather > 4096) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--gather ", f.gather, ": must be in [0, 4096]"));
+  }
   return absl::OkStatus();
 }
 
@@ -117,7 +147,7 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
 }
 
 absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
-                          const std::vector<Rgb>& radiosity, int threads) {
+                          const std::vector<Rgb>& radiosity, int threads, OutputTimings* timings) {
   // The mesh in the file's coordinates (a copy only for a recentred scene).
   std::optional<PatchMesh> translated;
   if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
@@ -142,10 +172,13 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
     // Rendered in the solver's coordinates: single-precision rays near the origin.
     absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, scene.origin);
     if (!camera.ok()) return camera.status();
-    RenderOptions options;
-    options.threads = threads;
-    absl::StatusOr<Image> image = RenderPatchRadiosity(solved_mesh, radiosity, *camera, options);
+    const auto start = std::chrono::steady_clock::now();
+    absl::StatusOr<Image> image = RenderPicture(f, scene, solved_mesh, radiosity, *camera, threads);
     if (!image.ok()) return image.status();
+    if (timings != nullptr && f.gather > 0) {
+      timings->gather =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
     absl::Status s = absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
                                                       : WritePng(f.render, *image, tone);
     if (!s.ok()) return s;
