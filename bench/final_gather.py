@@ -3,13 +3,15 @@
 
 Usage: final_gather.py RADFLUX.pfm REPORT.json REF_SEED1.npy REF_SEED2.npy [--block 4] [--tol 0.03]
 
-The picture and the reference (the mean of two Cycles renders with different seeds, linear
-radiance, row 0 = top) are cut into BLOCK x BLOCK pixel blocks (16 pixels at the default). A
+The picture and the reference (two Cycles renders with different seeds, n1 and n2 samples per
+pixel read from the .json beside each .npy, linear radiance, row 0 = top, combined as their
+sample-weighted mean) are cut into BLOCK x BLOCK pixel blocks (16 pixels at the default). A
 block's error is |mean radflux - mean reference| / mean reference of the sum over the three
 bands; blocks the reference sees as black (below 1e-3 of the image's mean: outside the box)
-are left out and counted. Prints the fraction of blocks within TOL, the error percentiles, the
-same for the two reference halves against each other (the reference's own noise: a half's
-noise is sqrt(2) times the mean's), and the final gather's and the solve's seconds from REPORT.
+are left out and counted. Prints the fraction of blocks within TOL and the error percentiles;
+the reference's own noise per block (sigma of the combined reference, from the two renders'
+difference: sigma = |h1 - h2| sqrt(n1 n2) / (n1 + n2), as a fraction, its RMS over blocks);
+and the final gather's and the solve's seconds from REPORT.
 """
 import json
 import sys
@@ -48,7 +50,9 @@ def main():
     block, tol = int(opts["--block"]), float(opts["--tol"])
     radflux = read_pfm(args[0])
     halves = [np.load(p).astype(np.float64) for p in args[2:4]]
-    ref = (halves[0] + halves[1]) / 2
+    n1, n2 = (json.load(open(p[:-len(".npy")] + ".json"))["opts"]["samples"] for p in args[2:4])
+    n1, n2 = int(n1), int(n2)
+    ref = (n1 * halves[0] + n2 * halves[1]) / (n1 + n2)
     if radflux.shape != ref.shape:
         raise SystemExit(f"picture {radflux.shape} and reference {ref.shape} differ in size")
     r, t = block_means(ref, block), block_means(radflux, block)
@@ -56,7 +60,10 @@ def main():
     keep = r > 1e-3 * r.mean()
     print(f"{block}x{block}-pixel blocks: {keep.sum()} lit, {(~keep).sum()} black in the reference")
     summary("radflux vs reference", errors(t, r, keep), tol)
-    summary("reference half vs half", errors(h1, h2, keep), tol)
+    sigma = errors(h1, h2, keep) * np.sqrt(n1 * n2) / (n1 + n2)
+    print(f"reference: {n1} + {n2} samples per pixel; its own noise per block (sigma) RMS "
+          f"{np.sqrt(np.mean(sigma ** 2)) * 100:.2f}%, 90th percentile "
+          f"{np.percentile(sigma, 90) * 100:.2f}%")
     seconds = json.load(open(args[1]))["seconds"]
     print(f"final gather {seconds.get('gather', 0):.3f} s; rows {seconds['rows']:.3f} s, "
           f"solve {seconds['solve']:.3f} s")

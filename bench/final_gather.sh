@@ -6,13 +6,13 @@
 # The reference (two Cycles renders, seeds 1 and 2, at the camera below) is made once:
 #   blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
 #     scenes/cornell_box.obj REF_seedS --pos 278,273,-800 --look 278,273,0 --up 0,1,0 \
-#     --fov 39.3077 --size 256x256 --samples 4096 --seed S --threads 2
+#     --fov 39.3077 --size 256x256 --samples N --seed S --threads 2
 # (REF=dir holding cornell_ref_seed1.npy and cornell_ref_seed2.npy; the bench renders them
 # there when missing, ~20-40 min on this machine.)
 #
 # Usage: bench/final_gather.sh [extra radflux solve flags...]
 #   GATHER=64 (rays per pixel), REF=/work/notes/gather, OUT=/tmp/radflux-gather,
-#   SPP=4096, BIN=build/ci/client/radflux
+#   SPP=4096 (per seed, when the bench renders them), BIN=build/ci/client/radflux
 set -euo pipefail
 cd "$(dirname "$0")/.."
 gather=${GATHER:-64}

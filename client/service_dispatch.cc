@@ -12,8 +12,8 @@
 namespace radflux::cli {
 namespace {
 
-constexpr std::array<std::string_view, 5> kServiceVerbs = {"submit", "watch", "result", "cancel",
-                                                           "list"};
+constexpr std::array<std::string_view, 6> kServiceVerbs = {"submit", "watch", "result", "cancel",
+                                                           "list",   "view"};
 constexpr std::array<std::string_view, 5> kConnectionOptions = {"--server", "--token", "--tls-ca",
                                                                 "--tls-cert", "--tls-key"};
 

@@ -1,7 +1,7 @@
 // `radflux` is a dispatcher, as git is for git-VERB: it reads the verb and replaces itself by
 // the sibling executable that implements it, arguments unchanged, so the command line is one
 // contract whichever binary parses it:
-//   radflux-service  the service verbs (submit, watch, result, cancel, list): gRPC, OpenSSL;
+//   radflux-service  the service verbs (submit, watch, result, cancel, list, view): gRPC, OpenSSL;
 //   radflux-local    everything else (solve, viewfactors, --help): the in-process solver.
 // The dispatcher links only the C library, statically: the hop costs about 1 ms, where
 // starting either side's libraries costs 8-18 ms (bench/RESULTS.md, "Service overhead").

@@ -1,4 +1,4 @@
-// radflux-service: the service verbs of `radflux` (submit, watch, result, cancel, list),
+// radflux-service: the service verbs of `radflux` (submit, watch, result, cancel, list, view),
 // talking to radfluxd. `radflux` runs it for those verbs (client/service_dispatch.h); it
 // can be run directly with the same arguments.
 #include <spdlog/spdlog.h>

@@ -51,6 +51,23 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
   return shapes;
 }
 
+// A receiver whose size is not small against its distance to the nearest emitter that
+// lights it sees F_ij vary strongly across it (a reflector a few cm from a lamp in its
+// housing): it takes (size / distance)^2 times the points, at most this many times. Far
+// receivers (every one in the Cornell box) keep the points asked for.
+constexpr double kMaxNearFieldFactor = 16;
+
+int NearFieldFactor(const PatchMesh& mesh, uint32_t i, const LightTree& tree) {
+  const Patch& patch = mesh.patches[i];
+  double radius = 0;
+  for (int k = 0; k < patch.VertexCount(); ++k)
+    radius = std::max(radius, Length(mesh.positions[patch.v[k]] - patch.centroid));
+  const double distance = tree.NearestDistance(patch.centroid, patch.normal);
+  if (!std::isfinite(distance)) return 1;
+  const double ratio = 2 * radius / std::max(distance, 1e-300);
+  return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
+}
+
 }  // namespace
 
 LightSampler::LightSampler(const RowContext& context)
@@ -96,6 +113,7 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
   const PatchMesh& mesh = *context_.mesh;
   const Vec3 n = mesh.patches[i].normal;
+  points *= NearFieldFactor(mesh, i, tree_);
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;

@@ -8,7 +8,7 @@
 #include "solver/core/parallel.h"
 #include "solver/core/sampling.h"
 #include "solver/formfactor/light_sampling.h"
-#include "solver/formfactor/row_context.h"
+#include "solver/output/gather_lights.h"
 #include "solver/output/render.h"
 #include "solver/output/vertex_radiosity.h"
 
@@ -20,7 +20,19 @@ constexpr uint64_t kPixelStream = 31;
 constexpr uint64_t kLightStream = 32;
 constexpr uint64_t kGatherStream = 33;
 
-// Everything the rows of one gather read (not copyable: the sampler points into context_).
+// The row context light sampling needs for `lights` (every light patch an emitter).
+RowContext LightContext(const GatherLights& lights, const RayCaster& caster, double ray_epsilon) {
+  RowContext context;
+  context.mesh = &lights.mesh;
+  context.caster = &caster;
+  context.ray_epsilon = ray_epsilon;
+  context.needs_row.assign(lights.mesh.size(), 0);
+  context.emitter.assign(lights.mesh.size(), 1);
+  for (const Rgb& e : lights.emission) context.emission.push_back(e[0] + e[1] + e[2]);
+  return context;
+}
+
+// Everything the rows of one gather read (not copyable: sampler_ points into light_context_).
 class GatherScene {
  public:
   GatherScene(const PatchMesh& mesh, const RayCaster& caster, const PatchAttributes& attributes,
@@ -29,8 +41,9 @@ class GatherScene {
         caster_(caster),
         attributes_(attributes),
         reflected_at_vertex_(std::move(reflected_at_vertex)),
-        context_(MakeRowContext(mesh, attributes, caster)),
-        lights_(context_),
+        lights_(MakeGatherLights(mesh, attributes)),
+        light_context_(LightContext(lights_, caster, RayEpsilonFor(mesh))),
+        sampler_(light_context_),
         projection_(camera) {}
   GatherScene(const GatherScene&) = delete;
   GatherScene& operator=(const GatherScene&) = delete;
@@ -57,8 +70,9 @@ class GatherScene {
   const RayCaster& caster_;
   const PatchAttributes& attributes_;
   std::vector<Rgb> reflected_at_vertex_;  // R = B - E, W/m^2 per band
-  RowContext context_;
-  LightSampler lights_;
+  GatherLights lights_;
+  RowContext light_context_;  // of lights_.mesh
+  LightSampler sampler_;
   PinholeProjection projection_;
 };
 
@@ -85,7 +99,7 @@ Rgb GatherScene::PathRadiance(const Path& path, std::span<const StreamRay> light
   Rgb irradiance{};  // H_direct + H_indirect at the path's point, W/m^2 per band
   if (path.light >= 0 && !light_rays[path.light].Occluded()) {
     const LightSampler::PendingSample& sample = pending[path.light];
-    const Rgb& e = attributes_.emission[sample.emitter];
+    const Rgb& e = lights_.emission[sample.emitter];
     for (int b = 0; b < kBands; ++b) irradiance[b] += e[b] * sample.form_factor;
   }
   const StreamRay& g = gather_rays[path.gather];
@@ -129,11 +143,12 @@ void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
       Path& path = paths[at];
       path.patch = p;
       const size_t before = light_rays.size();
-      lights_.SamplePoint(point, patch.normal, p, seed, pixel, static_cast<uint32_t>(k),
-                          std::span<const Point2>(light_points).subspan(k, 1), light_rays, pending);
+      sampler_.SamplePoint(
+          point, patch.normal, lights_.of_patch[p], seed, pixel, static_cast<uint32_t>(k),
+          std::span<const Point2>(light_points).subspan(k, 1), light_rays, pending);
       if (light_rays.size() > before) path.light = static_cast<int64_t>(before);
       StreamRay g;
-      g.SetOrigin(point + patch.normal * context_.ray_epsilon);
+      g.SetOrigin(point + patch.normal * light_context_.ray_epsilon);
       g.SetDirection(
           Frame::FromNormal(patch.normal).ToWorld(SampleCosineHemisphere(gather_points[k])));
       path.gather = static_cast<int64_t>(gather_rays.size());

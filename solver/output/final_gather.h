@@ -4,7 +4,8 @@
 //     L(x) = E_p / pi + rho_p / pi * (H_direct(x) + H_indirect(x))
 // with
 //   H_direct   = sum_j E_j F_j(x) V: one light sample on the emitters (LightSampler, as the
-//                emitter columns of monte_carlo's rows are sampled), shadow ray included;
+//                emitter columns of monte_carlo's rows are sampled, over the emitting faces
+//                merged by MakeGatherLights), shadow ray included;
 //   H_indirect = the reflected radiosity R = B - E (Gouraud-interpolated, at least 0) where one
 //                cosine-weighted ray from x meets a front side (0 on a miss or a back side):
 //                its expectation is the irradiance from everything but the emitters' own

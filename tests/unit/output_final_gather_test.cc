@@ -9,6 +9,7 @@
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/output/final_gather.h"
+#include "solver/output/gather_lights.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "tests/unit/hierarchical_test_scenes.h"
 #include "tests/unit/test_scenes.h"
@@ -54,25 +55,48 @@ Camera InsideUnitCube() {
 
 // Unit cube, rho 0.5, E = pi on every face: B = E / (1 - rho) = 2 pi, radiance 2. Given that
 // exact B, a gathered path's radiance is (E + rho (E F^ + (B - E))) / pi = 1.5 + 0.5 F^, with F^
-// the light sampler's estimate of sum_j F_j = 1 (the gather rays all see R = B - E = pi):
-// the light samples are the only noise. Measured with 96 emitter patches (the light tree's
-// choices, one sample a path): a pixel of 16 paths spreads by 7.5% (sigma), so at 64 paths
-// sigma = 3.8% per pixel and 0.12% for the mean of 1024 pixels. Allowed: every pixel within
-// 20% (5 sigma), the mean within 0.6% (5 sigma).
-TEST(FinalGather, ClosedUniformEnclosureShowsB) {
-  const Gathered g(FurnaceCube(), 96);
-  ASSERT_GT(g.mesh.size(), 16u);  // more emitters than the exact chooser takes: the tree
-  const std::vector<Rgb> b(g.mesh.size(),
-                           Rgb{2 * std::numbers::pi, 2 * std::numbers::pi, 2 * std::numbers::pi});
-  const Image image = g.Render(b, InsideUnitCube(), 64);
+// the light sampler's estimate of sum_j F_j = 1 (the gather rays all see R = B - E = pi): the
+// light samples are the only noise.
+void ExpectUniformRadiance(const Image& image, double pixel_tolerance, double mean_tolerance) {
   ASSERT_EQ(image.rgb.size(), 3u * 32 * 32);
   double sum = 0, worst = 0;
   for (float value : image.rgb) {
     sum += value;
     worst = std::max(worst, std::abs(value / 2.0 - 1));
   }
-  EXPECT_NEAR(sum / image.rgb.size(), 2.0, 2.0 * 0.006);
-  EXPECT_LT(worst, 0.2);
+  EXPECT_NEAR(sum / image.rgb.size(), 2.0, 2.0 * mean_tolerance);
+  EXPECT_LT(worst, pixel_tolerance);
+}
+
+std::vector<Rgb> FurnaceB(const PatchMesh& mesh) {
+  const double b = 2 * std::numbers::pi;
+  return std::vector<Rgb>(mesh.size(), Rgb{b, b, b});
+}
+
+// Each face one light (6, below the exact chooser's 16), its samples drawn in proportion to the
+// cosine within it (F_j >= 0.02 everywhere): F_j / P(j) = sum_k F_k = 1 exactly, so every
+// pixel is 2 up to rounding (measured 0 in 5e-5; allowed 1e-3).
+TEST(FinalGather, ClosedUniformEnclosureShowsB) {
+  const Gathered g(FurnaceCube(), 96);
+  ExpectUniformRadiance(g.Render(FurnaceB(g.mesh), InsideUnitCube(), 16), 1e-3, 1e-4);
+}
+
+// The cube's faces as 4 x 4 faces each: 96 lights, chosen by the light tree, one sample a
+// path. Measured: a pixel of 64 paths spreads by 3.8% (sigma; 7.5% at 16 paths), so the mean
+// of 1024 pixels by 0.12%. Allowed: every pixel within 20% (5 sigma), the mean within 0.6%.
+TEST(FinalGather, TessellatedEnclosureShowsBWithinNoise) {
+  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int faces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
+                           {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 5, 6, 2}};
+  std::string obj;
+  int next = 1;
+  for (const auto& f : faces) {
+    obj += testing::TessellatedQuad("box", "white", {v[f[0]], v[f[1]], v[f[2]], v[f[3]]}, 4, next);
+  }
+  const Gathered g(SceneFromObj(obj, "newmtl white\nKd 0.5 0.5 0.5\nKe 1 1 1\n"), 96);
+  ASSERT_EQ(MakeGatherLights(g.mesh, g.attributes).mesh.size(), 96u);
+  ExpectUniformRadiance(g.Render(FurnaceB(g.mesh), InsideUnitCube(), 64), 0.2, 0.006);
 }
 
 // The same image whatever the thread count: seeds are per pixel.
@@ -155,6 +179,45 @@ TEST(FinalGather, PlateUnderSmallEmitterMatchesClosedForm) {
   }
   EXPECT_GT(compared, 300);
   EXPECT_NEAR(ratio_sum / compared, 1.0, 0.002);
+}
+
+// Each face of the cube, 16 patches, is one light of area 1 with the face's emission; an
+// L-shaped emitting face (no convex outline) keeps its patches as lights.
+TEST(FinalGather, LightsMergeConvexFaces) {
+  const Gathered cube(FurnaceCube(), 96);
+  const GatherLights lights = MakeGatherLights(cube.mesh, cube.attributes);
+  ASSERT_EQ(lights.mesh.size(), 6u);
+  for (const Patch& light : lights.mesh.patches) EXPECT_NEAR(light.area, 1.0, 1e-12);
+  for (uint32_t p = 0; p < cube.mesh.size(); ++p) {
+    const uint32_t light = lights.of_patch[p];
+    ASSERT_LT(light, 6u);
+    EXPECT_NEAR(Dot(lights.mesh.patches[light].normal, cube.mesh.patches[p].normal), 1, 1e-12);
+    EXPECT_EQ(lights.emission[light], cube.attributes.emission[p]);
+  }
+  int next = 1;
+  const std::string l_shape = ObjQuad(
+      "l", "lamp", {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, next);
+  const Gathered l(
+      SceneFromObj(l_shape +
+                   ObjQuad("w", "white", {{0, 0, -1}, {1, 0, -1}, {1, 1, -1}, {0, 1, -1}}, next)),
+      12);
+  const GatherLights l_lights = MakeGatherLights(l.mesh, l.attributes);
+  double area = 0;
+  uint32_t emitting = 0;
+  for (uint32_t p = 0; p < l.mesh.size(); ++p) {
+    if (MaxComponent(l.attributes.emission[p]) == 0) {
+      EXPECT_EQ(l_lights.of_patch[p], kNoLight);
+      continue;
+    }
+    ++emitting;
+    area += l.mesh.patches[p].area;
+  }
+  EXPECT_GT(l_lights.mesh.size(), 1u);
+  double light_area = 0;
+  for (const Patch& light : l_lights.mesh.patches) light_area += light.area;
+  EXPECT_NEAR(light_area, area, 1e-9);
+  EXPECT_NEAR(area, 3.0, 1e-9);
+  EXPECT_GT(emitting, 0u);
 }
 
 TEST(FinalGather, RejectsBadInput) {
