@@ -172,8 +172,8 @@ void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
 
 }  // namespace
 
-absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const RayCaster& caster,
-                                        const PatchAttributes& attributes,
+absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh& shading,
+                                        const RayCaster& caster, const PatchAttributes& attributes,
                                         const std::vector<Rgb>& patch_radiosity,
                                         const Camera& camera, const GatherOptions& options) {
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
@@ -192,7 +192,7 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const RayCaster& 
       reflected[p][b] = patch_radiosity[p][b] - attributes.emission[p][b];
     }
   }
-  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, reflected);
+  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, reflected);
   if (!at_vertex.ok()) return at_vertex.status();
   const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), camera);
   Image image(camera.width, camera.height);

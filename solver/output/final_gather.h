@@ -23,6 +23,7 @@
 #include "solver/mesh/patch_mesh.h"
 #include "solver/output/camera.h"
 #include "solver/output/image.h"
+#include "solver/output/shading_mesh.h"
 #include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
@@ -35,10 +36,11 @@ struct GatherOptions {
 
 // Radiance image (W/m^2/sr per band) of the scene whose patches have `attributes` and
 // radiosity `patch_radiosity` (W/m^2 per band), seen by `camera`, by final gathering with
-// rays cast by `caster` (which must report Embree's u,v: EmbreeRayCaster does).
+// rays cast by `caster` (which must report Embree's u,v: EmbreeRayCaster does); R is
+// interpolated from its values at `shading`'s welded vertices (VertexRadiosity).
 // INVALID_ARGUMENT for sizes that disagree, a bad camera, or rays outside [1, 4096].
-absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const RayCaster& caster,
-                                        const PatchAttributes& attributes,
+absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh& shading,
+                                        const RayCaster& caster, const PatchAttributes& attributes,
                                         const std::vector<Rgb>& patch_radiosity,
                                         const Camera& camera, const GatherOptions& options);
 

@@ -25,6 +25,7 @@ struct Gathered {
   Scene scene;
   PatchMesh mesh;
   PatchAttributes attributes;
+  ShadingMesh shading;
   std::unique_ptr<EmbreeRayCaster> caster;
 
   Gathered(Scene s, int64_t patches) : scene(std::move(s)) {
@@ -32,13 +33,15 @@ struct Gathered {
     options.target_patches = patches;
     mesh = *SubdivideScene(scene, options);
     attributes = ComputePatchAttributes(scene, mesh);
+    shading = *BuildShadingMesh(mesh, FaceMaterials(scene));
     caster = *EmbreeRayCaster::Create(mesh);
   }
   Image Render(const std::vector<Rgb>& b, const Camera& camera, int rays, int threads = 0) const {
     GatherOptions options;
     options.rays = rays;
     options.threads = threads;
-    absl::StatusOr<Image> image = RenderFinalGather(mesh, *caster, attributes, b, camera, options);
+    absl::StatusOr<Image> image =
+        RenderFinalGather(mesh, shading, *caster, attributes, b, camera, options);
     EXPECT_TRUE(image.ok()) << image.status();
     return image.ok() ? *image : Image{};
   }
@@ -226,9 +229,10 @@ TEST(FinalGather, RejectsBadInput) {
   options.rays = 0;
   const std::vector<Rgb> b(g.mesh.size());
   EXPECT_FALSE(
-      RenderFinalGather(g.mesh, *g.caster, g.attributes, b, InsideUnitCube(), options).ok());
+      RenderFinalGather(g.mesh, g.shading, *g.caster, g.attributes, b, InsideUnitCube(), options)
+          .ok());
   options.rays = 4;
-  EXPECT_FALSE(RenderFinalGather(g.mesh, *g.caster, g.attributes, std::vector<Rgb>(1),
+  EXPECT_FALSE(RenderFinalGather(g.mesh, g.shading, *g.caster, g.attributes, std::vector<Rgb>(1),
                                  InsideUnitCube(), options)
                    .ok());
 }
