@@ -21,14 +21,14 @@ double SecondsSince(Clock::time_point start) {
 // Row i into `row` (size radiating).
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
-  std::vector<const SurfaceShape*> in_shaft;
   for (uint32_t j = 0; j < row.size(); ++j) {
     row[j] = j == i ? 0 : UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-    if (row[j] == 0) continue;
-    blockers.Query(i, j, in_shaft);
-    if (in_shaft.empty()) continue;
+    if (row[j] == 0 || !blockers.AnyInShaft(i, j)) continue;
     ++stats.traced_pairs;
-    row[j] *= VisibleFraction(shapes[i], shapes[j], in_shaft, stats.segments);
+    row[j] *= VisibleFraction(
+        shapes[i], shapes[j],
+        [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
+        stats.segments);
   }
 }
 

@@ -1,13 +1,13 @@
-// The blocker hierarchy (blocker_bvh.h) finds exactly the blockers that the per-blocker shaft
-// test (ShaftMayHold) keeps, for every pair of a cluttered scene of random quadrilaterals.
+// The blocker hierarchy (blocker_bvh.h) answers as testing every blocker does (ShaftMayHold,
+// SegmentHitsSurface), for every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <random>
 #include <vector>
 
 #include "solver/formfactor/blocker_bvh.h"
 #include "solver/formfactor/shaft_cull.h"
+#include "solver/formfactor/shaft_visibility.h"
 
 namespace radflux {
 namespace {
@@ -26,36 +26,40 @@ std::vector<SurfaceShape> RandomSquares(int count, uint32_t seed) {
   return shapes;
 }
 
-TEST(BlockerBvh, FindsTheSameBlockersAsTestingEachOne) {
+TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
   const std::vector<SurfaceShape> shapes = RandomSquares(120, 7);
   std::vector<uint32_t> blockers = PotentialBlockers(shapes);
   ASSERT_GT(blockers.size(), 100u);  // random orientations: nearly every square can block
   const BlockerBvh bvh(shapes, blockers);
   EXPECT_EQ(bvh.size(), blockers.size());
-  std::vector<const SurfaceShape*> found;
-  size_t total = 0;
+  int in_shaft = 0, blocked = 0;
   for (uint32_t i = 0; i < shapes.size(); ++i) {
     for (uint32_t j = 0; j < shapes.size(); ++j) {
       if (i == j) continue;
-      bvh.Query(i, j, found);
-      std::vector<const SurfaceShape*> expected;
-      for (uint32_t k : blockers) {
-        if (ShaftMayHold(shapes[i], shapes[j], shapes[k])) expected.push_back(&shapes[k]);
-      }
-      std::sort(found.begin(), found.end());
-      ASSERT_EQ(found, expected) << "pair " << i << " " << j;
-      total += found.size();
+      bool any = false;
+      for (uint32_t k : blockers) any = any || ShaftMayHold(shapes[i], shapes[j], shapes[k]);
+      ASSERT_EQ(bvh.AnyInShaft(i, j), any) << "pair " << i << " " << j;
+      in_shaft += any;
+      // A segment between points of i and j (at a third of the way to two vertices).
+      const Vec3 a = shapes[i].centroid + (shapes[i].polygon[j % 4] - shapes[i].centroid) / 3;
+      const Vec3 b = shapes[j].centroid + (shapes[j].polygon[i % 4] - shapes[j].centroid) / 3;
+      bool hit = false;
+      for (uint32_t k : blockers) hit = hit || (k != i && k != j && SegmentHitsSurface(a, b, shapes[k]));
+      ASSERT_EQ(bvh.SegmentBlocked(a, b, i, j), hit) << "pair " << i << " " << j;
+      blocked += hit;
     }
   }
-  EXPECT_GT(total, 1000u);  // the scene is cluttered: the test compares real work
+  // The scene is cluttered: both answers are often yes, and often no.
+  EXPECT_GT(in_shaft, 2000);
+  EXPECT_LT(in_shaft, 14000);
+  EXPECT_GT(blocked, 1000);
 }
 
 TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
   const std::vector<SurfaceShape> shapes = RandomSquares(3, 1);
   const BlockerBvh bvh(shapes, {});
-  std::vector<const SurfaceShape*> found{&shapes[0]};
-  bvh.Query(0, 1, found);
-  EXPECT_TRUE(found.empty());
+  EXPECT_FALSE(bvh.AnyInShaft(0, 1));
+  EXPECT_FALSE(bvh.SegmentBlocked(shapes[0].centroid, shapes[1].centroid, 0, 1));
 }
 
 }  // namespace

@@ -96,10 +96,12 @@ TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
   const SurfaceShape aside = Square({3, 0, 1}, {0.5, 0, 0}, {0, 0.5, 0});
   EXPECT_TRUE(ShaftMayHold(a, b, middle));
   EXPECT_FALSE(ShaftMayHold(a, b, aside));
-  const SurfaceShape* blockers[] = {&middle};
   uint64_t segments = 0;
   // Every sample segment (points halfway to the corners) crosses the middle square.
-  EXPECT_EQ(VisibleFraction(a, b, blockers, segments), 0.0);
+  const auto crosses_middle = [&](const Vec3& p, const Vec3& q) {
+    return SegmentHitsSurface(p, q, middle);
+  };
+  EXPECT_EQ(VisibleFraction(a, b, crosses_middle, segments), 0.0);
   EXPECT_EQ(segments, 16u);
   EXPECT_TRUE(SegmentHitsSurface({0.5, 0.5, 0}, {0.5, 0.5, 2}, middle));
   EXPECT_FALSE(SegmentHitsSurface({0.1, 0.1, 0}, {0.1, 0.1, 2}, middle));
