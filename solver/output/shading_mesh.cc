@@ -29,15 +29,19 @@ class PointGrid {
   template <typename Visit>
   void ForNear(const Vec3& p, Visit&& visit) const {
     const Key c = CellOf(p);
-    for (int64_t dx = -1; dx <= 1; ++dx) {
-      for (int64_t dy = -1; dy <= 1; ++dy) {
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = heads_.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == heads_.end()) continue;
-          for (uint32_t id = it->second; id != kEnd; id = next_[id]) visit(id);
-        }
-      }
-    }
+    ForCells({c.x - 1, c.y - 1, c.z - 1}, {c.x + 1, c.y + 1, c.z + 1}, visit);
+  }
+
+  // Number of cells the box [lo, hi] overlaps.
+  double CellsIn(const Vec3& lo, const Vec3& hi) const {
+    const Key a = CellOf(lo), b = CellOf(hi);
+    return double(b.x - a.x + 1) * double(b.y - a.y + 1) * double(b.z - a.z + 1);
+  }
+
+  // Calls visit(id) once for every point in the cells the box [lo, hi] overlaps.
+  template <typename Visit>
+  void ForBox(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    ForCells(CellOf(lo), CellOf(hi), visit);
   }
 
  private:
@@ -51,6 +55,18 @@ class PointGrid {
       return static_cast<size_t>((k.x * 73856093) ^ (k.y * 19349663) ^ (k.z * 83492791));
     }
   };
+  template <typename Visit>
+  void ForCells(const Key& a, const Key& b, Visit& visit) const {
+    for (int64_t x = a.x; x <= b.x; ++x) {
+      for (int64_t y = a.y; y <= b.y; ++y) {
+        for (int64_t z = a.z; z <= b.z; ++z) {
+          const auto it = heads_.find({x, y, z});
+          if (it == heads_.end()) continue;
+          for (uint32_t id = it->second; id != kEnd; id = next_[id]) visit(id);
+        }
+      }
+    }
+  }
   Key CellOf(const Vec3& p) const {
     return {static_cast<int64_t>(std::floor(p.x / cell_)),
             static_cast<int64_t>(std::floor(p.y / cell_)),
@@ -208,31 +224,40 @@ void FindTJunctions(const Context& c, const std::vector<PointSurface>& surfaces,
   const std::vector<Edge> edges = BoundaryEdges(c.mesh, s);
   if (edges.empty()) return;
   std::vector<bool> on_boundary(s.size(), false);
-  double total = 0;
+  std::vector<double> lengths;
+  lengths.reserve(edges.size());
   for (const Edge& e : edges) {
     const Patch& patch = c.mesh.patches[e.patch];
     const uint32_t i = patch.v[e.edge], j = patch.v[(e.edge + 1) % patch.VertexCount()];
     on_boundary[s.welded[i]] = on_boundary[s.welded[j]] = true;
-    total += Length(c.mesh.positions[j] - c.mesh.positions[i]);
+    lengths.push_back(Length(c.mesh.positions[j] - c.mesh.positions[i]));
   }
-  const double cell = std::max(total / edges.size(), c.tolerance * 4);
+  // Cells of the median edge's size: a few long edges neither crowd fine detail into one
+  // cell nor cost more than a walk of their length.
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const double cell = std::max(lengths[lengths.size() / 2], c.tolerance * 4);
   PointGrid grid(cell, s.size());
   for (uint32_t v = 0; v < s.size(); ++v) {
     if (on_boundary[v]) grid.Insert(v, c.mesh.positions[s.representative[v]]);
   }
   std::vector<uint32_t> candidates;
+  const Vec3 margin{c.tolerance, c.tolerance, c.tolerance};
   for (const Edge& e : edges) {
     const Patch& patch = c.mesh.patches[e.patch];
     const Vec3 a = c.mesh.positions[patch.v[e.edge]];
-    const Vec3 ab = c.mesh.positions[patch.v[(e.edge + 1) % patch.VertexCount()]] - a;
-    const int steps = static_cast<int>(std::ceil(Length(ab) / cell));
+    const Vec3 b = c.mesh.positions[patch.v[(e.edge + 1) % patch.VertexCount()]];
+    const Vec3 lo = Vec3{std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)} - margin;
+    const Vec3 hi = Vec3{std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)} + margin;
     candidates.clear();
-    for (int i = 0; i <= steps; ++i) {
-      grid.ForNear(a + ab * (double(i) / std::max(steps, 1)),
-                   [&](uint32_t v) { candidates.push_back(v); });
+    auto take = [&](uint32_t v) { candidates.push_back(v); };
+    if (grid.CellsIn(lo, hi) <= 64) {  // the usual edge: the cells of its box, once each
+      grid.ForBox(lo, hi, take);
+    } else {  // a long slanted edge: the cells around points a cell apart along it
+      const int steps = static_cast<int>(std::ceil(Length(b - a) / cell));
+      for (int i = 0; i <= steps; ++i) grid.ForNear(a + (b - a) * (double(i) / steps), take);
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     }
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     EdgeJunctions(c, s, surfaces, e, candidates, s.t_junctions);
   }
   std::sort(s.t_junctions.begin(), s.t_junctions.end(), [](const TJunction& x, const TJunction& y) {

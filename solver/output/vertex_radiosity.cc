@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "absl/strings/str_cat.h"
+#include "solver/core/parallel.h"
 
 namespace radflux {
 namespace {
@@ -178,12 +179,14 @@ absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
   }
   const JunctionPatches junctions(shading);
   std::vector<Rgb> values(shading.size(), Rgb{});
-  std::vector<uint32_t> patches;
-  for (uint32_t w = 0; w < shading.size(); ++w) {
-    FitPatches(mesh, shading, junctions, w, patches);
-    values[w] = FitPlaneAt(mesh, patch_radiosity, patches,
-                           mesh.positions[shading.representative[w]], shading.normals[w]);
-  }
+  ParallelFor(static_cast<int64_t>(shading.size()), 4096, 0, [&](int64_t begin, int64_t end) {
+    std::vector<uint32_t> patches;
+    for (auto w = static_cast<uint32_t>(begin); w < end; ++w) {
+      FitPatches(mesh, shading, junctions, w, patches);
+      values[w] = FitPlaneAt(mesh, patch_radiosity, patches,
+                             mesh.positions[shading.representative[w]], shading.normals[w]);
+    }
+  });
   ApplyTJunctions(mesh, shading, values);
   return values;
 }
