@@ -13,18 +13,21 @@ absl::Status ApplyEmitOptions(const std::vector<std::pair<std::string, Rgb>>& em
   for (const auto& entry : emit) {
     const std::string& name = entry.first;
     const Rgb& radiance = entry.second;
-    auto it = std::find_if(scene.materials.begin(), scene.materials.end(),
-                           [&](const Material& m) { return m.name == name; });
-    if (it == scene.materials.end()) {
+    bool found = false;  // every material of that name (textures make copies of one)
+    for (Material& m : scene.materials) {
+      if (m.name != name) continue;
+      found = true;
+      for (int b = 0; b < kBands; ++b) {
+        if (!std::isfinite(radiance[b]) || radiance[b] < 0) {
+          return absl::InvalidArgumentError(
+              absl::StrCat("--emit ", name, ": emitted radiance must be finite and >= 0"));
+        }
+        m.emission[b] = std::numbers::pi * radiance[b];
+      }
+    }
+    if (!found) {
       return absl::InvalidArgumentError(
           absl::StrCat("--emit ", name, "=...: ", scene.source, " has no material '", name, "'"));
-    }
-    for (int b = 0; b < kBands; ++b) {
-      if (!std::isfinite(radiance[b]) || radiance[b] < 0) {
-        return absl::InvalidArgumentError(
-            absl::StrCat("--emit ", name, ": emitted radiance must be finite and >= 0"));
-      }
-      it->emission[b] = std::numbers::pi * radiance[b];
     }
   }
   return absl::OkStatus();

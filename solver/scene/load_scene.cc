@@ -6,6 +6,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_replace.h"
 #include "absl/strings/str_split.h"
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/import_rules.h"
@@ -83,6 +84,20 @@ std::string BundleMtl(const SceneBundle& bundle, const std::string& obj) {
   return mtl;
 }
 
+// The texture `name` (as an MTL names it, relative to the OBJ) from the bundle: the exact
+// path first, else the one that matches ignoring case ('\\' read as '/'), as FindFile does
+// on disk.
+TextureReader BundleTextures(const SceneBundle& bundle) {
+  return [&bundle](const std::string& name) -> absl::StatusOr<std::string> {
+    const std::string path = BundlePath(bundle.main, absl::StrReplaceAll(name, {{"\\", "/"}}));
+    if (const auto it = bundle.files.find(path); it != bundle.files.end()) return it->second;
+    for (const auto& [candidate, bytes] : bundle.files) {
+      if (absl::EqualsIgnoreCase(candidate, path)) return bytes;
+    }
+    return absl::NotFoundError("no such file in the bundle");
+  };
+}
+
 // LoadByExtension on a bundle.
 absl::StatusOr<Scene> LoadBundleByExtension(const SceneBundle& bundle,
                                             const ImportOptions& options) {
@@ -92,7 +107,9 @@ absl::StatusOr<Scene> LoadBundleByExtension(const SceneBundle& bundle,
   }
   const std::string& bytes = main->second;
   const std::string ext = Extension(bundle.main);
-  if (ext == "obj") return LoadObjText(bytes, BundleMtl(bundle, bytes), bundle.main);
+  if (ext == "obj") {
+    return LoadObjText(bytes, BundleMtl(bundle, bytes), bundle.main, BundleTextures(bundle));
+  }
   if (ext == "gltf" || ext == "glb") {
     return LoadGltfData(bytes, bundle.main, options, FilesBeside(bundle));
   }

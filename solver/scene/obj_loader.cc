@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "absl/strings/str_cat.h"
+#include "solver/scene/file_lookup.h"
 #include "tiny_obj_loader.h"
 
 namespace radflux {
@@ -106,8 +107,21 @@ std::string LoaderNotes(const std::string& warnings) {
   return notes.empty() ? "" : " (" + notes + ")";
 }
 
+// The texture coordinates of the `arity` vertices from `offset` of `mesh`, or none when one
+// of them has none.
+std::vector<TexCoord> FaceTexCoords(const tinyobj::attrib_t& attrib, const tinyobj::mesh_t& mesh,
+                                    size_t offset, size_t arity) {
+  std::vector<TexCoord> uv;
+  for (size_t k = 0; k < arity; ++k) {
+    const int t = mesh.indices[offset + k].texcoord_index;
+    if (t < 0 || 2 * static_cast<size_t>(t) + 1 >= attrib.texcoords.size()) return {};
+    uv.push_back({attrib.texcoords[2 * t], attrib.texcoords[2 * t + 1]});
+  }
+  return uv;
+}
+
 absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std::string& obj_text,
-                                    const std::string& name) {
+                                    const std::string& name, const TextureReader& textures) {
   if (!reader.Valid()) {
     return absl::InvalidArgumentError(absl::StrCat(name, ": cannot parse OBJ: ", reader.Error()));
   }
@@ -119,7 +133,11 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
     scene.positions.push_back(
         {attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]});
   }
+  std::vector<ObjTextureNames> texture_names;
+  bool textured = false;
   for (const auto& m : reader.GetMaterials()) {
+    texture_names.push_back({m.diffuse_texname, m.emissive_texname, m.alpha_texname});
+    textured = textured || texture_names.back().any();
     Material material;
     material.name = m.name;
     for (int b = 0; b < kBands; ++b) {
@@ -138,6 +156,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
   std::map<std::string, uint32_t> object_index, group_index;
   uint32_t last_object = kNone, last_group = kNone;
   size_t face_number = 0;
+  std::vector<std::vector<TexCoord>> uvs;  // per face, kept when a material has a texture
   for (const auto& shape : reader.GetShapes()) {
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
@@ -168,8 +187,10 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
       }
       face.material = static_cast<uint32_t>(material);
       scene.faces.push_back(std::move(face));
+      if (textured) uvs.push_back(FaceTexCoords(attrib, shape.mesh, offset - arity, arity));
     }
   }
+  if (textured) ApplyObjTextures(texture_names, uvs, textures, scene);
   return scene;
 }
 
@@ -192,17 +213,30 @@ absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   config.mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
   reader.ParseFromFile(path, config);
-  return ConvertReader(reader, text.str(), path);
+  const std::string folder = path.substr(0, slash == std::string::npos ? 0 : slash);
+  const TextureReader textures = [&](const std::string& texture) -> absl::StatusOr<std::string> {
+    const std::optional<std::string> found = FindFile(folder, texture);
+    if (!found) return absl::NotFoundError("no such file");
+    std::ifstream in(*found, std::ios::binary);
+    if (!in) return absl::NotFoundError("cannot open the file");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+  };
+  return ConvertReader(reader, text.str(), path, textures);
 }
 
 absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string& mtl_text,
-                                  const std::string& name) {
+                                  const std::string& name, const TextureReader& textures) {
   tinyobj::ObjReader reader;
   // tinyobjloader reads the MTL text only when the OBJ names a material library.
   const bool names_library = obj_text.find("mtllib") != std::string::npos;
   reader.ParseFromString(names_library ? obj_text : "mtllib scene.mtl\n" + obj_text, mtl_text,
                          Config());
-  return ConvertReader(reader, obj_text, name);
+  const TextureReader none = [](const std::string&) -> absl::StatusOr<std::string> {
+    return absl::NotFoundError("no texture files given with this OBJ text");
+  };
+  return ConvertReader(reader, obj_text, name, textures ? textures : none);
 }
 
 }  // namespace radflux

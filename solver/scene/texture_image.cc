@@ -1,0 +1,166 @@
+#include "solver/scene/texture_image.h"
+
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "absl/strings/str_cat.h"
+
+namespace radflux {
+namespace {
+
+using Polygon = std::vector<TexCoord>;
+
+// The part of `polygon` where coordinate `axis` is >= `bound` (`keep_above`) or <= it
+// (Sutherland-Hodgman against one axis-aligned line).
+Polygon Clip(const Polygon& polygon, int axis, double bound, bool keep_above) {
+  Polygon out;
+  const auto inside = [&](const TexCoord& p) {
+    return keep_above ? p[axis] >= bound : p[axis] <= bound;
+  };
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const TexCoord& a = polygon[k];
+    const TexCoord& b = polygon[(k + 1) % polygon.size()];
+    if (inside(a)) out.push_back(a);
+    if (inside(a) != inside(b)) {
+      const double t = (bound - a[axis]) / (b[axis] - a[axis]);
+      TexCoord p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+      p[axis] = bound;
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+double Area(const Polygon& p) {
+  double twice = 0;
+  for (size_t k = 0; k < p.size(); ++k) {
+    const TexCoord& a = p[k];
+    const TexCoord& b = p[(k + 1) % p.size()];
+    twice += a[0] * b[1] - b[0] * a[1];
+  }
+  return std::abs(twice) / 2;
+}
+
+// Euclidean remainder: the texel index of cell `i` in an image `n` texels wide.
+int Wrap(long long i, int n) { return static_cast<int>(((i % n) + n) % n); }
+
+std::array<double, 4> WholeImageMean(const TextureImage& image) {
+  std::array<double, 4> sum{};
+  for (const auto& t : image.texels) {
+    for (int c = 0; c < 4; ++c) sum[c] += t[c];
+  }
+  for (double& s : sum) s /= static_cast<double>(image.texels.size());
+  return sum;
+}
+
+// The bounds of `p` in texels when it is a rectangle with axis-aligned sides (four corners,
+// two x and two y values: most quads of a texture atlas), else nullopt.
+std::optional<std::array<double, 4>> AlignedRectangle(const Polygon& p) {
+  if (p.size() != 4) return std::nullopt;
+  const auto [x0, x1] = std::minmax({p[0][0], p[1][0], p[2][0], p[3][0]});
+  const auto [y0, y1] = std::minmax({p[0][1], p[1][1], p[2][1], p[3][1]});
+  for (const TexCoord& c : p) {
+    if ((c[0] != x0 && c[0] != x1) || (c[1] != y0 && c[1] != y1)) return std::nullopt;
+  }
+  for (size_t k = 0; k < 4; ++k) {  // sides alternate between vertical and horizontal
+    const TexCoord& a = p[k];
+    const TexCoord& b = p[(k + 1) % 4];
+    if ((a[0] != b[0]) == (a[1] != b[1])) return std::nullopt;
+  }
+  return std::array<double, 4>{x0, x1, y0, y1};
+}
+
+// Length of [a, b] inside [i, i + 1].
+double Overlap(double a, double b, double i) {
+  return std::max(0.0, std::min(b, i + 1) - std::max(a, i));
+}
+
+}  // namespace
+
+double SrgbToLinear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::string& name) {
+  int width = 0, height = 0, channels = 0;
+  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
+      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                            static_cast<int>(std::min<size_t>(bytes.size(), 1u << 30)), &width,
+                            &height, &channels, 4),
+      stbi_image_free);
+  if (!pixels || width <= 0 || height <= 0) {
+    const char* reason = stbi_failure_reason();
+    return absl::InvalidArgumentError(absl::StrCat(name, ": not an image stb_image reads (",
+                                                   reason ? reason : "no reason given", ")"));
+  }
+  std::array<float, 256> linear{};
+  for (int v = 0; v < 256; ++v) linear[v] = static_cast<float>(SrgbToLinear(v / 255.0));
+  TextureImage image{width, height, {}, channels == 2 || channels == 4};
+  image.texels.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  for (size_t i = 0; i < image.texels.size(); ++i) {
+    const stbi_uc* p = pixels.get() + 4 * i;
+    image.texels[i] = {linear[p[0]], linear[p[1]], linear[p[2]], p[3] / 255.0f};
+  }
+  return image;
+}
+
+std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<TexCoord>& uv,
+                                  bool v_up) {
+  Polygon texels;  // in texel units, y down from the top row
+  for (const TexCoord& c : uv) {
+    texels.push_back({c[0] * image.width, (v_up ? 1 - c[1] : c[1]) * image.height});
+  }
+  double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  double hi[2] = {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  for (const TexCoord& p : texels) {
+    for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  }
+  const auto texel = [&](double x, double y) {
+    const auto& t =
+        image
+            .texels[static_cast<size_t>(Wrap(static_cast<long long>(std::floor(y)), image.height)) *
+                        static_cast<size_t>(image.width) +
+                    static_cast<size_t>(Wrap(static_cast<long long>(std::floor(x)), image.width))];
+    return std::array<double, 4>{t[0], t[1], t[2], t[3]};
+  };
+  const double area = Area(texels);
+  if (texels.empty() || !std::isfinite(area)) return WholeImageMean(image);
+  if (area <= 0) return texel(texels[0][0], texels[0][1]);
+  if ((std::floor(hi[0]) - std::floor(lo[0]) + 1) * (std::floor(hi[1]) - std::floor(lo[1]) + 1) >
+      kMaxFootprintTexels) {
+    return WholeImageMean(image);
+  }
+  std::array<double, 4> sum{};
+  if (const std::optional<std::array<double, 4>> r = AlignedRectangle(texels)) {
+    // Separable: a texel's weight is its column's overlap times its row's.
+    for (double y = std::floor(lo[1]); y < hi[1]; ++y) {
+      const double wy = Overlap((*r)[2], (*r)[3], y);
+      for (double x = std::floor(lo[0]); x < hi[0]; ++x) {
+        const double w = wy * Overlap((*r)[0], (*r)[1], x);
+        const std::array<double, 4> t = texel(x, y);
+        for (int c = 0; c < 4; ++c) sum[c] += w * t[c];
+      }
+    }
+    for (double& v : sum) v /= area;
+    return sum;
+  }
+  for (double y = std::floor(lo[1]); y < hi[1]; ++y) {
+    const Polygon row = Clip(Clip(texels, 1, y, true), 1, y + 1, false);
+    if (row.size() < 3) continue;
+    for (double x = std::floor(lo[0]); x < hi[0]; ++x) {
+      const double a = Area(Clip(Clip(row, 0, x, true), 0, x + 1, false));
+      if (a <= 0) continue;
+      const std::array<double, 4> t = texel(x, y);
+      for (int c = 0; c < 4; ++c) sum[c] += a * t[c];
+    }
+  }
+  for (double& s : sum) s /= area;
+  return sum;
+}
+
+}  // namespace radflux

@@ -1,0 +1,46 @@
+// Textures as the import rules read them (issue 19): an image decoded by stb_image into
+// linear RGB (the sRGB transfer curve undone) and alpha, and the mean of the image over a
+// face's footprint in texture space. The reflectance of a textured face is its material's
+// Kd times that mean; a face whose mean alpha is 0 is fully cut out.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+
+namespace radflux {
+
+// A texture coordinate: u to the right, v as the format defines it (see TextureMean).
+using TexCoord = std::array<double, 2>;
+
+struct TextureImage {
+  int width = 0, height = 0;
+  // Row-major, row 0 the top row of the image file: linear red, green, blue in [0, 1]
+  // (decoded from sRGB) and alpha in [0, 1] (1 when the file has none).
+  std::vector<std::array<float, 4>> texels;
+  bool has_alpha = false;  // the file has an alpha channel (grey + alpha, or RGBA)
+};
+
+// The image in `bytes` (PNG, JPEG, TGA, BMP, ... as stb_image reads them), named `name` in
+// messages. INVALID_ARGUMENT "NAME: not an image stb_image reads (REASON)" otherwise.
+absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::string& name);
+
+// The linear value of the sRGB-encoded value `c` in [0, 1] (IEC 61966-2-1).
+double SrgbToLinear(double c);
+
+// The texels covered by a footprint larger than this many are not visited one by one: the
+// mean of the whole image stands for them (a face over that many texels of a repeating
+// texture sees all of it about evenly).
+inline constexpr double kMaxFootprintTexels = double{1 << 22};
+
+// The mean of `image` (linear RGB and alpha) over the polygon `uv`, each texel a constant
+// square weighted by the area of the polygon over it (exact for a polygon, up to rounding).
+// The image repeats outside [0, 1]. With `v_up` (OBJ), v = 0 is the bottom row of the image;
+// otherwise (glTF) v = 0 is the top row. A polygon of zero area in texture space takes the
+// texel under its first vertex.
+std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<TexCoord>& uv,
+                                  bool v_up);
+
+}  // namespace radflux

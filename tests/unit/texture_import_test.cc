@@ -1,0 +1,164 @@
+// OBJ textures (solver/scene/obj_textures.h, texture_image.h): a face's reflectance is Kd
+// times the mean of its map_Kd texture over the face's footprint (sRGB decoded), a face
+// whose map_d alpha is 0 is dropped, a missing texture is one log line and Kd stays.
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "solver/scene/load_scene.h"
+#include "solver/scene/texture_image.h"
+
+namespace radflux {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A PNG of `width` x `height` RGBA pixels (rows from the top).
+std::string Png(int width, int height, const std::vector<unsigned char>& rgba) {
+  std::string bytes;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
+      },
+      &bytes, width, height, 4, rgba.data(), 4 * width);
+  return bytes;
+}
+
+// Top-left, top-right, bottom-left, bottom-right: sRGB bytes, the bottom-right transparent.
+const std::vector<unsigned char> kTexels = {128, 64, 255, 255, 0,   255, 0,   255,
+                                            10,  20, 30,  255, 200, 200, 200, 0};
+
+double Linear(unsigned char v) { return static_cast<float>(SrgbToLinear(v / 255.0)); }
+
+class TextureImportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/radflux_tex_XXXXXX";
+    dir_ = mkdtemp(pattern);
+    Write("tex/checker.png", Png(2, 2, kTexels));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Write(const std::string& path, const std::string& bytes) {
+    const fs::path full = fs::path(dir_) / path;
+    fs::create_directories(full.parent_path());
+    std::ofstream(full, std::ios::binary) << bytes;
+    return full.string();
+  }
+  // A lamp (untextured, facing down at z = 1) and one textured quad in z = 0 with the
+  // texture coordinates `uv` (four "vt u v" pairs) and material lines `mtl`.
+  absl::StatusOr<Scene> Load(const std::string& uv, const std::string& mtl) {
+    Write("s.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl wall\nKd 0.8 0.6 0.4\n" + mtl);
+    const std::string obj = Write(
+        "s.obj",
+        "mtllib s.mtl\nv 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n" +
+            uv + "usemtl lamp\nf 1 2 3 4\nusemtl wall\nf 5/1 6/2 7/3 8/4\n");
+    return LoadScene(obj, ImportOptions{});
+  }
+  const Material& Wall(const Scene& s) { return s.materials[s.faces.back().material]; }
+  std::string dir_;
+};
+
+TEST_F(TextureImportTest, AQuadOverOneTexelTakesExactlyThatTexelsLinearValueTimesKd) {
+  // OBJ's v runs up from the bottom row: the top-left texel is u in [0, .5], v in [.5, 1].
+  absl::StatusOr<Scene> s =
+      Load("vt 0 .5\nvt .5 .5\nvt .5 1\nvt 0 1\n", "map_Kd tex/checker.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  const Rgb rho = Wall(*s).reflectance;
+  EXPECT_NEAR(rho[0], 0.8 * Linear(128), 1e-12);
+  EXPECT_NEAR(rho[1], 0.6 * Linear(64), 1e-12);
+  EXPECT_NEAR(rho[2], 0.4 * Linear(255), 1e-12);
+  EXPECT_EQ(s->materials[s->faces.front().material].reflectance, (Rgb{0.5, 0.5, 0.5}))
+      << "the untextured lamp keeps its Kd";
+  ASSERT_FALSE(s->import_log.empty());
+  EXPECT_EQ(s->import_log.Lines().front(),
+            "import: 1 faces took their reflectance from textures (map_Kd) (first at " + dir_ +
+                "/s.obj:17)");
+}
+
+TEST_F(TextureImportTest, AQuadOverTheWholeTextureTakesTheMeanOfItsTexels) {
+  absl::StatusOr<Scene> s = Load("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", "map_Kd TEX/Checker.PNG\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  const Rgb rho = Wall(*s).reflectance;
+  const double kd[3] = {0.8, 0.6, 0.4};
+  for (int b = 0; b < 3; ++b) {
+    double mean = 0;
+    for (int t = 0; t < 4; ++t) mean += Linear(kTexels[4 * t + b]) / 4;
+    EXPECT_NEAR(rho[b], kd[b] * mean, 1e-12) << "band " << b << " (texture found ignoring case)";
+  }
+  // A quad over half a texel and its mirror image in u: the same mean (repeat, wrap).
+  absl::StatusOr<Scene> wrapped =
+      Load("vt -.5 .5\nvt -.25 .5\nvt -.25 1\nvt -.5 1\n", "map_Kd tex/checker.png\n");
+  ASSERT_TRUE(wrapped.ok());
+  EXPECT_NEAR(Wall(*wrapped).reflectance[1], 0.6 * Linear(255), 1e-12)
+      << "u in [-.5, -.25] repeats onto [.5, .75]: the top-right texel";
+}
+
+TEST_F(TextureImportTest, AFullyTransparentFaceIsDroppedWithOneLogLine) {
+  // The bottom-right texel has alpha 0: a quad over it is cut out, the lamp stays.
+  absl::StatusOr<Scene> s = Load("vt .5 0\nvt 1 0\nvt 1 .5\nvt .5 .5\n",
+                                 "map_Kd tex/checker.png\nmap_d tex/checker.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_EQ(s->faces.size(), 1u);
+  const std::vector<std::string> lines = s->import_log.Lines();
+  EXPECT_NE(std::find(lines.begin(), lines.end(),
+                      "import: 1 faces fully transparent in their alpha texture (map_d) dropped "
+                      "(first at " +
+                          dir_ + "/s.obj:17)"),
+            lines.end());
+}
+
+TEST_F(TextureImportTest, AMissingTextureKeepsKdAndSaysWhichFile) {
+  absl::StatusOr<Scene> s = Load("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", "map_Kd missing.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  for (int b = 0; b < 3; ++b) EXPECT_NEAR(Wall(*s).reflectance[b], (Rgb{0.8, 0.6, 0.4})[b], 1e-15);
+  ASSERT_FALSE(s->import_log.empty());
+  EXPECT_EQ(s->import_log.Lines().front(),
+            "import: 1 textures not read, their materials' Kd/Ke used as they are (first at "
+            "missing.png: no such file)");
+}
+
+TEST_F(TextureImportTest, ABundleReadsItsTexturesAsTheDiskDoes) {
+  absl::StatusOr<Scene> disk =
+      Load("vt 0 0\nvt 1 0\nvt .5 1\nvt 0 1\n", "map_Kd tex/checker.png\n");
+  ASSERT_TRUE(disk.ok());
+  SceneBundle bundle{"s.obj", {}};
+  for (const char* path : {"s.obj", "s.mtl", "tex/checker.png"}) {
+    std::ifstream in(fs::path(dir_) / path, std::ios::binary);
+    bundle.files[path] = std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  absl::StatusOr<Scene> bundled = LoadSceneBundle(bundle, ImportOptions{});
+  ASSERT_TRUE(bundled.ok()) << bundled.status();
+  EXPECT_EQ(Wall(*bundled).reflectance, Wall(*disk).reflectance);
+}
+
+TEST(TextureImage, SrgbDecodeMatchesTheStandardsEndsAndBreak) {
+  EXPECT_EQ(SrgbToLinear(0), 0);
+  EXPECT_DOUBLE_EQ(SrgbToLinear(1), 1);
+  EXPECT_DOUBLE_EQ(SrgbToLinear(0.04045), 0.04045 / 12.92);
+  EXPECT_NEAR(SrgbToLinear(0.5), 0.214041, 1e-6);
+  EXPECT_FALSE(DecodeTexture("not an image", "x.png").ok());
+}
+
+TEST(TextureImage, ClippedFootprintsAgreeWithTheSeparableRectangleMean) {
+  absl::StatusOr<TextureImage> image = DecodeTexture(Png(2, 2, kTexels), "checker.png");
+  ASSERT_TRUE(image.ok()) << image.status();
+  const std::vector<TexCoord> rectangle = {{.1, .2}, {1.7, .2}, {1.7, .9}, {.1, .9}};
+  std::vector<TexCoord> pentagon = rectangle;  // the same area with a fifth (collinear) vertex
+  pentagon.insert(pentagon.begin() + 1, TexCoord{.9, .2});
+  const std::array<double, 4> fast = TextureMean(*image, rectangle, true);
+  const std::array<double, 4> clipped = TextureMean(*image, pentagon, true);
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(fast[c], clipped[c], 1e-12) << c;
+  // Two triangles halving the rectangle average to its mean, weighted by their equal areas.
+  const std::array<double, 4> a =
+      TextureMean(*image, {rectangle[0], rectangle[1], rectangle[2]}, true);
+  const std::array<double, 4> b =
+      TextureMean(*image, {rectangle[0], rectangle[2], rectangle[3]}, true);
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR((a[c] + b[c]) / 2, fast[c], 1e-12) << c;
+}
+
+}  // namespace
+}  // namespace radflux
