@@ -1,5 +1,6 @@
 #include "solver/report.h"
 
+#include <algorithm>
 #include <string>
 
 #include "solver/core/parallel.h"
@@ -118,18 +119,38 @@ nlohmann::json SolverJson(const SolveResult& s) {
 // Power the cut-off dropped, W per band: the dropped form-factor area sum_i A_i d_i times
 // the area-mean radiosity (an estimate: the dropped entries' own B_j are not kept).
 nlohmann::json DroppedPowerJson(const JobResult& result) {
-  const PatchAttributes& p = result.job->attributes;
+  const std::vector<Patch>& p = result.job->mesh.patches;  // B is per patch here
   const std::vector<Rgb>& b = result.solve.radiosity;
   Rgb mean{};
   double area = 0;
   for (size_t i = 0; i < b.size() && i < p.size(); ++i) {
-    area += p.area[i];
-    for (int k = 0; k < kBands; ++k) mean[k] += p.area[i] * b[i][k];
+    area += p[i].area;
+    for (int k = 0; k < kBands; ++k) mean[k] += p[i].area * b[i][k];
   }
   Rgb watts{};
   for (int k = 0; k < kBands; ++k)
     watts[k] = area > 0 ? result.row_stats.dropped_area * mean[k] / area : 0;
   return BandsJson(watts);
+}
+
+// The unknowns against the faces and patches: how many groups of patches (face_grouping.h)
+// the solve had, and their sizes.
+nlohmann::json UnknownsJson(const PreparedJob& job) {
+  const PatchClusters& c = job.clusters;
+  size_t groups = 0, grouped = 0, largest = c.empty() ? 1 : 0;
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    const size_t members = c.Members(u).size();
+    largest = std::max(largest, members);
+    if (members > 1) {
+      ++groups;
+      grouped += members;
+    }
+  }
+  return {{"unknowns", job.Unknowns()},
+          {"grouped", !c.empty()},
+          {"groups", groups},
+          {"grouped_patches", grouped},
+          {"largest_group", largest}};
 }
 
 // Where the rows lived when they spilled (before the report's own pass over them).
@@ -175,6 +196,7 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
       {"mesh",
        {{"faces", job.scene.faces.size()},
         {"patches", job.mesh_stats.patches},
+        {"unknowns", UnknownsJson(job)},
         {"min_area", job.mesh_stats.min_area},
         {"max_area", job.mesh_stats.max_area},
         {"max_aspect", job.mesh_stats.max_aspect}}},

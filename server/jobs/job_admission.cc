@@ -79,7 +79,7 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, PerJobMemoryLimit(options_.max_memory))
+  return RowMemoryBudget((*loaded)->PatchCount(JobMeshOptions(*options)), *options, PerJobMemoryLimit(options_.max_memory))
       .status();
 }
 

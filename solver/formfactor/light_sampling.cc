@@ -46,7 +46,10 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
   for (uint32_t j = 0; j < context.emitter.size(); ++j) {
     if (!context.emitter[j]) continue;
     const double exitance = j < context.emission.size() ? context.emission[j] : 1.0;
-    shapes.push_back(MakeEmitterShape(*context.mesh, j, exitance));
+    // An emitting unknown is one patch (grouping never groups emitters); the shape names
+    // the unknown, its column.
+    shapes.push_back(MakeEmitterShape(*context.mesh, context.FirstPatch(j), exitance));
+    shapes.back().patch = j;
   }
   return shapes;
 }
@@ -100,8 +103,6 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
-  const PatchMesh& mesh = *context_.mesh;
-  const Vec3 n = mesh.patches[i].normal;
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -114,10 +115,10 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
   MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
   const uint32_t choice_pattern = PatternSeed(seed, i, kLightChoiceStream);
-  const PatchPointSampler sample_point(mesh, i);
-  const Frame frame = Frame::FromNormal(n);
+  const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, i);
   for (size_t p = 0; p < on_patch.size(); ++p) {
-    const Vec3 x = sample_point(on_patch[p]);
+    const auto [x, n] = sample_point(on_patch[p]);
+    const Frame frame = Frame::FromNormal(n);
     const PointChooser choose(tree_, x, n);
     for (uint32_t k = 0; k < static_cast<uint32_t>(per_point); ++k) {
       // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
