@@ -5,6 +5,7 @@
 #include <array>
 #include <numbers>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 namespace radflux {
@@ -131,7 +132,7 @@ bool GroupsFaces(const Scene& scene, const MeshOptions& options) {
 PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns) {
   const uint32_t n = static_cast<uint32_t>(mesh.size());
   std::vector<uint32_t> group_of(n, kUnassigned);
-  // The non-emitting patches, sorted by (material, sidedness): a tree per run.
+  // The non-emitting patches, sorted by (object, material, sidedness): a tree per run.
   std::vector<uint32_t> small;
   uint32_t groups = 0;
   for (uint32_t p = 0; p < n; ++p) {
@@ -142,7 +143,8 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
     }
   }
   const auto set_of = [&](uint32_t p) {
-    return std::make_pair(scene.faces[mesh.patches[p].face].material, mesh.patches[p].two_sided);
+    const Face& face = scene.faces[mesh.patches[p].face];
+    return std::make_tuple(face.object, face.material, mesh.patches[p].two_sided);
   };
   std::stable_sort(small.begin(), small.end(),
                    [&](uint32_t a, uint32_t b) { return set_of(a) < set_of(b); });

@@ -5,7 +5,7 @@
 //  - faces are split to an edge length of kSplitEdge * sqrt(a*) (large faces become patches
 //    of about a*; emitters keep subdivide.h's cap), and every emitting patch is an unknown
 //    of its own (light sampling needs emitters as single polygons);
-//  - the other patches are put, per (material, two-sidedness), in a binary tree by top-down
+//  - the other patches are put, per (object, material, two-sidedness), in a binary tree by top-down
 //    median splits (a BVH build): a node whose normals spread beyond kMaxConeDegrees of their
 //    area-weighted mean is split along the normal component that varies most (so that groups
 //    are flat, and a group's rays seldom hit the group itself), any other node along its
@@ -49,8 +49,9 @@ struct GroupedMesh {
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
-// per emitting patch and per (material, two-sidedness); or fewer: when every group is one
-// patch) by the rule above.
+// per emitting patch and per (object, material, two-sidedness); or fewer: when every group is
+// one patch) by the rule above. A group never spans two objects, so per-object means stay
+// each object's own.
 PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns);
 
 }  // namespace radflux

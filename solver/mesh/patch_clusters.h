@@ -1,5 +1,5 @@
 // PatchClusters: the unknowns of the radiosity system when they are not the mesh's patches.
-// Each unknown is a cluster of one or more patches of one material (see face_grouping.h for
+// Each unknown is a cluster of one or more patches of one object and material (see face_grouping.h for
 // how they are chosen) that receives and shoots as one: its row averages its members' rows by
 // area, a ray that hits any member counts for it, and after the solve every member shows the
 // cluster's B. An empty PatchClusters means "unknown u is patch u".

@@ -60,11 +60,12 @@ Scene TessellatedBox() {
   return SceneFromObj(obj);
 }
 
+
 const std::string& ObjectOf(const Scene& scene, const PatchMesh& mesh, uint32_t p) {
   return scene.objects[scene.faces[mesh.patches[p].face].object];
 }
 
-TEST(FaceGrouping, EveryPatchInExactlyOneUnknownOfOneMaterial) {
+TEST(FaceGrouping, EveryPatchInExactlyOneUnknownOfOneObjectAndMaterial) {
   const Scene scene = TessellatedBox();
   MeshOptions options;
   options.target_patches = 300;
@@ -84,6 +85,7 @@ TEST(FaceGrouping, EveryPatchInExactlyOneUnknownOfOneMaterial) {
       ++seen[p];
       EXPECT_EQ(c.of_patch[p], u);
       EXPECT_EQ(scene.faces[grouped.mesh.patches[p].face].material, material);
+      EXPECT_EQ(ObjectOf(scene, grouped.mesh, p), ObjectOf(scene, grouped.mesh, c.Members(u)[0]));
       area += grouped.mesh.patches[p].area;
     }
     if (scene.materials[material].IsEmitter()) {
