@@ -88,7 +88,7 @@ watched_job() {
     if grep -q "^radflux: " "$DIR"/w_*.err 2>/dev/null; then
       echo "a watcher failed:" >&2; grep -h "^radflux: " "$DIR"/w_*.err | sort | uniq -c >&2; exit 1
     fi
-    connected=$( (grep -l "JOB_STATE_QUEUED" "$DIR"/w_*.err 2>/dev/null || true) | wc -l)
+    connected=$( (grep -l "^\[[0-9]*\] queued" "$DIR"/w_*.err 2>/dev/null || true) | wc -l)
     sleep 0.05
   done
   started=$("$SERVICE" list --server "$addr" | grep -c "^$job .*JOB_STATE_QUEUED" || true)

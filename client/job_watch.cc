@@ -6,6 +6,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "client/exit_status.h"
+#include "client/job_progress.h"
+#include "client/progress_display.h"
 #include "wire/proto_convert.h"
 
 namespace radflux::cli {
@@ -35,23 +37,6 @@ absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& g
   return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, args.threads);
 }
 
-// One progress line of a job event on stderr.
-void PrintEvent(const v1::JobEvent& event) {
-  const v1::Progress& p = event.progress();
-  std::cerr << "[" << event.sequence() << "] " << v1::JobState_Name(event.state()) << " "
-            << v1::Phase_Name(event.phase());
-  if (event.phase() == v1::PHASE_ROWS && p.rows_total() > 0) {
-    std::cerr << " rows " << p.rows_done() << "/" << p.rows_total() << " ("
-              << static_cast<int64_t>(p.rays_per_second()) << " rays/s, ETA "
-              << static_cast<int>(p.eta_seconds()) << " s)";
-  }
-  if (event.phase() == v1::PHASE_SOLVE && p.iteration() > 0) {
-    std::cerr << " iteration " << p.iteration() << " residual " << p.residual();
-  }
-  if (!event.message().empty()) std::cerr << ": " << event.message();
-  std::cerr << "\n";
-}
-
 // True when a watch stream that failed with `code` before its job's final event may be
 // reopened: the server went away (restart, network) rather than refused the watch.
 bool StreamMayResume(grpc::StatusCode code) {
@@ -60,21 +45,11 @@ bool StreamMayResume(grpc::StatusCode code) {
          code == grpc::StatusCode::DEADLINE_EXCEEDED;
 }
 
-// What a watch of `job_id` has seen so far, across reconnections.
-struct WatchProgress {
-  uint64_t last_sequence = 0;  // of the last event (not snapshot) received
-  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
-  std::string message;
-  bool converged = true;  // false when the final event says the solve stopped short
-  int64_t snapshots = 0;
-};
-
 // One WatchJob stream from after progress->last_sequence until the job's final event (the
 // stream is then cancelled: the result can be asked for at once, without waiting for the
 // stream's end) or until the stream ends; returns its status.
 grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
-                         const std::string& snapshots_dir, const JobGeometry* geometry,
-                         const OutputArgs& args, WatchProgress* progress) {
+                         const WatchHandlers& handlers, WatchOutcome* progress) {
   request.set_after_sequence(progress->last_sequence);
   auto context = client.Context();
   auto reader = client.stub().WatchJob(context.get(), request);
@@ -82,19 +57,14 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
   while (reader->Read(&event)) {
     if (event.has_snapshot()) {
       ++progress->snapshots;
-      if (snapshots_dir.empty()) continue;
-      if (absl::Status s = WriteSnapshotPng(event.snapshot(), *geometry, snapshots_dir, args);
-          !s.ok()) {
-        std::cerr << "radflux: snapshot " << event.snapshot().iteration() << ": " << s.message()
-                  << "\n";
-      }
+      if (handlers.snapshot) handlers.snapshot(event.snapshot());
       continue;
     }
     progress->last_sequence = event.sequence();
     progress->state = event.state();
     progress->message = event.message();
     progress->converged = !event.has_converged() || event.converged();
-    PrintEvent(event);
+    if (handlers.event) handlers.event(event);
     if (IsTerminal(event.state())) {
       context->TryCancel();
       break;
@@ -105,12 +75,29 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
 
 }  // namespace
 
-// Streams a job's events to stderr until it ends, writing each snapshot as a PNG into
-// snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
-// `snapshot_every` iterations (without a directory they are only counted). When the stream
-// drops after its first event (a server restart), it is reopened after the last event seen,
-// for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED,
-// kExitNotConverged when it SUCCEEDED short of its tolerance (one line says so).
+absl::StatusOr<WatchOutcome> FollowJob(Client& client, const v1::WatchJobRequest& request,
+                                       const WatchHandlers& handlers, int reconnect_seconds) {
+  WatchOutcome progress;
+  for (;;) {
+    const grpc::Status status = WatchStream(client, request, handlers, &progress);
+    if (IsTerminal(progress.state)) return progress;
+    if (progress.last_sequence == 0 || reconnect_seconds <= 0 ||
+        !StreamMayResume(status.error_code())) {
+      if (!status.ok()) return FromGrpcStatus(status);
+      return progress;
+    }
+    if (handlers.note) {
+      handlers.note(absl::StrCat("radflux: watch of ", request.job_id(), " dropped after event ",
+                                 progress.last_sequence, " (", status.error_message(),
+                                 "); reconnecting"));
+    }
+    if (!client.WaitForConnected(std::chrono::system_clock::now() +
+                                 std::chrono::seconds(reconnect_seconds))) {
+      return absl::UnavailableError(absl::StrCat("no answer for ", reconnect_seconds, " s"));
+    }
+  }
+}
+
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
              const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
              int reconnect_seconds) {
@@ -125,32 +112,41 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
     std::error_code error;
     fs::create_directories(snapshots_dir, error);
   }
-  WatchProgress progress;
-  for (;;) {
-    const grpc::Status status =
-        WatchStream(client, request, snapshots_dir, geometry, args, &progress);
-    if (IsTerminal(progress.state)) break;
-    if (progress.last_sequence == 0 || reconnect_seconds <= 0 ||
-        !StreamMayResume(status.error_code())) {
-      if (!status.ok()) return Report(status, client.flags());
-      break;
-    }
-    std::cerr << "radflux: watch of " << job_id << " dropped after event " << progress.last_sequence
-              << " (" << status.error_message() << "); reconnecting\n";
-    if (!client.WaitForConnected(std::chrono::system_clock::now() +
-                                 std::chrono::seconds(reconnect_seconds))) {
-      return Report(grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                                 absl::StrCat("no answer for ", reconnect_seconds, " s")),
-                    client.flags());
-    }
+  v1::Job job;
+  if (absl::Status s = FetchJob(client, job_id, &job); !s.ok()) return Fail(s, client.flags());
+  absl::StatusOr<JobOptions> options = FromProto(job.options());
+  JobProgress words(options.ok() ? options->solver.tolerance : 0);
+  ProgressDisplay display(/*quiet=*/false);
+  WatchHandlers handlers;
+  handlers.event = [&](const v1::JobEvent& event) {
+    const ProgressWords w = words.Update(event, std::chrono::steady_clock::now());
+    // A person's terminal gets the phase; a log gets the event number too (events resume
+    // after it when the stream drops).
+    const std::string label = display.terminal() ? w.phase
+                                                 : absl::StrCat("[", event.sequence(), "] ", w.phase);
+    display.Show(label, w.fraction, w.detail,
+                 event.state() != v1::JOB_STATE_RUNNING || event.phase() != v1::PHASE_ROWS);
+    if (IsTerminal(event.state())) display.Finish();
+  };
+  if (!snapshots_dir.empty()) {
+    handlers.snapshot = [&](const v1::Snapshot& snapshot) {
+      if (absl::Status s = WriteSnapshotPng(snapshot, *geometry, snapshots_dir, args); !s.ok()) {
+        display.Line(absl::StrCat("radflux: snapshot ", snapshot.iteration(), ": ", s.message()));
+      }
+    };
   }
-  if (request.snapshot_every() > 0) std::cerr << progress.snapshots << " snapshots received\n";
-  if (progress.state != v1::JOB_STATE_SUCCEEDED) {
-    std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(progress.state)
-              << (progress.message.empty() ? "" : ": " + progress.message) << "\n";
+  handlers.note = [&](const std::string& line) { display.Line(line); };
+  absl::StatusOr<WatchOutcome> outcome =
+      FollowJob(client, request, handlers, reconnect_seconds);
+  display.Finish();
+  if (!outcome.ok()) return Fail(outcome.status(), client.flags());
+  if (request.snapshot_every() > 0) std::cerr << outcome->snapshots << " snapshots received\n";
+  if (outcome->state != v1::JOB_STATE_SUCCEEDED) {
+    std::cerr << "radflux: job " << job_id << " ended " << v1::JobState_Name(outcome->state)
+              << (outcome->message.empty() ? "" : ": " + outcome->message) << "\n";
     return 1;
   }
-  if (!progress.converged) return ReportJobNotConverged("watch", job_id, progress.message);
+  if (!outcome->converged) return ReportJobNotConverged("watch", job_id, outcome->message);
   return 0;
 }
 

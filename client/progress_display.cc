@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace radflux::cli {
@@ -18,28 +19,41 @@ bool ProgressDisplay::Due(bool force) {
 }
 
 void ProgressDisplay::Phase(std::string_view phase, int64_t done, int64_t total) {
-  if (quiet_ || done == last_done_ || !Due(done == total)) return;
-  last_done_ = done;
+  if (quiet_ || done == last_done_) return;
   const double fraction = total > 0 ? double(done) / total : 1.0;
-  if (terminal_) {
-    const int width = 30, filled = static_cast<int>(fraction * width);
-    std::fprintf(stderr, "\r%-6.*s [%.*s%*s] %5.1f%% %lld/%lld", int(phase.size()), phase.data(),
-                 filled, "##############################", width - filled, "", 100 * fraction,
-                 static_cast<long long>(done), static_cast<long long>(total));
-    bar_open_ = true;
-    if (done == total) Finish();
-  } else {
-    std::fprintf(stderr, "%.*s: %lld/%lld (%.1f%%)\n", int(phase.size()), phase.data(),
-                 static_cast<long long>(done), static_cast<long long>(total), 100 * fraction);
+  char detail[64];
+  std::snprintf(detail, sizeof detail, "%lld/%lld", static_cast<long long>(done),
+                static_cast<long long>(total));
+  last_done_ = done;
+  Show(phase, fraction, detail, done == total);
+  if (done == total) Finish();
+}
+
+void ProgressDisplay::Show(std::string_view label, double fraction, std::string_view detail,
+                           bool force) {
+  if (quiet_ || !Due(force)) return;
+  if (!terminal_) {
+    std::fprintf(stderr, "%.*s%s%.*s\n", int(label.size()), label.data(),
+                 detail.empty() ? "" : ": ", int(detail.size()), detail.data());
+    return;
   }
+  std::fprintf(stderr, "\r%-22.*s", int(label.size()), label.data());
+  if (fraction >= 0) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(std::min(1.0, fraction) * kWidth);
+    std::fprintf(stderr, " [%.*s%*s] %5.1f%%", filled, "##############################",
+                 kWidth - filled, "", 100 * fraction);
+  }
+  // \033[K clears what a longer previous line left on the right.
+  std::fprintf(stderr, "  %.*s\033[K", int(detail.size()), detail.data());
+  bar_open_ = true;
 }
 
 void ProgressDisplay::Iteration(int iteration, double residual, double unshot_fraction) {
-  if (quiet_ || !Due(false)) return;
-  const char* format = terminal_ ? "\rsolve  iteration %d residual %.3e unshot %.3e   "
-                                 : "solve: iteration %d residual %.3e unshot %.3e\n";
-  std::fprintf(stderr, format, iteration, residual, unshot_fraction);
-  bar_open_ = terminal_;
+  char detail[96];
+  std::snprintf(detail, sizeof detail, "iteration %d residual %.3e unshot %.3e", iteration,
+                residual, unshot_fraction);
+  Show("solve", -1, detail, false);
 }
 
 void ProgressDisplay::Finish() {

@@ -16,6 +16,12 @@ class ProgressDisplay {
   void Phase(std::string_view phase, int64_t done, int64_t total);
   // Solver progress: iteration and convergence measure.
   void Iteration(int iteration, double residual, double unshot_fraction);
+  // A status in words: on a terminal a bar redrawn in place ("solving [####    ] 52%
+  // detail"; no bar when `fraction` < 0), else one plain line "label: detail". Shown at most
+  // every 100 ms (terminal) or 500 ms (plain), unless `force` (a change worth a line).
+  void Show(std::string_view label, double fraction, std::string_view detail, bool force);
+  // True when stderr is a terminal (bars are redrawn in place).
+  bool terminal() const { return terminal_; }
   // Ends the current bar line, if any.
   void Finish();
   // A message on its own line.

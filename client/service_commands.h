@@ -1,4 +1,4 @@
-// The client verbs that talk to radfluxd: submit, watch, result, cancel, list.
+// The client verbs that talk to radfluxd: submit, watch, result, cancel, list, view.
 // `result` (and `watch`) take the output flags of `radflux solve`: they fetch the job's
 // scene (GetScene), re-mesh it with the job's options and write what `solve` writes.
 // Each accepts --server HOST:PORT (default localhost:50051), --token, --tls-ca and

@@ -11,6 +11,7 @@ packages=(
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
   libsqlite3-dev libzstd-dev libssl-dev openssl python3-yaml
   clang libclang-rt-14-dev gnuplot-nox
+  libcpp-httplib-dev libjs-three chromium chromium-driver python3-selenium python3-pil
 )
 
 missing=()

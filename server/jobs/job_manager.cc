@@ -143,6 +143,7 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) 
     if (earlier.ok()) return durable(SameRequest(*earlier, request));
   }
   const auto check_start = std::chrono::steady_clock::now();
+  if (absl::Status s = store_.EnsureSpaceReserve(); !s.ok()) return s;
   if (absl::Status s = CheckLimits(request); !s.ok()) return s;
   const auto create_start = std::chrono::steady_clock::now();
   {
@@ -203,7 +204,7 @@ absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
     queue_.erase(queued);
   }
   store_.RemoveWorkFiles(job_id);
-  Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
+  (void)Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
   return *job;
 }
 
@@ -241,8 +242,9 @@ absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest&
   return response;
 }
 
-void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
-                            const std::string& message, std::future<absl::Status>* result_synced) {
+absl::Status JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
+                                    const std::string& message,
+                                    std::future<absl::Status>* result_synced) {
   const v1::JobState from = job.state();
   job.set_state(state);
   job.set_phase(phase);
@@ -292,6 +294,7 @@ void JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
   spdlog::info("job {}: {} -> {} {}{}{}", job.job_id(), v1::JobState_Name(from),
                v1::JobState_Name(state), v1::Phase_Name(phase), message.empty() ? "" : ": ",
                message);
+  return stored;
 }
 
 void JobManager::WorkerLoop() {
@@ -339,9 +342,18 @@ void JobManager::RunOne(const std::string& job_id) {
   context.max_memory = PerJobMemoryLimit(options_.max_memory);
   const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
   context.threads = std::max(1, threads / std::max(1, options_.jobs));
+  std::mutex failure_mu;
+  absl::Status failure;  // the first write of the job's files that failed (guarded)
+  context.fail = [&](const absl::Status& error) {
+    std::lock_guard lock(failure_mu);
+    if (failure.ok()) failure = error;
+    running->stop = true;
+  };
   context.on_phase = [&](v1::Phase phase, int64_t patches) {
     if (patches > 0) job.set_patches(patches);
-    Transition(job, v1::JOB_STATE_RUNNING, phase, "");
+    if (absl::Status s = Transition(job, v1::JOB_STATE_RUNNING, phase, ""); !s.ok()) {
+      context.fail(s);
+    }
   };
   // The result file and its names are made durable while the job runs, so that storing the
   // result at the end takes one fsync instead of three (JobStore::PrepareResult).
@@ -367,6 +379,10 @@ void JobManager::RunOne(const std::string& job_id) {
     std::lock_guard lock(mu_);
     cancelled = running->cancel_requested;
   }
+  {
+    std::lock_guard lock(failure_mu);
+    if (!failure.ok() && !cancelled) result = failure;  // never a success with lost writes
+  }
   // Work files go before the terminal transition: whoever sees the end sees them gone.
   if (result.ok()) {
     // Into the prepared file without its fsync, which then runs beside the SUCCEEDED
@@ -389,19 +405,21 @@ void JobManager::RunOne(const std::string& job_id) {
       std::future<absl::Status> synced =
           std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
       job.set_converged(result->converged);
-      Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, result->message, &synced);
+      (void)Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, result->message, &synced);
     } else {
-      Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
+      store_.RemoveWorkFiles(job_id);
+      (void)Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(put.message()));
     }
   } else if (cancelled) {
     store_.RemoveWorkFiles(job_id);
-    Transition(job, v1::JOB_STATE_CANCELLED, job.phase(), "cancelled by request");
+    (void)Transition(job, v1::JOB_STATE_CANCELLED, job.phase(), "cancelled by request");
   } else if (result.status().code() == absl::StatusCode::kCancelled) {
     spdlog::info("job {}: suspended for shutdown in {}, resumes on restart", job_id,
                  v1::Phase_Name(job.phase()));
   } else {
     store_.RemoveWorkFiles(job_id);
-    Transition(job, v1::JOB_STATE_FAILED, job.phase(), std::string(result.status().message()));
+    (void)Transition(job, v1::JOB_STATE_FAILED, job.phase(),
+                     std::string(result.status().message()));
   }
 }
 

@@ -65,7 +65,8 @@ class JobManager {
   // Parses and stores an uploaded scene, OBJ + MTL or Mesh (INVALID_ARGUMENT with the
   // loader's message; DATA_LOSS when it does not hash to header.sha256()).
   absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene);
-  // Validates and queues a job (or returns the job of an earlier submit with the same
+  // Validates and queues a job (RESOURCE_EXHAUSTED "disk full ..." while the data directory
+  // cannot hold the store's space reserve), or returns the job of an earlier submit with the same
   // request id and the same scene and options; the same id with another request is
   // FAILED_PRECONDITION, an id longer than kMaxRequestIdBytes INVALID_ARGUMENT).
   // Everything that can be refused is refused here, before any work.
@@ -96,8 +97,9 @@ class JobManager {
   // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`
   // (SUCCEEDED, its result written in place but not yet fsynced: JobStore::PutResult
   // of a prepared file) the state is committed, and the commit made durable while that fsync runs;
-  // the event is published once both are durable.
-  void Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message,
+  // the event is published once both are durable. Returns the store's status (a
+  // failure is logged here: the callers that end a job have nothing more to do about it).
+  absl::Status Transition(v1::Job& job, v1::JobState state, v1::Phase phase, const std::string& message,
                   std::future<absl::Status>* result_synced = nullptr);
   // On Start: every SUCCEEDED job whose result was never marked durable (an OS crash may
   // have cut short its fsync, which runs beside the SUCCEEDED commit's) has its result file

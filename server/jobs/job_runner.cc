@@ -237,6 +237,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
     if (SecondsSince(last_checkpoint) >= c.checkpoint_seconds) {
       if (absl::Status s = c.store->PutCheckpoint(job.job_id(), last); !s.ok()) {
         spdlog::warn("job {}: checkpoint failed: {}", job.job_id(), std::string(s.message()));
+        c.fail(s);
       }
       last_checkpoint = Clock::now();
     }
@@ -288,7 +289,7 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   // (shutdown, error) it stores what is queued so that it is kept for the resume.
   RowBlockWriter writer(*c.store, job.job_id(),
                         static_cast<uint32_t>(std::max(1, options->form_factors.block_size)),
-                        c.checkpoint_seconds);
+                        c.checkpoint_seconds, RowBlockWriter::kDefaultMaxGroupBytes, c.fail);
   struct FinishWriter {  // on every return: drop the queue when cancelled, else store it
     RowBlockWriter& writer;
     const RunContext& c;

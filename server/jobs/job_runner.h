@@ -41,6 +41,9 @@ struct RunContext {
   uint64_t max_memory = UINT64_MAX;
   // Called when the job enters a phase (patches = 0 until meshed).
   std::function<void(v1::Phase phase, int64_t patches)> on_phase;
+  // Called when a write of the job's files fails (a full disk): the job is to end FAILED
+  // with that error; the callee sets *stop, so the job stops at its next safe point.
+  std::function<void(const absl::Status& error)> fail;
 };
 
 // Runs the job to completion and returns its encoded result and its blob file (see

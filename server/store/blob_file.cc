@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "server/store/disk_space.h"
 #include "wire/scene_hash.h"
 
 namespace radflux {
@@ -21,20 +22,17 @@ constexpr std::string_view kMagic = "RFBLOB1\n";
 constexpr size_t kHashHexSize = 64;
 constexpr int kZstdLevel = 1;  // fastest: row blocks are written while rows are built
 
-absl::Status ErrnoError(std::string_view what, const std::string& path) {
-  return absl::InternalError(
-      absl::StrCat(std::string(what), " ", path, ": ", std::strerror(errno)));
-}
-
-// Writes all of `data` to fd.
-bool WriteAll(int fd, std::string_view data) {
+// Writes all of `data` to fd and, with `sync`, fsyncs it: 0, or the errno of the failure
+// (ENOSPC for a write that stopped short, as a full disk does).
+int WriteAll(int fd, std::string_view data, bool sync) {
   while (!data.empty()) {
     const ssize_t n = ::write(fd, data.data(), data.size());
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
+    if (n < 0) return errno;
+    if (n == 0) return ENOSPC;
     data.remove_prefix(static_cast<size_t>(n));
   }
-  return true;
+  return sync && ::fsync(fd) != 0 ? errno : 0;
 }
 
 std::string ParentDir(const std::string& path) {
@@ -93,40 +91,48 @@ absl::StatusOr<std::string> EncodeBlob(std::string_view data) {
 
 }  // namespace
 
-absl::Status WriteBlobFile(const std::string& path, std::string_view data) {
+absl::Status WriteBlobFile(const std::string& path, std::string_view data, std::string_view what) {
   absl::StatusOr<std::string> blob = EncodeBlob(data);
   if (!blob.ok()) return blob.status();
-  return WriteBuiltBlobFile(path, *blob);
+  return WriteBuiltBlobFile(path, *blob, what);
 }
 
-absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file) {
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file,
+                                std::string_view what) {
   const std::string temp = path + ".tmp";
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return ErrnoError("cannot create", temp);
-  const bool ok = WriteAll(fd, file) && ::fsync(fd) == 0;
+  if (fd < 0) return DiskWriteError(what, temp, errno);
+  int error = WriteAll(fd, file, /*sync=*/true);
   ::close(fd);
-  if (!ok) return ErrnoError("cannot write", temp);
-  if (::rename(temp.c_str(), path.c_str()) != 0) return ErrnoError("cannot rename", temp);
+  if (error == 0 && ::rename(temp.c_str(), path.c_str()) != 0) error = errno;
+  if (error != 0) {
+    ::unlink(temp.c_str());  // no partial file stays behind
+    return DiskWriteError(what, path, error);
+  }
   SyncPath(ParentDir(path));  // the rename itself
   return absl::OkStatus();
 }
 
 absl::Status CreateDurableFile(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) return ErrnoError("cannot create", path);
+  if (fd < 0) return DiskWriteError("an empty file", path, errno);
   const bool ok = ::fsync(fd) == 0;
   ::close(fd);
   const std::string dir = ParentDir(path);
-  if (!ok || !SyncPath(dir) || !SyncPath(ParentDir(dir))) return ErrnoError("cannot sync", path);
+  if (!ok || !SyncPath(dir) || !SyncPath(ParentDir(dir))) {
+    return DiskWriteError("an empty file", path, errno);
+  }
   return absl::OkStatus();
 }
 
-absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file) {
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file,
+                                       std::string_view what) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd < 0) return ErrnoError("cannot open", path);
-  const bool ok = WriteAll(fd, file) && ::ftruncate(fd, static_cast<off_t>(file.size())) == 0;
+  if (fd < 0) return DiskWriteError(what, path, errno);
+  int error = WriteAll(fd, file, /*sync=*/false);
+  if (error == 0 && ::ftruncate(fd, static_cast<off_t>(file.size())) != 0) error = errno;
   ::close(fd);
-  if (!ok) return ErrnoError("cannot write", path);
+  if (error != 0) return DiskWriteError(what, path, error);
   return absl::OkStatus();
 }
 

@@ -42,8 +42,11 @@ class BlobBuilder {
 // fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
 bool SyncPath(const std::string& path);
 
-// Compresses `data` and atomically replaces `path` with it.
-absl::Status WriteBlobFile(const std::string& path, std::string_view data);
+// Compresses `data` and atomically replaces `path` with it. A failed write leaves no temp
+// file behind and says what failed (DiskWriteError: `what` names the data, e.g. "row blocks";
+// RESOURCE_EXHAUSTED "disk full writing ..." when the disk is full).
+absl::Status WriteBlobFile(const std::string& path, std::string_view data,
+                           std::string_view what = "a blob");
 
 // Creates `path` if absent (empty; an existing file is left as it is) and makes it and its
 // name durable: fsync of the file, of its directory and of that directory's parent, so a
@@ -51,13 +54,15 @@ absl::Status WriteBlobFile(const std::string& path, std::string_view data);
 absl::Status CreateDurableFile(const std::string& path);
 
 // WriteBlobFile of a blob built already (`file`: BlobBuilder::File()).
-absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file);
+absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file,
+                                std::string_view what = "a blob");
 // Writes a built blob into the existing file `path` (see CreateDurableFile) without an
 // fsync: it survives kill -9, and SyncPath(path) makes it durable. Not atomic: until it
 // returns, and after a crash while it runs, the file may hold a partial blob (which
 // ReadBlobFile reports as DATA_LOSS), so it is for files that no one reads before a later
-// commit says they are complete.
-absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file);
+// commit says they are complete (and a caller removes after a failed write).
+absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view file,
+                                       std::string_view what = "a blob");
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);

@@ -9,6 +9,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "server/store/blob_file.h"
+#include "server/store/disk_space.h"
+#include "wire/proto_convert.h"
 
 namespace radflux {
 namespace {
@@ -76,7 +78,14 @@ class CommitsWithoutFsync {
   sqlite3* const db_;
 };
 
+// A failed statement; a full disk as DiskWriteError says it ("disk full writing WHAT at
+// the database's path: ...").
 absl::Status SqlError(sqlite3* db, std::string_view what) {
+  if ((sqlite3_errcode(db) & 0xff) == SQLITE_FULL) {
+    return absl::ResourceExhaustedError(absl::StrCat("disk full writing ", std::string(what), " at ",
+                                                     sqlite3_db_filename(db, "main"), ": ",
+                                                     sqlite3_errmsg(db)));
+  }
   return absl::InternalError(
       absl::StrCat("job store: ", std::string(what), ": ", sqlite3_errmsg(db)));
 }
@@ -97,6 +106,7 @@ absl::StatusOr<std::unique_ptr<JobStore>> JobStore::Open(const std::string& data
   }
   sqlite3_busy_timeout(store->db_, 5000);
   if (absl::Status s = store->Exec(kSchema); !s.ok()) return s;
+  (void)store->EnsureSpaceReserve();  // a full disk refuses submits, not the start
   return store;
 }
 
@@ -120,6 +130,11 @@ std::string JobStore::ResultPath(const std::string& job_id) const {
   return (fs::path(JobDir(job_id)) / "result.rfb").string();
 }
 
+absl::Status JobStore::EnsureSpaceReserve() {
+  std::lock_guard lock(mu_);
+  return reserve_.Ensure();
+}
+
 bool JobStore::HasScene(const std::string& sha256) {
   std::lock_guard lock(mu_);
   Statement st(db_, "SELECT 1 FROM scenes WHERE sha256 = ?");
@@ -129,11 +144,19 @@ bool JobStore::HasScene(const std::string& sha256) {
 
 absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  const auto write = [&](const std::string& suffix, const std::string& text) {
+    absl::Status s = WriteBlobFile(base + suffix, text, "a scene");
+    if (!s.ok()) {  // no part of the scene stays behind
+      std::error_code ec;
+      for (const char* part : {".mesh.rfb", ".obj.rfb", ".mtl.rfb"}) fs::remove(base + part, ec);
+    }
+    return s;
+  };
   if (!scene.mesh.empty()) {
-    if (absl::Status s = WriteBlobFile(base + ".mesh.rfb", scene.mesh); !s.ok()) return s;
+    if (absl::Status s = write(".mesh.rfb", scene.mesh); !s.ok()) return s;
   } else {
-    if (absl::Status s = WriteBlobFile(base + ".obj.rfb", scene.obj); !s.ok()) return s;
-    if (absl::Status s = WriteBlobFile(base + ".mtl.rfb", scene.mtl); !s.ok()) return s;
+    if (absl::Status s = write(".obj.rfb", scene.obj); !s.ok()) return s;
+    if (absl::Status s = write(".mtl.rfb", scene.mtl); !s.ok()) return s;
   }
   std::lock_guard lock(mu_);
   Statement st(db_,
@@ -141,7 +164,7 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
                "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
   st.Bind(1, sha256);
   st.Bind(2, scene.name);
-  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "put scene");
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "a scene");
   return absl::OkStatus();
 }
 
@@ -198,7 +221,7 @@ absl::StatusOr<v1::Job> JobStore::CreateJob(const v1::Job& job, bool sync) {
     st.Bind(3, job.scene_sha256());
     st.BindInt(4, job.state());
     st.BindBlob(5, job.SerializeAsString());
-    if (!st.ok() || st.Step() != SQLITE_DONE) inserted = SqlError(db_, "create job");
+    if (!st.ok() || st.Step() != SQLITE_DONE) inserted = SqlError(db_, "a new job");
   }
   if (!inserted.ok()) return inserted;
   if (!sync) ++unsynced_commits_;
@@ -225,6 +248,15 @@ absl::Status JobStore::SyncCommits() {
 
 absl::Status JobStore::UpdateJob(const v1::Job& job, bool sync) {
   std::lock_guard lock(mu_);
+  absl::Status status = UpdateJobLocked(job, sync);
+  // The end of a job is always recorded: on a full disk, with the space kept for it.
+  if (IsDiskFull(status) && IsTerminal(job.state()) && reserve_.Release()) {
+    status = UpdateJobLocked(job, sync);
+  }
+  return status;
+}
+
+absl::Status JobStore::UpdateJobLocked(const v1::Job& job, bool sync) {
   // A RUNNING job's phase is not fsynced (synchronous=NORMAL: it survives kill -9, an OS
   // crash may lose it, and the job resumes from its files either way); every other state
   // is, with whatever was committed before it, here or (sync = false) in SyncCommits.
@@ -237,7 +269,7 @@ absl::Status JobStore::UpdateJob(const v1::Job& job, bool sync) {
     st.BindInt(1, job.state());
     st.BindBlob(2, job.SerializeAsString());
     st.Bind(3, job.job_id());
-    if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "update job");
+    if (!st.ok() || st.Step() != SQLITE_DONE) status = SqlError(db_, "the job's state");
   }
   if (deferred && status.ok()) ++unsynced_commits_;
   return status;
@@ -329,7 +361,7 @@ absl::Status JobStore::MarkResultDurable(const std::string& job_id) {
 absl::Status JobStore::PutRowBlocks(const std::string& job_id, uint32_t name_index,
                                     const std::vector<const StoredRowBlock*>& blocks) {
   return WriteBlobFile((fs::path(JobDir(job_id)) / RowBlockName(name_index)).string(),
-                       EncodeRowBlockGroup(blocks));
+                       EncodeRowBlockGroup(blocks), "row blocks");
 }
 
 void JobStore::ForEachRowBlock(const std::string& job_id,
@@ -360,7 +392,8 @@ void JobStore::ForEachRowBlock(const std::string& job_id,
 }
 
 absl::Status JobStore::PutCheckpoint(const std::string& job_id, const SolverCheckpoint& c) {
-  return WriteBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string(), EncodeCheckpoint(c));
+  return WriteBlobFile((fs::path(JobDir(job_id)) / "checkpoint.rfb").string(), EncodeCheckpoint(c),
+                       "a solver checkpoint");
 }
 
 absl::StatusOr<SolverCheckpoint> JobStore::GetCheckpoint(const std::string& job_id) {
@@ -379,7 +412,11 @@ absl::Status JobStore::PrepareResult(const std::string& job_id) {
 
 absl::Status JobStore::PutResult(const std::string& job_id, std::string_view file, bool prepared) {
   const std::string path = ResultPath(job_id);
-  return prepared ? WriteBuiltBlobFileInPlace(path, file) : WriteBuiltBlobFile(path, file);
+  absl::Status s = prepared ? WriteBuiltBlobFileInPlace(path, file, "the result")
+                            : WriteBuiltBlobFile(path, file, "the result");
+  std::error_code ec;
+  if (!s.ok()) fs::remove(path, ec);  // a part of a result is no result
+  return s;
 }
 
 absl::Status JobStore::SyncResult(const std::string& job_id) {

@@ -4,7 +4,9 @@
 // scenes/ and jobs/<id>/. Every write is durable (fsynced) when the call returns, except
 // UpdateJob of a RUNNING job, CreateJob(sync = false), UpdateJob(sync = false),
 // PutResult(prepared = true) and MarkResultDurable, which survive kill -9 but not an OS crash
-// (until SyncCommits, resp. SyncResult). Thread-safe.
+// (until SyncCommits, resp. SyncResult). A write that fails says what and where
+// (disk_space.h: RESOURCE_EXHAUSTED "disk full writing ..." on a full disk) and leaves no
+// partial file; a space reserve (disk_space.h) keeps room to record a job's end. Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -16,6 +18,7 @@
 
 #include "absl/status/statusor.h"
 #include "radflux/v1/job.pb.h"
+#include "server/store/disk_space.h"
 #include "server/store/stored_codec.h"
 #include "wire/stored_scene.h"
 
@@ -42,6 +45,10 @@ class JobStore {
   JobStore(const JobStore&) = delete;
   JobStore& operator=(const JobStore&) = delete;
 
+  // Makes sure the space reserve is held (re-creating it after a full disk used it):
+  // RESOURCE_EXHAUSTED "disk full ..." while the data directory cannot hold it.
+  absl::Status EnsureSpaceReserve();
+
   bool HasScene(const std::string& sha256);
   // Stores a scene under its content address (a no-op when already stored).
   absl::Status PutScene(const std::string& sha256, const StoredScene& scene);
@@ -60,7 +67,8 @@ class JobStore {
   absl::Status SyncCommits();
   // Replaces the stored job with the same id. A RUNNING job's row is never fsynced (it
   // survives kill -9, not an OS crash); any other state is durable when this returns, or,
-  // with `sync` false, once SyncCommits returns.
+  // with `sync` false, once SyncCommits returns. A terminal state that finds the disk full
+  // is written with the space reserve given back.
   absl::Status UpdateJob(const v1::Job& job, bool sync = true);
   absl::StatusOr<v1::Job> GetJob(const std::string& job_id);
   // The job created with this client request id; NOT_FOUND when none.
@@ -100,7 +108,7 @@ class JobStore {
   // (fsync of the file, the directory and jobs/), so that storing the result needs one fsync
   // (SyncResult). For when the job starts, off its critical path.
   absl::Status PrepareResult(const std::string& job_id);
-  // Stores a finished job's result, its blob file built already (`file`: the
+  // Stores a finished job's result (a failed write removes the file), its blob file built already (`file`: the
   // BlobBuilder::File() of its serialized stream, see result_codec.h). `prepared`:
   // PrepareResult succeeded for the job; then `file` is written into that file without its
   // fsync (readable at once and after kill -9; the job is not SUCCEEDED yet, so no one
@@ -123,12 +131,14 @@ class JobStore {
   std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::Status Exec(const std::string& sql);
+  absl::Status UpdateJobLocked(const v1::Job& job, bool sync);
   absl::StatusOr<std::vector<v1::Job>> QueryJobs(const std::string& sql,
                                                  const std::vector<std::string>& args);
 
   std::string data_dir_;
   std::mutex mu_;  // guards db_
   sqlite3* db_ = nullptr;
+  SpaceReserve reserve_{data_dir_ + "/space_reserve"};  // guarded by mu_
   std::atomic<uint64_t> unsynced_commits_{0};  // Create/UpdateJob(sync = false) commits
   std::atomic<uint64_t> synced_commits_{0};    // how many of those are known durable
   std::mutex sync_mu_;                         // one SyncCommits at a time (not mu_)

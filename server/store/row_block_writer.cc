@@ -16,13 +16,15 @@ size_t BlockBytes(const StoredRowBlock& b) {
 }  // namespace
 
 RowBlockWriter::RowBlockWriter(JobStore& store, std::string job_id, uint32_t block_size,
-                               double interval_seconds, size_t max_group_bytes)
+                               double interval_seconds, size_t max_group_bytes,
+                               ErrorSink on_error)
     : store_(store),
       job_id_(std::move(job_id)),
       block_size_(std::max(1u, block_size)),
       interval_(std::chrono::duration_cast<Clock::duration>(
           std::chrono::duration<double>(std::max(0.0, interval_seconds)))),
       max_group_bytes_(std::max<size_t>(1, max_group_bytes)),
+      on_error_(std::move(on_error)),
       next_checkpoint_(Clock::now() + interval_),
       thread_([this] { Loop(); }) {}
 
@@ -74,6 +76,7 @@ void RowBlockWriter::Loop() {
 }
 
 void RowBlockWriter::Store(const std::vector<std::shared_ptr<const StoredRowBlock>>& blocks) {
+  if (failed_) return;
   std::vector<const StoredRowBlock*> group;
   uint32_t first = UINT32_MAX;
   for (const auto& block : blocks) {
@@ -81,8 +84,10 @@ void RowBlockWriter::Store(const std::vector<std::shared_ptr<const StoredRowBloc
     first = std::min(first, block->block.first_row / block_size_);
   }
   if (absl::Status s = store_.PutRowBlocks(job_id_, first, group); !s.ok()) {
-    spdlog::warn("job {}: {} row blocks not stored ({}); they are rebuilt if the job resumes",
-                 job_id_, blocks.size(), std::string(s.message()));
+    spdlog::warn("job {}: {} row blocks not stored: {}", job_id_, blocks.size(),
+                 std::string(s.message()));
+    failed_ = true;
+    if (on_error_) on_error_(s);
   }
 }
 

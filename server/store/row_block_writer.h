@@ -8,12 +8,14 @@
 // writer starved of CPU by the builders slows them instead of letting rows pile up.
 // A block not yet stored
 // when the process dies is rebuilt on resume (rows are deterministic per patch): only time
-// is lost, never correctness. Failures are logged, not fatal, for the same reason.
+// is lost, never correctness. A checkpoint that cannot be written (a full disk) is handed
+// to `on_error`, once, and the writer stores nothing more (the job is to fail: its files go).
 // Thread-safe.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -27,8 +29,9 @@ namespace radflux {
 class RowBlockWriter {
  public:
   // `block_size` rows per block: block k holds the rows from k * block_size.
+  using ErrorSink = std::function<void(const absl::Status&)>;
   RowBlockWriter(JobStore& store, std::string job_id, uint32_t block_size, double interval_seconds,
-                 size_t max_group_bytes = kDefaultMaxGroupBytes);
+                 size_t max_group_bytes = kDefaultMaxGroupBytes, ErrorSink on_error = {});
   static constexpr size_t kDefaultMaxGroupBytes = size_t{16} << 20;
   ~RowBlockWriter();  // Finish(/*drain=*/true)
   RowBlockWriter(const RowBlockWriter&) = delete;
@@ -54,6 +57,8 @@ class RowBlockWriter {
   std::condition_variable cv_;       // wakes the writer
   std::condition_variable drained_;  // wakes a Put waiting for room
   const size_t max_group_bytes_;
+  const ErrorSink on_error_;
+  bool failed_ = false;  // a checkpoint failed: later ones are dropped (writer thread only)
   std::vector<std::shared_ptr<const StoredRowBlock>> queue_;
   size_t queued_bytes_ = 0;
   Clock::time_point next_checkpoint_;

@@ -18,6 +18,7 @@ std::optional<uint32_t> LeaseTable::Take(uint64_t worker, Clock::time_point dead
     e.state = State::kLeased;
     e.holder = worker;
     e.deadline = deadline;
+    e.leased_at = Clock::now();
     return block;
   }
   // Drop stale entries so the queue does not grow.
@@ -74,6 +75,16 @@ std::vector<uint32_t> LeaseTable::Expire(Clock::time_point now) {
   }
   for (uint32_t b : expired) Requeue(b);
   return expired;
+}
+
+std::optional<LeaseTable::Backup> LeaseTable::TakeBackup(Clock::time_point leased_before) {
+  std::optional<Backup> oldest;
+  for (const auto& [block, e] : states_) {
+    if (e.state != State::kLeased || e.holder == kLocal || e.leased_at > leased_before) continue;
+    if (!oldest || e.leased_at < oldest->leased_at) oldest = Backup{block, e.holder, e.leased_at};
+  }
+  if (oldest) states_.at(oldest->block).holder = kLocal;
+  return oldest;
 }
 
 std::optional<uint64_t> LeaseTable::Holder(uint32_t block) const {

@@ -1,6 +1,6 @@
 // LeaseTable: the state of every row block still to build in one job's row phase: pending,
-// leased to a worker until a deadline, built locally by a server thread, claimed (a result
-// is being stored) or done. Each block is stored once: the first result claims it, later
+// leased to a worker until a deadline, built locally by a server thread (also as a backup of
+// a remote lease), claimed (a result is being stored) or done. Each block is stored once: the first result claims it, later
 // duplicates are refused. Not thread-safe (RowFarm guards it).
 #pragma once
 
@@ -34,6 +34,16 @@ class LeaseTable {
   std::vector<uint32_t> Release(uint64_t worker);
   // Blocks held by a remote worker past their deadline go back to pending; returns them.
   std::vector<uint32_t> Expire(Clock::time_point now);
+  // A backup task: a block leased to a remote worker at or before `leased_before`, the
+  // longest-held such, is handed to the server's threads (kLocal) as well: its worker's
+  // result still counts if it comes first (Claim), and it is no longer released with its
+  // worker. The block and the worker it was leased to; nullopt when there is none.
+  struct Backup {
+    uint32_t block = 0;
+    uint64_t worker = 0;
+    Clock::time_point leased_at;
+  };
+  std::optional<Backup> TakeBackup(Clock::time_point leased_before);
   // Who holds a block now (nullopt when it is not leased).
   std::optional<uint64_t> Holder(uint32_t block) const;
 
@@ -47,6 +57,7 @@ class LeaseTable {
     State state = State::kPending;
     uint64_t holder = 0;
     Clock::time_point deadline{};
+    Clock::time_point leased_at{};
     bool local_only = false;
   };
   void Requeue(uint32_t block);

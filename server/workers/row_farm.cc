@@ -41,12 +41,12 @@ FarmReport RowFarm::Close(const std::string& job_id) {
   spdlog::info(
       "row farm: {} blocks built here, {} by workers ({} rows, {} wire bytes, {:.1f} bytes/row, "
       "{:.4f} s worker build per block, {:.6f} s server check per block), {} duplicates, "
-      "{} leased again",
+      "{} leased again, {} backups built here",
       t.local_blocks, t.remote_blocks, t.remote_rows, t.wire_bytes,
       t.remote_rows ? static_cast<double>(t.wire_bytes) / static_cast<double>(t.remote_rows) : 0.0,
       t.remote_blocks ? t.remote_build_seconds / static_cast<double>(t.remote_blocks) : 0.0,
       t.remote_blocks ? t.accept_seconds / static_cast<double>(t.remote_blocks) : 0.0, t.duplicates,
-      t.released);
+      t.released, t.backups);
   if (report.remote_rows > 0 || report.rejected_blocks > 0) {
     spdlog::info(
         "job {}: verified {} of {} worker rows in {:.3f} s ({:.2f}% of the {:.3f} s the workers "
@@ -70,6 +70,7 @@ std::optional<uint32_t> RowFarm::NextLocal(const std::string& job_id,
     LeaseTable& table = it->second->table;
     if (std::optional<uint32_t> block = table.Take(LeaseTable::kLocal, {})) return block;
     if (table.AllDone()) return std::nullopt;
+    if (std::optional<uint32_t> block = TakeBackupLocked(job_id, *it->second)) return block;
     cv_.wait_for(lock, kLocalPoll);
   }
 }
@@ -98,6 +99,28 @@ bool RowFarm::AllDone(const std::string& job_id) {
   std::lock_guard lock(mu_);
   const auto it = jobs_.find(job_id);
   return it != jobs_.end() && it->second->table.AllDone();
+}
+
+std::optional<uint32_t> RowFarm::TakeBackupLocked(const std::string& job_id, Job& job) {
+  const std::optional<LeaseTable::Backup> backup = job.table.TakeBackup(Clock::now() - kBackupAfter);
+  if (!backup) return std::nullopt;
+  ++stats_.backups;
+  const auto w = workers_.find(backup->worker);
+  spdlog::warn("job {}: row block {} built here as a backup: worker {} ({}) has held it for {:.1f} s",
+               job_id, backup->block, backup->worker, w == workers_.end() ? "gone" : w->second.name,
+               std::chrono::duration<double>(Clock::now() - backup->leased_at).count());
+  return backup->block;
+}
+
+void RowFarm::Heard(uint64_t worker) {
+  std::lock_guard lock(mu_);
+  const auto w = workers_.find(worker);
+  if (w == workers_.end()) return;
+  w->second.last_heard = Clock::now();
+  if (w->second.silent) {
+    w->second.silent = false;
+    spdlog::info("worker {} ({}) answers again", worker, w->second.name);
+  }
 }
 
 uint64_t RowFarm::AddWorker(int threads, const std::string& name) {
@@ -309,6 +332,16 @@ void RowFarm::LogRelease(const std::string& job_id, const Job& job,
 }
 
 void RowFarm::ExpireLocked(Clock::time_point now) {
+  for (auto& [id, w] : workers_) {
+    if (w.silent || now - w.last_heard < kWorkerSilence) continue;
+    w.silent = true;
+    const std::string why = absl::StrCat(
+        "worker ", id, " (", w.name, ") stopped answering: nothing heard for ",
+        std::chrono::duration_cast<std::chrono::seconds>(now - w.last_heard).count(), " s");
+    spdlog::warn("{}", why);
+    for (auto& [job_id, job] : jobs_) LogRelease(job_id, *job, job->table.Release(id), why);
+    cv_.notify_all();
+  }
   for (auto& [job_id, job] : jobs_) {
     const std::vector<uint32_t> expired = job->table.Expire(now);
     if (expired.empty()) continue;

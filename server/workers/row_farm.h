@@ -8,7 +8,11 @@
 // every row whose sum is above 1, is recomputed here and must match bit for bit. A block
 // that fails is dropped and leased again, its worker banned from the job (logged, and
 // counted in the job's FarmReport); a result that does not even decode also drops the
-// worker's connection. Thread-safe.
+// worker's connection. Stragglers cost seconds, not the lease: a worker not heard from
+// (Heard: any message, heartbeats every second) for kWorkerSilence has its blocks leased
+// again, and once no block is pending the server's threads build the blocks still out
+// with workers for kBackupAfter as backups (MapReduce's backup tasks): the first result of
+// a block is kept, the other dropped. Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -55,6 +59,10 @@ struct FarmReport {
 // The default fraction of each worker block's rows recomputed on the server (at least one
 // row per block): 1 row of a 64-row block.
 inline constexpr double kDefaultVerifyFraction = 0.015;
+// A worker silent this long is taken as stopped: its blocks are leased again.
+inline constexpr std::chrono::seconds kWorkerSilence{5};
+// A block out with a worker this long is built on the server too, once none is pending.
+inline constexpr std::chrono::seconds kBackupAfter{2};
 
 class RowFarm {
  public:
@@ -84,6 +92,8 @@ class RowFarm {
 
   // --- the worker service's side ---
   uint64_t AddWorker(int threads, const std::string& name);
+  // The worker sent something (a heartbeat or a result): it is alive.
+  void Heard(uint64_t worker);
   // Releases the worker's leases (each logged with `reason`) and forgets it.
   void RemoveWorker(uint64_t worker, const std::string& reason);
   // A lease for the worker when it has a free thread and a block is pending; waits up to
@@ -98,7 +108,7 @@ class RowFarm {
 
   // Counters for logs and benches.
   struct Stats {
-    uint64_t remote_blocks = 0, local_blocks = 0, duplicates = 0, released = 0;
+    uint64_t remote_blocks = 0, local_blocks = 0, duplicates = 0, released = 0, backups = 0;
     uint64_t wire_bytes = 0, remote_rows = 0;
     double remote_build_seconds = 0;  // as the workers reported them
     double accept_seconds = 0;        // server time checking and decoding remote blocks
@@ -124,6 +134,8 @@ class RowFarm {
     std::string name;
     int active = 0;
     std::map<uint64_t, Issued> issued;  // by lease id
+    Clock::time_point last_heard = Clock::now();
+    bool silent = false;  // not heard from for kWorkerSilence: its leases were released
   };
   absl::Status CheckResult(const Issued& issued, Job& job, const v1::BlockResult& result,
                            StoredRowBlock* rows);
@@ -136,7 +148,10 @@ class RowFarm {
   void EndUse(Job* job);
   void LogRelease(const std::string& job_id, const Job& job, const std::vector<uint32_t>& blocks,
                   const std::string& why);
+  // Leases past their deadline, and those of workers silent for kWorkerSilence, go back.
   void ExpireLocked(Clock::time_point now);
+  // A block still out with a worker for kBackupAfter, for a server thread to build too.
+  std::optional<uint32_t> TakeBackupLocked(const std::string& job_id, Job& job);
 
   const double lease_seconds_;
   const double verify_fraction_;

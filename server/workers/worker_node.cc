@@ -31,6 +31,7 @@ constexpr int kMaxMessageBytes = 64 << 20;
 constexpr size_t kMaxResultBytes = 7 << 20;  // under the server's 8 MiB receive limit
 constexpr size_t kJobsCached = 2;
 constexpr std::chrono::milliseconds kPoll{200};
+constexpr std::chrono::seconds kHeartbeatInterval{1};  // see Heartbeat in worker.proto
 
 // A job as a worker holds it: prepared like the server prepares it, and its row builder.
 struct PreparedWork {
@@ -220,7 +221,17 @@ grpc::Status Session(v1::Worker::Stub& stub, const WorkerNodeOptions& options, J
     }
     queue.Close();
   });
-  std::mutex write_mu;
+  std::mutex write_mu;  // one write at a time: the builders' results and the heartbeats
+  std::condition_variable session_over;
+  bool building = true;  // guarded by write_mu
+  std::thread heartbeat([&] {  // "still here", also while every thread builds
+    v1::WorkerMessage beat;
+    beat.mutable_heartbeat();
+    std::unique_lock lock(write_mu);
+    while (!session_over.wait_for(lock, kHeartbeatInterval, [&] { return !building; })) {
+      if (!stream->Write(beat)) return;
+    }
+  });
   ParallelFor(threads, 1, threads, [&](int64_t, int64_t) {
     Scratch scratch;
     while (std::optional<v1::BlockLease> lease = queue.Pop(stop)) {
@@ -241,6 +252,12 @@ grpc::Status Session(v1::Worker::Stub& stub, const WorkerNodeOptions& options, J
       spdlog::info("sent row block {} of job {}", lease->block_index(), lease->job_id());
     }
   });
+  {
+    std::lock_guard lock(write_mu);
+    building = false;
+  }
+  session_over.notify_all();
+  heartbeat.join();
   context.TryCancel();  // stopping, or the stream already ended: end the reader
   reader.join();
   return stream->Finish();

@@ -2,8 +2,9 @@
 // the server's Worker service, announces its threads, and builds the row blocks it is
 // leased: the scene is fetched by its hash and prepared (mesh + Embree) once per job, then
 // each of its OpenMP threads builds one leased block at a time with BuildRowBlock, exactly
-// as the server would, and the rows go back checksummed (block_wire.h). Reconnects after a
-// lost connection; stops for good on UNAUTHENTICATED.
+// as the server would, and the rows go back checksummed (block_wire.h); a heartbeat goes
+// every second meanwhile. Reconnects after a lost connection; stops for good on
+// UNAUTHENTICATED.
 #pragma once
 
 #include <atomic>

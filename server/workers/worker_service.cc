@@ -57,6 +57,7 @@ grpc::Status WorkerService::Connect(
   std::thread reader([&] {
     v1::WorkerMessage message;
     while (stream->Read(&message)) {
+      farm_.Heard(id);
       if (!message.has_result()) continue;
       const absl::Status accepted =
           GuardCall("a worker result", [&] { return farm_.Accept(id, message.result()); });

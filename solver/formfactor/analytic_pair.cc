@@ -14,7 +14,8 @@ namespace {
 constexpr uint64_t kPointStream = 1;
 constexpr uint64_t kTargetStream = 2;
 
-// A patch (<= 4 vertices) clipped by one plane (<= 5): fixed storage, no allocation.
+// A patch (<= 4 vertices) clipped by one plane (<= 5, or up to 8 for a sliver along the
+// plane, see ClipPolygonToHalfSpace): fixed storage, no allocation.
 struct SmallPolygon {
   std::array<Vec3, 8> vertex;
   size_t size = 0;

@@ -54,6 +54,34 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
   return shapes;
 }
 
+// A receiver whose size is not small against its distance to the nearest emitter that
+// lights it sees F_ij vary strongly across it (a reflector a few cm from a lamp in its
+// housing): it takes (size / distance)^2 times the points, at most this many times. Far
+// receivers (every one in the Cornell box) keep the points asked for.
+constexpr double kMaxNearFieldFactor = 16;
+
+int NearFieldFactor(const PatchMesh& mesh, uint32_t i, const LightTree& tree) {
+  const Patch& patch = mesh.patches[i];
+  double radius = 0;
+  for (int k = 0; k < patch.VertexCount(); ++k)
+    radius = std::max(radius, Length(mesh.positions[patch.v[k]] - patch.centroid));
+  const double distance = tree.NearestDistance(patch.centroid, patch.normal);
+  if (!std::isfinite(distance)) return 1;
+  const double ratio = 2 * radius / std::max(distance, 1e-300);
+  return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
+}
+
+// NearFieldFactor of unknown i: its patch's, or the largest of its members' (a group's light
+// points are spread over its members: the member that needs the most sets the factor).
+int UnknownNearFieldFactor(const RowContext& context, uint32_t i, const LightTree& tree) {
+  if (context.SinglePatch(i)) return NearFieldFactor(*context.mesh, context.FirstPatch(i), tree);
+  int factor = 1;
+  for (uint32_t p : context.clusters->Members(i)) {
+    factor = std::max(factor, NearFieldFactor(*context.mesh, p, tree));
+  }
+  return factor;
+}
+
 // A light sample waiting for its shadow ray: the column and the value it adds if visible.
 struct PendingSample {
   uint32_t column = 0;
@@ -103,6 +131,7 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
+  points *= UnknownNearFieldFactor(context_, i, tree_);
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;

@@ -25,8 +25,8 @@
 namespace radflux {
 
 // monte_carlo's light samples at each of its s (--samples) points on the receiver: a row
-// casts 16 s shadow rays for its emitter columns (64 at the default s = 4), whatever the
-// number of emitter patches.
+// casts 16 s shadow rays for its emitter columns (64 at the default s = 4; more for the few
+// receivers close to an emitter), whatever the number of emitter patches.
 inline constexpr int kLightSamplesPerPoint = 16;
 
 class LightSampler {
@@ -38,8 +38,9 @@ class LightSampler {
 
   // Adds the estimate of F_ij for the emitter patches j (j != i) to `row` from `points`
   // stratified points on i with `per_point` light samples each, seeded from (seed, i);
-  // returns the shadow rays cast (at most points * per_point, whatever the number of
-  // emitter patches).
+  // a receiver near an emitter against its size takes up to 16 times the points (about
+  // (size / distance)^2). Returns the shadow rays cast (at most 16 * points * per_point,
+  // whatever the number of emitter patches).
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                              RowAccumulator& row) const;
 

@@ -18,6 +18,13 @@ double ClampedCosine(double angle) {
 
 double SafeAcos(double c) { return std::acos(std::clamp(c, -1.0, 1.0)); }
 
+// Distance from x to the box [lo, hi] (0 inside it).
+double BoxDistance(const Vec3& x, const Vec3& lo, const Vec3& hi) {
+  const Vec3 d{std::max({lo.x - x.x, 0.0, x.x - hi.x}), std::max({lo.y - x.y, 0.0, x.y - hi.y}),
+               std::max({lo.z - x.z, 0.0, x.z - hi.z})};
+  return Length(d);
+}
+
 }  // namespace
 
 LightTree::LightTree(std::vector<EmitterShape> emitters) : emitters_(std::move(emitters)) {
@@ -198,6 +205,25 @@ double LightTree::Probability(const Vec3& x, const Vec3& n, uint32_t k) const {
     at = nodes_[at].parent;
   }
   return probability;
+}
+
+double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {
+  double best = INFINITY;
+  std::vector<uint32_t> stack;
+  if (!nodes_.empty()) stack.push_back(0);
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    const double distance = BoxDistance(x, node.lo, node.hi);
+    if (distance >= best || !(Importance(node, x, n) > 0)) continue;
+    if (node.emitter >= 0) {
+      best = distance;
+    } else {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+    }
+  }
+  return best;
 }
 
 }  // namespace radflux

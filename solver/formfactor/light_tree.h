@@ -37,6 +37,10 @@ class LightTree {
   std::optional<Choice> Choose(const Vec3& x, const Vec3& n, double u) const;
   // The probability that Choose picks emitter k at (x, n) (for tests).
   double Probability(const Vec3& x, const Vec3& n, uint32_t k) const;
+  // The distance from x to the bounding box of the nearest emitter that can light (x, n)
+  // (one with a non-zero unoccluded contribution); infinity when none can. Walks only the
+  // nodes nearer than the best so far.
+  double NearestDistance(const Vec3& x, const Vec3& n) const;
 
  private:
   struct Node {

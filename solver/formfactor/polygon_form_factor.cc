@@ -33,7 +33,7 @@ std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Ve
                                          const Vec3& n) {
   std::vector<double> distance;
   for (const Vec3& p : polygon) distance.push_back(Dot(p - origin, n));
-  std::vector<Vec3> out(polygon.size() + 1);
+  std::vector<Vec3> out(2 * polygon.size());
   out.resize(ClipPolygonToHalfSpace(polygon, distance, out));
   return out;
 }

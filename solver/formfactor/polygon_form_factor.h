@@ -20,13 +20,15 @@ double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Ve
 // The part of `polygon` with Dot(p - origin, n) >= 0 (Sutherland-Hodgman against one plane).
 std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin,
                                          const Vec3& n);
-// The same into `out` (room for polygon.size() + 1 vertices) for a polygon of at most
-// kMaxClipVertices vertices; returns the vertex count. Allocates nothing.
+// The same into `out` for a polygon of at most kMaxClipVertices vertices; returns the vertex
+// count. `out` needs room for 2 * polygon.size() vertices: a convex polygon gives at most
+// polygon.size() + 1, but a sliver lying along the plane can change side on every edge
+// when rounded (seen on RenderPark's office2). Allocates nothing.
 inline constexpr size_t kMaxClipVertices = 8;
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin, const Vec3& n,
                               std::span<Vec3> out);
 // The same for any polygon, given each vertex's distance[k] = Dot(polygon[k] - origin, n);
-// returns the vertex count. Allocates nothing: the form-factor builders clip once per patch
+// returns the vertex count (at most 2 * polygon.size(), the room `out` needs). Allocates nothing: the form-factor builders clip once per patch
 // pair, with the distances they already have.
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, std::span<const double> distance,
                               std::span<Vec3> out);

@@ -19,11 +19,12 @@ constexpr uint64_t kValueStream = 13;
 constexpr int kNearFactor = 4;
 constexpr double kCornerInset = 1e-3;  // corners are pulled this far toward the centroid
 
-// A convex polygon (at most 5 vertices after one clip) with its fan triangle areas.
+// A convex polygon (at most 5 vertices after one clip; room for the 8 that rounding can give
+// a sliver along the plane) with its fan triangle areas.
 struct FrontPolygon {
-  std::array<Vec3, 5> v;
+  std::array<Vec3, 8> v;
   size_t n = 0;
-  std::array<double, 4> fan_area{};
+  std::array<double, 6> fan_area{};
   double area = 0;
 
   std::span<const Vec3> Points() const { return {v.data(), n}; }

@@ -15,6 +15,13 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 [ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
 grep -q '"iterations"' "$DIR/report.json"
 "$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"
+# watch speaks to people: on a terminal (script(1) gives it one) a bar redrawn in place with
+# the phase in words; piped, plain lines with the event number.
+script -qec "$CLI watch $JOB --server $ADDR" /dev/null >"$DIR/tty.out"
+grep -q $'\rsucceeded  *\[#*\] 100.0%' "$DIR/tty.out" || { cat -v "$DIR/tty.out"; exit 1; }
+"$CLI" watch "$JOB" --server "$ADDR" 2>"$DIR/piped.err"
+grep -qx '\[[0-9]*\] succeeded' "$DIR/piped.err" || { cat -v "$DIR/piped.err"; exit 1; }
+! grep -q $'\r' "$DIR/piped.err"
 # A job whose solve stops short of its tolerance has its result, but watch, result and list
 # say so at once, and watch and result exit 3 (one line with the residual reached).
 code=0

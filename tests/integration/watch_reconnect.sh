@@ -14,14 +14,14 @@ JOB=$("$CLI" submit "$SCENE" --patches 600 --rays 64 --solver southwell --tolera
   --server "$ADDR" | tail -n 1)
 "$CLI" watch "$JOB" --server "$ADDR" 2>"$DIR/watch.err" &
 WATCH=$!
-until grep -q "PHASE_SOLVE iteration" "$DIR/watch.err"; do sleep 0.05; done
+until grep -q "solving: iteration" "$DIR/watch.err"; do sleep 0.05; done
 kill -9 "$PID"
 wait "$PID" || true
 restart_radfluxd "$RADFLUXD" "${SERVER_FLAGS[@]}"
 echo "restarted at $ADDR"
 wait "$WATCH" || { echo "watch failed:"; cat "$DIR/watch.err"; exit 1; }
 grep -q "radflux: watch of $JOB dropped after event [0-9]*.*reconnecting" "$DIR/watch.err"
-[ "$(grep '^\[' "$DIR/watch.err" | tail -n 1 | cut -d' ' -f2)" = JOB_STATE_SUCCEEDED ]
+[ "$(grep '^\[' "$DIR/watch.err" | tail -n 1 | cut -d" " -f2)" = succeeded ]
 # Event numbers grow across the restart (the rebuilt history is numbered above the old).
 grep -o '^\[[0-9]*\]' "$DIR/watch.err" | tr -d '[]' | sort -n -c
 echo "watch reconnect ok"

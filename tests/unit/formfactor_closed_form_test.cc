@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -170,6 +171,19 @@ TEST(FormFactorClosedForm, PointFacingAPolygonIsExact) {
   const double half = PointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, straddling);
   EXPECT_GT(half, 0);
   EXPECT_LT(half, 0.5);
+}
+
+// A sliver lying along the clipping plane, its vertices rounded to alternate sides (a
+// RenderPark office2 face overran the n + 1 vertices a convex clip gives): every edge crosses,
+// so the clip keeps the 2 vertices in front and adds 4 crossings, within the 2n it promises.
+TEST(FormFactorClosedForm, ClippingASliverAlongThePlaneStaysInItsRoom) {
+  const std::vector<Vec3> sliver{{0, 0, 1e-17}, {1, 0, -1e-17}, {1, 1e-9, 1e-17}, {0, 1e-9, -1e-17}};
+  const std::vector<Vec3> clipped = ClipPolygonToHalfSpace(sliver, {0, 0, 0}, {0, 0, 1});
+  EXPECT_EQ(clipped.size(), 6u);
+  for (const Vec3& p : clipped) EXPECT_GE(p.z, 0) << p.x << " " << p.y;
+  std::array<Vec3, 8> out;
+  const std::array<double, 4> distance{1e-17, -1e-17, 1e-17, -1e-17};
+  EXPECT_EQ(ClipPolygonToHalfSpace(sliver, distance, out), 6u);
 }
 
 }  // namespace

@@ -1,0 +1,96 @@
+#include "client/job_fetch.h"
+
+#include "absl/strings/str_cat.h"
+#include "solver/mesh/face_grouping.h"
+#include "solver/scene/validation.h"
+#include "wire/proto_convert.h"
+#include "wire/scene_stream.h"
+#include "wire/stored_scene.h"
+
+namespace radflux::cli {
+
+absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
+  v1::GetJobRequest request;
+  request.set_job_id(job_id);
+  return FromGrpcStatus(client.stub().GetJob(client.Context().get(), request, job));
+}
+
+absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
+  v1::GetSceneRequest request;
+  request.set_sha256(job.scene_sha256());
+  auto context = client.Context();
+  auto reader = client.stub().GetScene(context.get(), request);
+  absl::StatusOr<StoredScene> stored = ReadSceneChunks(*reader, job.scene_sha256());
+  if (!stored.ok()) return stored.status();
+  absl::StatusOr<JobOptions> options = FromProto(job.options());
+  if (!options.ok()) return options.status();
+  JobGeometry geometry;
+  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
+  if (!scene.ok()) return scene.status();
+  geometry.scene = *std::move(scene);
+  if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;
+  // The patches the server solved on (split and grouped as it did); the result has a B each.
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(geometry.scene, JobMeshOptions(*options));
+  if (!mesh.ok()) return mesh.status();
+  geometry.mesh = std::move(mesh->mesh);
+  return geometry;
+}
+
+absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& job_id,
+                                           bool report_only) {
+  v1::GetResultRequest request;
+  request.set_job_id(job_id);
+  request.set_report_only(report_only);
+  auto context = client.Context();
+  auto reader = client.stub().GetResult(context.get(), request);
+  v1::ResultChunk chunk;
+  StreamedResult r;
+  uint64_t vertex_count = 0, patch_count = 0;
+  std::vector<double> xyz, b;
+  while (reader->Read(&chunk)) {
+    if (chunk.has_header()) {
+      r.job = chunk.header().job();
+      vertex_count = chunk.header().vertex_count();
+      patch_count = chunk.header().patch_count();
+    }
+    if (chunk.has_vertices())
+      xyz.insert(xyz.end(), chunk.vertices().xyz().begin(), chunk.vertices().xyz().end());
+    if (chunk.has_patches()) {
+      const v1::PatchChunk& p = chunk.patches();
+      r.vertices.insert(r.vertices.end(), p.vertices().begin(), p.vertices().end());
+      r.faces.insert(r.faces.end(), p.source_face().begin(), p.source_face().end());
+      b.insert(b.end(), p.radiosity().begin(), p.radiosity().end());
+    }
+    if (chunk.part_case() == v1::ResultChunk::kReportJson) r.report = chunk.report_json();
+  }
+  if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
+  r.patch_count = patch_count;
+  if (report_only && xyz.empty() && r.faces.empty()) return r;
+  if (xyz.size() != 3 * vertex_count || r.faces.size() != patch_count ||
+      r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
+    return absl::DataLossError("result stream does not match its header's counts");
+  }
+  for (size_t i = 0; i < vertex_count; ++i)
+    r.positions.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  r.radiosity.resize(patch_count);
+  for (size_t p = 0; p < patch_count; ++p)
+    for (int k = 0; k < kBands; ++k) r.radiosity[p][k] = b[kBands * p + k];
+  return r;
+}
+
+bool SameMesh(const PatchMesh& mesh, const StreamedResult& r) {
+  if (mesh.positions.size() != r.positions.size() || mesh.size() != r.faces.size()) return false;
+  for (size_t i = 0; i < r.positions.size(); ++i) {
+    const Vec3& a = mesh.positions[i];
+    const Vec3& b = r.positions[i];
+    if (a.x != b.x || a.y != b.y || a.z != b.z) return false;
+  }
+  for (size_t p = 0; p < mesh.size(); ++p) {
+    if (mesh.patches[p].face != r.faces[p]) return false;
+    for (int k = 0; k < 4; ++k)
+      if (mesh.patches[p].v[k] != r.vertices[4 * p + k]) return false;
+  }
+  return true;
+}
+
+}  // namespace radflux::cli

@@ -1,0 +1,49 @@
+#include "server/store/disk_space.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+
+namespace radflux {
+
+absl::Status DiskWriteError(std::string_view what, const std::string& path, int error_number) {
+  const std::string why =
+      error_number == 0 ? "short write" : std::string(std::strerror(error_number));
+  if (error_number == ENOSPC || error_number == EDQUOT) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat("disk full writing ", std::string(what), " at ", path, ": ", why));
+  }
+  return absl::InternalError(absl::StrCat("cannot write ", std::string(what), " at ", path, ": ", why));
+}
+
+bool IsDiskFull(const absl::Status& status) {
+  return status.code() == absl::StatusCode::kResourceExhausted &&
+         absl::StrContains(status.message(), "disk full");
+}
+
+absl::Status SpaceReserve::Ensure() {
+  if (held_) return absl::OkStatus();
+  const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0600);
+  if (fd < 0) return DiskWriteError("the space reserve", path_, errno);
+  const int error = ::posix_fallocate(fd, 0, static_cast<off_t>(kReserveBytes));
+  ::close(fd);
+  if (error != 0) {
+    ::unlink(path_.c_str());  // a part of a reserve would only hold space back
+    return DiskWriteError("the space reserve", path_, error);
+  }
+  held_ = true;
+  return absl::OkStatus();
+}
+
+bool SpaceReserve::Release() {
+  const bool had = ::unlink(path_.c_str()) == 0;
+  held_ = false;
+  return had;
+}
+
+}  // namespace radflux
