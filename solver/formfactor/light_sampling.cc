@@ -60,26 +60,40 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
 // receivers (every one in the Cornell box) keep the points asked for.
 constexpr double kMaxNearFieldFactor = 16;
 
-int NearFieldFactor(const PatchMesh& mesh, uint32_t i, const LightTree& tree) {
-  const Patch& patch = mesh.patches[i];
-  double radius = 0;
-  for (int k = 0; k < patch.VertexCount(); ++k)
-    radius = std::max(radius, Length(mesh.positions[patch.v[k]] - patch.centroid));
-  const double distance = tree.NearestDistance(patch.centroid, patch.normal);
+int NearFieldFactor(double radius, double distance) {
   if (!std::isfinite(distance)) return 1;
   const double ratio = 2 * radius / std::max(distance, 1e-300);
   return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
 }
 
-// NearFieldFactor of unknown i: its patch's, or the largest of its members' (a group's light
-// points are spread over its members: the member that needs the most sets the factor).
+// NearFieldFactor of unknown i: a patch's size about its centroid against the nearest
+// emitter's distance from there; a group's (the members' vertices about the area-weighted
+// centroid, seen along the area-weighted normal), at one distance query per row.
 int UnknownNearFieldFactor(const RowContext& context, uint32_t i, const LightTree& tree) {
-  if (context.SinglePatch(i)) return NearFieldFactor(*context.mesh, context.FirstPatch(i), tree);
-  int factor = 1;
-  for (uint32_t p : context.clusters->Members(i)) {
-    factor = std::max(factor, NearFieldFactor(*context.mesh, p, tree));
+  const PatchMesh& mesh = *context.mesh;
+  const std::span<const uint32_t> members =
+      context.SinglePatch(i) ? std::span<const uint32_t>() : context.clusters->Members(i);
+  const uint32_t first = context.FirstPatch(i);
+  Vec3 centroid = mesh.patches[first].centroid, normal = mesh.patches[first].normal;
+  if (!members.empty()) {
+    Vec3 weighted, summed;
+    double area = 0;
+    for (uint32_t p : members) {
+      weighted += mesh.patches[p].centroid * mesh.patches[p].area;
+      summed += mesh.patches[p].normal * mesh.patches[p].area;
+      area += mesh.patches[p].area;
+    }
+    if (area > 0 && Length(summed) > 0) centroid = weighted / area, normal = Normalize(summed);
   }
-  return factor;
+  double radius = 0;
+  const auto widen = [&](uint32_t p) {
+    const Patch& patch = mesh.patches[p];
+    for (int k = 0; k < patch.VertexCount(); ++k)
+      radius = std::max(radius, Length(mesh.positions[patch.v[k]] - centroid));
+  };
+  if (members.empty()) widen(first);
+  for (uint32_t p : members) widen(p);
+  return NearFieldFactor(radius, tree.NearestDistance(centroid, normal));
 }
 
 // A light sample waiting for its shadow ray: the column and the value it adds if visible.
