@@ -126,9 +126,12 @@ class JobStore {
   void RemoveWorkFiles(const std::string& job_id);
   // The directory of a job's work files (removed with them: a file left in it goes too).
   std::string JobDir(const std::string& job_id) const;
+  const std::string& data_dir() const { return data_dir_; }
 
  private:
   std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb
+  // A bundle stored under `base` (+ .files.rfb: paths and sizes, + .bundle.rfb: the bytes).
+  static absl::StatusOr<StoredScene> GetBundle(const std::string& base, const std::string& name);
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::Status Exec(const std::string& sql);
   absl::Status UpdateJobLocked(const v1::Job& job, bool sync);
