@@ -6,12 +6,15 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "solver/output/default_view.h"
 #include "solver/output/gltf_writer.h"
 #include "solver/output/image.h"
 #include "solver/output/patch_values_csv.h"
 #include "solver/output/ply_writer.h"
 #include "solver/output/render.h"
 #include "solver/output/tone_map.h"
+#include "solver/output/vertex_radiosity.h"
+#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux::cli {
 namespace {
@@ -36,6 +39,31 @@ std::pair<int, int> ParseSize(const std::string& size) {
   return {w, h};
 }
 
+absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                         const std::vector<Rgb>& radiosity) {
+  if (f.patch_values.empty()) return absl::OkStatus();
+  return WritePatchValuesCsv(f.patch_values, scene, mesh, radiosity);
+}
+
+// The picture, rendered in the solver's coordinates (single-precision rays near the origin).
+absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
+                         const ShadingMesh& shading, const std::vector<Rgb>& radiosity,
+                         const ToneMapOptions& tone, int threads) {
+  auto caster = EmbreeRayCaster::Create(solved_mesh);
+  if (!caster.ok()) return caster.status();
+  absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, **caster, scene.origin);
+  if (!camera.ok()) return camera.status();
+  auto vertex_radiosity = VertexRadiosity(solved_mesh, shading, radiosity);
+  if (!vertex_radiosity.ok()) return vertex_radiosity.status();
+  RenderOptions options;
+  options.threads = threads;
+  absl::StatusOr<Image> image =
+      RenderRadiance(solved_mesh, **caster, *vertex_radiosity, *camera, options);
+  if (!image.ok()) return image.status();
+  return absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
+                                          : WritePng(f.render, *image, tone);
+}
+
 }  // namespace
 
 void AddOutputFlags(CLI::App& app, OutputFlags& f) {
@@ -50,7 +78,8 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
       app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
           ->delimiter(',')
           ->expected(3),
-      app.add_option("--camera-up", f.camera_up, "camera up vector X,Y,Z (default 0,1,0)")
+      app.add_option("--camera-up", f.camera_up,
+                     "camera up vector X,Y,Z (default 0,1,0; inside an enclosed scene its up axis)")
           ->delimiter(',')
           ->expected(3),
       app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")
@@ -93,25 +122,24 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
 }
 
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh,
-                                       const Vec3& origin) {
+                                       const RayCaster& caster, const Vec3& origin) {
   Camera camera;
   std::tie(camera.width, camera.height) = ParseSize(f.size);
   camera.vertical_fov_degrees = f.fov_deg;
-  if (!f.camera_up.empty()) camera.up = ToVec3(f.camera_up);
-  Vec3 lo = mesh.positions.at(0), hi = lo;
-  for (const Vec3& p : mesh.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const Vec3 centre = (lo + hi) * 0.5;
-  camera.look_at = f.camera_look_at.empty() ? centre : ToVec3(f.camera_look_at) - origin;
-  if (!f.camera_pos.empty()) {
-    camera.position = ToVec3(f.camera_pos) - origin;
+  const Vec3 up = f.camera_up.empty() ? Vec3{} : ToVec3(f.camera_up);
+  if (f.camera_pos.empty()) {
+    camera = DefaultCamera(mesh, caster, camera, up);
   } else {
-    const double half = std::max(hi.y - lo.y, (hi.x - lo.x) * camera.height / camera.width) / 2;
-    const double distance = half / std::tan(f.fov_deg * M_PI / 360);
-    camera.position = {camera.look_at.x, camera.look_at.y, lo.z - distance};
+    camera.up = f.camera_up.empty() ? Vec3{0, 1, 0} : up;
+    Vec3 lo = mesh.positions.at(0), hi = lo;
+    for (const Vec3& p : mesh.positions) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    camera.position = ToVec3(f.camera_pos) - origin;
+    camera.look_at = (lo + hi) * 0.5;
   }
+  if (!f.camera_look_at.empty()) camera.look_at = ToVec3(f.camera_look_at) - origin;
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
   return camera;
 }
@@ -130,32 +158,24 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
   tone.scale = AutoExposureScale(radiance);
   tone.exposure_stops = f.exposure;
   tone.srgb = !f.linear_png;
+  if (f.out.empty() && f.render.empty()) return WriteValues(f, scene, mesh, radiosity);
+  absl::StatusOr<ShadingMesh> shading = BuildShadingMesh(solved_mesh, FaceMaterials(scene));
+  if (!shading.ok()) return shading.status();
   if (absl::EndsWith(f.out, ".ply")) {
-    if (absl::Status s = WritePly(f.out, mesh, radiosity, tone); !s.ok()) return s;
+    if (absl::Status s = WritePly(f.out, mesh, *shading, radiosity, tone); !s.ok()) return s;
   } else if (absl::EndsWith(f.out, ".glb")) {
     GltfOptions gltf;
     gltf.metres_per_unit = f.metres_per_unit;
     gltf.tone = tone;
-    if (absl::Status s = WriteGlb(f.out, mesh, radiosity, gltf); !s.ok()) return s;
+    if (absl::Status s = WriteGlb(f.out, mesh, *shading, radiosity, gltf); !s.ok()) return s;
   }
   if (!f.render.empty()) {
-    // Rendered in the solver's coordinates: single-precision rays near the origin.
-    absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, scene.origin);
-    if (!camera.ok()) return camera.status();
-    RenderOptions options;
-    options.threads = threads;
-    absl::StatusOr<Image> image = RenderPatchRadiosity(solved_mesh, radiosity, *camera, options);
-    if (!image.ok()) return image.status();
-    absl::Status s = absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
-                                                      : WritePng(f.render, *image, tone);
-    if (!s.ok()) return s;
-  }
-  if (!f.patch_values.empty()) {
-    if (absl::Status s = WritePatchValuesCsv(f.patch_values, scene, mesh, radiosity); !s.ok()) {
+    if (absl::Status s = WriteRender(f, scene, solved_mesh, *shading, radiosity, tone, threads);
+        !s.ok()) {
       return s;
     }
   }
-  return absl::OkStatus();
+  return WriteValues(f, scene, mesh, radiosity);
 }
 
 }  // namespace radflux::cli

@@ -38,12 +38,13 @@ std::vector<std::string> GivenOutputFlags(const CLI::App& app);
 // Checks file extensions and camera values before any work starts.
 absl::Status ValidateOutputFlags(const OutputFlags& flags);
 
-// The camera from the flags; without --camera-pos it frames the scene's bounding box
-// from -z looking +z (for the Cornell box this is close to its classic camera). The flags
-// are in the file's coordinates; the camera is in the mesh's, which are the file's minus
-// `origin` (Scene::origin of a recentred scene).
+// The camera from the flags; without --camera-pos, the default view's rule places it
+// (solver/output/default_view.h: from inside for an enclosed scene, with `caster` probing
+// `mesh`, and choosing up unless --camera-up is given; with --camera-pos, up is +y unless
+// given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the camera is in the mesh's,
+// which are the file's minus `origin` (Scene::origin of a recentred scene).
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
-                                       const Vec3& origin = {});
+                                       const RayCaster& caster, const Vec3& origin = {});
 
 // Writes the mesh, picture and per-patch values that were asked for (not the report), in
 // the file's coordinates (scene.origin added back to the mesh's positions).
