@@ -1,12 +1,15 @@
 #include "client/output_flags.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "solver/mesh/patch_attributes.h"
 #include "solver/output/default_view.h"
+#include "solver/output/final_gather.h"
 #include "solver/output/gltf_writer.h"
 #include "solver/output/image.h"
 #include "solver/output/patch_values_csv.h"
@@ -39,6 +42,25 @@ std::pair<int, int> ParseSize(const std::string& size) {
   return {w, h};
 }
 
+// The picture of --render: Gouraud-shaded B, or with --gather N the final gather.
+absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                                    const ShadingMesh& shading, const RayCaster& caster,
+                                    const std::vector<Rgb>& radiosity, const Camera& camera,
+                                    int threads) {
+  if (f.gather > 0) {
+    GatherOptions options;
+    options.rays = f.gather;
+    options.threads = threads;
+    return RenderFinalGather(mesh, shading, caster, ComputePatchAttributes(scene, mesh), radiosity,
+                             camera, options);
+  }
+  auto vertex_radiosity = VertexRadiosity(mesh, shading, radiosity);
+  if (!vertex_radiosity.ok()) return vertex_radiosity.status();
+  RenderOptions options;
+  options.threads = threads;
+  return RenderRadiance(mesh, caster, *vertex_radiosity, camera, options);
+}
+
 absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
                          const std::vector<Rgb>& radiosity) {
   if (f.patch_values.empty()) return absl::OkStatus();
@@ -48,18 +70,19 @@ absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMe
 // The picture, rendered in the solver's coordinates (single-precision rays near the origin).
 absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
                          const ShadingMesh& shading, const std::vector<Rgb>& radiosity,
-                         const ToneMapOptions& tone, int threads) {
+                         const ToneMapOptions& tone, int threads, OutputTimings* timings) {
   auto caster = EmbreeRayCaster::Create(solved_mesh);
   if (!caster.ok()) return caster.status();
   absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, **caster, scene.origin);
   if (!camera.ok()) return camera.status();
-  auto vertex_radiosity = VertexRadiosity(solved_mesh, shading, radiosity);
-  if (!vertex_radiosity.ok()) return vertex_radiosity.status();
-  RenderOptions options;
-  options.threads = threads;
+  const auto start = std::chrono::steady_clock::now();
   absl::StatusOr<Image> image =
-      RenderRadiance(solved_mesh, **caster, *vertex_radiosity, *camera, options);
+      RenderPicture(f, scene, solved_mesh, shading, **caster, radiosity, *camera, threads);
   if (!image.ok()) return image.status();
+  if (timings != nullptr && f.gather > 0) {
+    timings->gather =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   return absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
                                           : WritePng(f.render, *image, tone);
 }
@@ -91,6 +114,10 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
       app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve"),
       app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
           ->capture_default_str(),
+      app.add_option("--gather", f.gather,
+                     "--render by final gather: N rays per pixel into the solution plus light "
+                     "sampled on the emitters (0 = Gouraud-shaded B)")
+          ->capture_default_str(),
   };
   for (CLI::Option* option : added) option->group(kOutputGroup);
 }
@@ -118,6 +145,10 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
         absl::StrCat("--size '", f.size, "': expected WxH with 1..16384 pixels each"));
   }
   if (!(f.metres_per_unit > 0)) return absl::InvalidArgumentError("--metres-per-unit must be > 0");
+  if (f.gather < 0 || f.gather > 4096) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--gather ", f.gather, ": must be in [0, 4096]"));
+  }
   return absl::OkStatus();
 }
 
@@ -145,7 +176,7 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
 }
 
 absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
-                          const std::vector<Rgb>& radiosity, int threads) {
+                          const std::vector<Rgb>& radiosity, int threads, OutputTimings* timings) {
   // The mesh in the file's coordinates (a copy only for a recentred scene).
   std::optional<PatchMesh> translated;
   if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
@@ -170,7 +201,8 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
     if (absl::Status s = WriteGlb(f.out, mesh, *shading, radiosity, gltf); !s.ok()) return s;
   }
   if (!f.render.empty()) {
-    if (absl::Status s = WriteRender(f, scene, solved_mesh, *shading, radiosity, tone, threads);
+    if (absl::Status s =
+            WriteRender(f, scene, solved_mesh, *shading, radiosity, tone, threads, timings);
         !s.ok()) {
       return s;
     }

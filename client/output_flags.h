@@ -26,6 +26,7 @@ struct OutputFlags {
   double exposure = 0;             // stops
   bool linear_png = false;         // PNG without the sRGB curve
   double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
+  int gather = 0;                  // final-gather rays per pixel for --render (0: Gouraud)
 };
 
 // Adds the output flags to `app`, in its help group kOutputGroup.
@@ -46,9 +47,16 @@ absl::Status ValidateOutputFlags(const OutputFlags& flags);
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
                                        const RayCaster& caster, const Vec3& origin = {});
 
+// Seconds spent in parts of WriteOutputs, for the job report.
+struct OutputTimings {
+  double gather = 0;  // the final gather of --render --gather N (0 without it)
+};
+
 // Writes the mesh, picture and per-patch values that were asked for (not the report), in
-// the file's coordinates (scene.origin added back to the mesh's positions).
+// the file's coordinates (scene.origin added back to the mesh's positions); fills `timings`
+// when given.
 absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
-                          const std::vector<Rgb>& radiosity, int threads);
+                          const std::vector<Rgb>& radiosity, int threads,
+                          OutputTimings* timings = nullptr);
 
 }  // namespace radflux::cli

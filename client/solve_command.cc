@@ -137,14 +137,21 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
   for (const std::string& line : RefinementLines(*result)) progress.Line(line);
 
   const auto output_start = std::chrono::steady_clock::now();
-  if (absl::Status s =
-          WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity, args.job.threads);
+  OutputTimings output_timings;
+  if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
+                                    args.job.threads, &output_timings);
       !s.ok()) {
     return s;
+  }
+  if (args.output.gather > 0 && !args.output.render.empty()) {
+    progress.Line(absl::StrFormat("final gather: %d rays per pixel at %s, %.3fs (solve %.3fs)",
+                                  args.output.gather, args.output.size, output_timings.gather,
+                                  result->timings.solve));
   }
   if (!args.output.report.empty() || observer) {
     nlohmann::json report = MakeJobReport(*result, *options, args.scene);
     report["seconds"]["load"] = load_seconds;
+    if (args.output.gather > 0) report["seconds"]["gather"] = output_timings.gather;
     report["seconds"]["output"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
     rusage usage{};

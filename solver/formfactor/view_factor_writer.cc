@@ -86,7 +86,7 @@ absl::Status ViewFactorWriter::WriteHeader() {
                                          surfaces_.emittances ? 1 : 0, n);
     header.resize(std::max<size_t>(header.size(), 30), ' ');  // View3D pads to 30 characters
     absl::FPrintF(file_, "%s\n", header);
-    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %g" : "%g", surfaces_.area[k]);
+    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, "%s%g", k ? " " : "", surfaces_.area[k]);
     std::fputc('\n', file_);
   }
   return absl::OkStatus();
@@ -158,7 +158,9 @@ absl::Status ViewFactorWriter::WriteRow(std::span<const double> row) {
 absl::Status ViewFactorWriter::Close() {
   const size_t n = surfaces_.names.size();
   if (file_ != nullptr && output_.format == ViewFactorFormat::kView3d) {
-    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %.3f" : "%.3f", surfaces_.emittance[k]);
+    for (size_t k = 0; k < n; ++k) {
+      absl::FPrintF(file_, "%s%.3f", k ? " " : "", surfaces_.emittance[k]);
+    }
     std::fputc('\n', file_);
   }
   absl::Status file = CloseFile(file_, output_.path);

@@ -16,6 +16,8 @@ constexpr double kInsideLimit = 0.25;  // most rays that may escape or see a bac
 constexpr double kEyeHeight = 0.55;    // fraction of the floor-to-ceiling height
 constexpr double kBackOff = 0.9;       // fraction of the way to the wall behind
 constexpr double kSnapDegrees = 10;    // a long axis this close to a box axis is that axis
+constexpr int kOpeningRays = 3;        // horizontal rays that escape through a missing side
+                                       // (a window or a door lets fewer through)
 
 struct Box {
   Vec3 lo, hi;
@@ -135,15 +137,15 @@ Camera InteriorView(const PatchMesh& mesh, const RayCaster& caster, const Box& b
   const Vec3 h2 = Cross(up, h1);
   Vec3 dirs[kAzimuths], opening;
   double distance[kAzimuths];
-  bool open = false;
+  int escaped = 0;
   for (int k = 0; k < kAzimuths; ++k) {
     const double angle = 2 * std::numbers::pi * k / kAzimuths;
     dirs[k] = h1 * std::cos(angle) + h2 * std::sin(angle);
     const Cast c = CastFrom(mesh, caster, eye, dirs[k]);
     distance[k] = c.escaped ? DistanceToBox(box, eye, dirs[k]) : c.distance;
-    if (c.escaped) opening += dirs[k], open = true;
+    if (c.escaped) opening += dirs[k], ++escaped;
   }
-  if (open) {
+  if (escaped >= kOpeningRays) {
     Vec3 in = -opening;
     in = in - up * Dot(in, up);
     const int axis = NearestAxis(in);

@@ -8,9 +8,9 @@
 // convention, or a z-up model such as an MGF file), whichever more patch area faces along
 // (floors, ceilings, table tops), and the inside point with the largest mean free
 // distance marks the largest open volume: the camera goes to 55% of the floor-to-ceiling
-// height there and casts 16 horizontal rays. If some escape (a box open at one side, like
-// the Cornell box), it looks in through that opening from outside along the nearest box
-// axis, the opening filling the picture. Otherwise it looks along the volume's longest
+// height there and casts 16 horizontal rays. If 3 or more escape (a box open at one side,
+// like the Cornell box; a window or a door lets fewer through), it looks in through that
+// opening from outside along the nearest box axis, the opening filling the picture. Otherwise it looks along the volume's longest
 // horizontal axis (the principal axis of the 16 hit points, snapped to a box axis within
 // 10 degrees) towards the farther end, from 90% of the way to the wall behind.
 #pragma once

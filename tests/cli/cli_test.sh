@@ -22,6 +22,14 @@ grep -q '"rays_per_second"' "$tmp/c.json" || fail "report lacks rays_per_second"
 
 "$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/c.pfm" --size 32x16 || fail "pfm solve"
 [ "$(head -c 3 "$tmp/c.pfm" | od -An -c | tr -d ' ')" = 'PF\n' ] || fail "PFM header"
+# --gather 0 is today's picture, bit for bit; --gather N reports its time beside the solve's.
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/g0.pfm" --size 32x16 --gather 0 ||
+  fail "gather 0 solve"
+cmp -s "$tmp/c.pfm" "$tmp/g0.pfm" || fail "--gather 0 changes the picture"
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/g4.pfm" --size 32x16 --gather 4 \
+  --report "$tmp/g4.json" || fail "gather 4 solve"
+grep -q '"gather"' "$tmp/g4.json" || fail "report lacks the gather's seconds"
+cmp -s "$tmp/c.pfm" "$tmp/g4.pfm" && fail "--gather 4 gives the Gouraud picture"
 
 # --memory-limit: rows spill to disk and B is the same as in memory (same CSV, byte for byte).
 "$radflux" solve "$cornell" --patches 300 --quiet --memory-limit 1K --patch-values "$tmp/s.csv" \
@@ -69,6 +77,7 @@ expect_error "missing scene" "cannot open" solve "$tmp/none.obj"
 expect_error "bad rays" "rays" solve "$cornell" --rays -3
 expect_error "odd hemicube" "hemicube-res" solve "$cornell" --form-factors hemicube --hemicube-res 7
 expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
+expect_error "gather range" "--gather" solve "$cornell" --render "$tmp/x.png" --gather -1
 expect_error "unknown solver" "solver" solve "$cornell" --solver magic
 printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
 expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$tmp/bad.obj"

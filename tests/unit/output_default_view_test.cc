@@ -94,18 +94,33 @@ TEST(OutputDefaultView, ConferenceRoomIsSeenFromInside) {
   EXPECT_EQ(v.camera.look_at.y, v.camera.position.y);
 }
 
-TEST(OutputDefaultView, AClosedZUpRoomIsSeenAlongItsLongestAxisAtEyeHeight) {
-  // A closed room x in [0, 10], y in [0, 6], z in [0, 3], every wall facing in: its floor
-  // and ceiling (120 of area) outweigh the walls facing along y (60), so z is up.
+// A room x in [0, 10], y in [0, 6], z in [0, 3], every wall facing in; with `window`, the
+// wall y = 0 has a 2 x 1.5 hole at x in [4, 6], z in [1, 2.5]: one or two of the 16
+// horizontal rays from the eye escape through it.
+PatchMesh ZUpRoom(bool window) {
   PatchMesh mesh;
   const double x = 10, y = 6, z = 3;
   using output_testing::AddFace;
   AddFace(mesh, {{0, 0, 0}, {x, 0, 0}, {x, y, 0}, {0, y, 0}}, {{0, 1, 2, 3}}, {0, 0, 1});
   AddFace(mesh, {{0, 0, z}, {0, y, z}, {x, y, z}, {x, 0, z}}, {{0, 1, 2, 3}}, {0, 0, -1});
-  AddFace(mesh, {{0, 0, 0}, {0, 0, z}, {x, 0, z}, {x, 0, 0}}, {{0, 1, 2, 3}}, {0, 1, 0});
+  auto wall_y0 = [&](double x0, double x1, double z0, double z1) {
+    AddFace(mesh, {{x0, 0, z0}, {x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}}, {{0, 1, 2, 3}}, {0, 1, 0});
+  };
+  if (window) {
+    wall_y0(0, x, 0, 1), wall_y0(0, x, 2.5, z), wall_y0(0, 4, 1, 2.5), wall_y0(6, x, 1, 2.5);
+  } else {
+    wall_y0(0, x, 0, z);
+  }
   AddFace(mesh, {{0, y, 0}, {x, y, 0}, {x, y, z}, {0, y, z}}, {{0, 1, 2, 3}}, {0, -1, 0});
   AddFace(mesh, {{0, 0, 0}, {0, y, 0}, {0, y, z}, {0, 0, z}}, {{0, 1, 2, 3}}, {1, 0, 0});
   AddFace(mesh, {{x, 0, 0}, {x, 0, z}, {x, y, z}, {x, y, 0}}, {{0, 1, 2, 3}}, {-1, 0, 0});
+  return mesh;
+}
+
+TEST(OutputDefaultView, AClosedZUpRoomIsSeenAlongItsLongestAxisAtEyeHeight) {
+  // The floor and ceiling (120 of area) outweigh the walls facing along y (60): z is up.
+  const PatchMesh mesh = ZUpRoom(false);
+  const double x = 10, z = 3;
   auto caster = EmbreeRayCaster::Create(mesh);
   ASSERT_TRUE(caster.ok());
   Camera request;
@@ -119,6 +134,17 @@ TEST(OutputDefaultView, AClosedZUpRoomIsSeenAlongItsLongestAxisAtEyeHeight) {
   const double behind = view.x > 0 ? camera.position.x : x - camera.position.x;
   EXPECT_LT(behind, 0.2 * x);
   EXPECT_GT(behind, 0);
+}
+
+TEST(OutputDefaultView, AWindowIsNotAnOpeningToLookInThrough) {
+  const PatchMesh mesh = ZUpRoom(true);
+  auto caster = EmbreeRayCaster::Create(mesh);
+  ASSERT_TRUE(caster.ok());
+  Camera request;
+  request.width = request.height = 32;
+  const Camera camera = DefaultCamera(mesh, **caster, request, Vec3{});
+  EXPECT_GT(camera.position.y, 0);  // inside, not outside the window's wall
+  EXPECT_NEAR(std::abs((camera.look_at - camera.position).x), 1, 1e-12);
 }
 
 TEST(OutputDefaultView, AnOpenSceneIsFramedFromOutsideAsBefore) {
