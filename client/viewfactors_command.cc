@@ -117,7 +117,7 @@ void PrintReport(const ViewFactorReport& r) {
     std::fprintf(stderr,
                  "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
                  "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
-                 "pairs traced with %llu segments; cull %.2f s, rows %.2f s\n",
+                 "pairs traced with %llu segments%s; cull %.2f s, rows %.2f s\n",
                  static_cast<unsigned long long>(s.pairs.culled),
                  static_cast<unsigned long long>(s.pairs.one_point),
                  static_cast<unsigned long long>(s.pairs.middle),
@@ -125,7 +125,9 @@ void PrintReport(const ViewFactorReport& r) {
                  static_cast<unsigned long long>(s.pairs.evaluations),
                  static_cast<unsigned long long>(s.blockers),
                  static_cast<unsigned long long>(s.traced_pairs),
-                 static_cast<unsigned long long>(s.segments), s.cull_seconds, s.rows_seconds);
+                 static_cast<unsigned long long>(s.segments),
+                 s.reciprocal ? "; each pair once (reciprocity)" : "", s.cull_seconds,
+                 s.rows_seconds);
   }
   std::fprintf(stderr,
                "viewfactors: %zu surfaces (%zu patches); mesh %.2f s, embree %.2f s, rows %.2f s "
