@@ -21,7 +21,8 @@ bin=${BIN:-build/ci/client/radflux}
 scene=scenes/cornell_box.obj
 mkdir -p "$out"
 
-# radflux's default camera for this scene, spelled out so that Cycles gets the same one.
+# The box fitted in the picture from -z (radflux's default before the default view filled the
+# picture with the opening), spelled out so that Cycles gets the same one.
 pos=278,274.4,-778.4
 look=278,274.4,279.6
 fov=39.3077

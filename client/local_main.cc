@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
       "  watch     follow a job's progress\n"
       "  result    fetch a finished job's result: the outputs of `radflux solve`\n"
       "  cancel    cancel a queued or running job\n"
-      "  list      list jobs, newest first");
+      "  list      list jobs, newest first\n"
+      "  view      a job's live 3D view in the browser (also: solve SCENE --view)");
 #endif
   int exit_code = 0;
   radflux::cli::AddSolveCommand(app, exit_code);

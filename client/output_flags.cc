@@ -1,17 +1,23 @@
 #include "client/output_flags.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/output/default_view.h"
+#include "solver/output/final_gather.h"
 #include "solver/output/gltf_writer.h"
 #include "solver/output/image.h"
 #include "solver/output/patch_values_csv.h"
 #include "solver/output/ply_writer.h"
 #include "solver/output/render.h"
 #include "solver/output/tone_map.h"
+#include "solver/output/vertex_radiosity.h"
+#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux::cli {
 namespace {
@@ -36,6 +42,51 @@ std::pair<int, int> ParseSize(const std::string& size) {
   return {w, h};
 }
 
+// The picture of --render: Gouraud-shaded B, or with --gather N the final gather.
+absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                                    const ShadingMesh& shading, const RayCaster& caster,
+                                    const std::vector<Rgb>& radiosity, const Camera& camera,
+                                    int threads) {
+  if (f.gather > 0) {
+    GatherOptions options;
+    options.rays = f.gather;
+    options.threads = threads;
+    return RenderFinalGather(mesh, shading, caster, ComputePatchAttributes(scene, mesh), radiosity,
+                             camera, options);
+  }
+  auto vertex_radiosity = VertexRadiosity(mesh, shading, radiosity);
+  if (!vertex_radiosity.ok()) return vertex_radiosity.status();
+  RenderOptions options;
+  options.threads = threads;
+  return RenderRadiance(mesh, caster, *vertex_radiosity, camera, options);
+}
+
+absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
+                         const std::vector<Rgb>& radiosity) {
+  if (f.patch_values.empty()) return absl::OkStatus();
+  return WritePatchValuesCsv(f.patch_values, scene, mesh, radiosity);
+}
+
+// The picture, rendered in the solver's coordinates (single-precision rays near the origin).
+absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
+                         const ShadingMesh& shading, const std::vector<Rgb>& radiosity,
+                         const ToneMapOptions& tone, int threads, OutputTimings* timings) {
+  auto caster = EmbreeRayCaster::Create(solved_mesh);
+  if (!caster.ok()) return caster.status();
+  absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, **caster, scene.origin);
+  if (!camera.ok()) return camera.status();
+  const auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<Image> image =
+      RenderPicture(f, scene, solved_mesh, shading, **caster, radiosity, *camera, threads);
+  if (!image.ok()) return image.status();
+  if (timings != nullptr && f.gather > 0) {
+    timings->gather =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
+                                          : WritePng(f.render, *image, tone);
+}
+
 }  // namespace
 
 void AddOutputFlags(CLI::App& app, OutputFlags& f) {
@@ -50,7 +101,8 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
       app.add_option("--camera-look-at", f.camera_look_at, "point the camera looks at X,Y,Z")
           ->delimiter(',')
           ->expected(3),
-      app.add_option("--camera-up", f.camera_up, "camera up vector X,Y,Z (default 0,1,0)")
+      app.add_option("--camera-up", f.camera_up,
+                     "camera up vector X,Y,Z (default 0,1,0; inside an enclosed scene its up axis)")
           ->delimiter(',')
           ->expected(3),
       app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")
@@ -61,6 +113,10 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
           ->capture_default_str(),
       app.add_flag("--linear-png", f.linear_png, "write PNG bytes without the sRGB curve"),
       app.add_option("--metres-per-unit", f.metres_per_unit, "scene unit in metres, for .glb")
+          ->capture_default_str(),
+      app.add_option("--gather", f.gather,
+                     "--render by final gather: N rays per pixel into the solution plus light "
+                     "sampled on the emitters (0 = Gouraud-shaded B)")
           ->capture_default_str(),
   };
   for (CLI::Option* option : added) option->group(kOutputGroup);
@@ -89,35 +145,38 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
         absl::StrCat("--size '", f.size, "': expected WxH with 1..16384 pixels each"));
   }
   if (!(f.metres_per_unit > 0)) return absl::InvalidArgumentError("--metres-per-unit must be > 0");
+  if (f.gather < 0 || f.gather > 4096) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--gather ", f.gather, ": must be in [0, 4096]"));
+  }
   return absl::OkStatus();
 }
 
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh,
-                                       const Vec3& origin) {
+                                       const RayCaster& caster, const Vec3& origin) {
   Camera camera;
   std::tie(camera.width, camera.height) = ParseSize(f.size);
   camera.vertical_fov_degrees = f.fov_deg;
-  if (!f.camera_up.empty()) camera.up = ToVec3(f.camera_up);
-  Vec3 lo = mesh.positions.at(0), hi = lo;
-  for (const Vec3& p : mesh.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const Vec3 centre = (lo + hi) * 0.5;
-  camera.look_at = f.camera_look_at.empty() ? centre : ToVec3(f.camera_look_at) - origin;
-  if (!f.camera_pos.empty()) {
-    camera.position = ToVec3(f.camera_pos) - origin;
+  const Vec3 up = f.camera_up.empty() ? Vec3{} : ToVec3(f.camera_up);
+  if (f.camera_pos.empty()) {
+    camera = DefaultCamera(mesh, caster, camera, up);
   } else {
-    const double half = std::max(hi.y - lo.y, (hi.x - lo.x) * camera.height / camera.width) / 2;
-    const double distance = half / std::tan(f.fov_deg * M_PI / 360);
-    camera.position = {camera.look_at.x, camera.look_at.y, lo.z - distance};
+    camera.up = f.camera_up.empty() ? Vec3{0, 1, 0} : up;
+    Vec3 lo = mesh.positions.at(0), hi = lo;
+    for (const Vec3& p : mesh.positions) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    camera.position = ToVec3(f.camera_pos) - origin;
+    camera.look_at = (lo + hi) * 0.5;
   }
+  if (!f.camera_look_at.empty()) camera.look_at = ToVec3(f.camera_look_at) - origin;
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
   return camera;
 }
 
 absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
-                          const std::vector<Rgb>& radiosity, int threads) {
+                          const std::vector<Rgb>& radiosity, int threads, OutputTimings* timings) {
   // The mesh in the file's coordinates (a copy only for a recentred scene).
   std::optional<PatchMesh> translated;
   if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
@@ -130,32 +189,25 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
   tone.scale = AutoExposureScale(radiance);
   tone.exposure_stops = f.exposure;
   tone.srgb = !f.linear_png;
+  if (f.out.empty() && f.render.empty()) return WriteValues(f, scene, mesh, radiosity);
+  absl::StatusOr<ShadingMesh> shading = BuildShadingMesh(solved_mesh, FaceMaterials(scene));
+  if (!shading.ok()) return shading.status();
   if (absl::EndsWith(f.out, ".ply")) {
-    if (absl::Status s = WritePly(f.out, mesh, radiosity, tone); !s.ok()) return s;
+    if (absl::Status s = WritePly(f.out, mesh, *shading, radiosity, tone); !s.ok()) return s;
   } else if (absl::EndsWith(f.out, ".glb")) {
     GltfOptions gltf;
     gltf.metres_per_unit = f.metres_per_unit;
     gltf.tone = tone;
-    if (absl::Status s = WriteGlb(f.out, mesh, radiosity, gltf); !s.ok()) return s;
+    if (absl::Status s = WriteGlb(f.out, mesh, *shading, radiosity, gltf); !s.ok()) return s;
   }
   if (!f.render.empty()) {
-    // Rendered in the solver's coordinates: single-precision rays near the origin.
-    absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, scene.origin);
-    if (!camera.ok()) return camera.status();
-    RenderOptions options;
-    options.threads = threads;
-    absl::StatusOr<Image> image = RenderPatchRadiosity(solved_mesh, radiosity, *camera, options);
-    if (!image.ok()) return image.status();
-    absl::Status s = absl::EndsWith(f.render, ".pfm") ? WritePfm(f.render, *image)
-                                                      : WritePng(f.render, *image, tone);
-    if (!s.ok()) return s;
-  }
-  if (!f.patch_values.empty()) {
-    if (absl::Status s = WritePatchValuesCsv(f.patch_values, scene, mesh, radiosity); !s.ok()) {
+    if (absl::Status s =
+            WriteRender(f, scene, solved_mesh, *shading, radiosity, tone, threads, timings);
+        !s.ok()) {
       return s;
     }
   }
-  return absl::OkStatus();
+  return WriteValues(f, scene, mesh, radiosity);
 }
 
 }  // namespace radflux::cli

@@ -26,6 +26,7 @@ struct OutputFlags {
   double exposure = 0;             // stops
   bool linear_png = false;         // PNG without the sRGB curve
   double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
+  int gather = 0;                  // final-gather rays per pixel for --render (0: Gouraud)
 };
 
 // Adds the output flags to `app`, in its help group kOutputGroup.
@@ -38,16 +39,24 @@ std::vector<std::string> GivenOutputFlags(const CLI::App& app);
 // Checks file extensions and camera values before any work starts.
 absl::Status ValidateOutputFlags(const OutputFlags& flags);
 
-// The camera from the flags; without --camera-pos it frames the scene's bounding box
-// from -z looking +z (for the Cornell box this is close to its classic camera). The flags
-// are in the file's coordinates; the camera is in the mesh's, which are the file's minus
-// `origin` (Scene::origin of a recentred scene).
+// The camera from the flags; without --camera-pos, the default view's rule places it
+// (solver/output/default_view.h: from inside for an enclosed scene, with `caster` probing
+// `mesh`, and choosing up unless --camera-up is given; with --camera-pos, up is +y unless
+// given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the camera is in the mesh's,
+// which are the file's minus `origin` (Scene::origin of a recentred scene).
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
-                                       const Vec3& origin = {});
+                                       const RayCaster& caster, const Vec3& origin = {});
+
+// Seconds spent in parts of WriteOutputs, for the job report.
+struct OutputTimings {
+  double gather = 0;  // the final gather of --render --gather N (0 without it)
+};
 
 // Writes the mesh, picture and per-patch values that were asked for (not the report), in
-// the file's coordinates (scene.origin added back to the mesh's positions).
+// the file's coordinates (scene.origin added back to the mesh's positions); fills `timings`
+// when given.
 absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
-                          const std::vector<Rgb>& radiosity, int threads);
+                          const std::vector<Rgb>& radiosity, int threads,
+                          OutputTimings* timings = nullptr);
 
 }  // namespace radflux::cli

@@ -42,8 +42,17 @@ std::string_view FindVerb(int argc, char** argv) {
   return {};
 }
 
+bool IsSolveWithView(int argc, char** argv) {
+  if (FindVerb(argc, argv) != "solve") return false;
+  for (int k = 1; k < argc; ++k) {
+    if (std::string_view(argv[k]) == "--view") return true;
+  }
+  return false;
+}
+
 const char* SiblingFor(int argc, char** argv) {
-  return IsServiceVerb(FindVerb(argc, argv)) ? "radflux-service" : "radflux-local";
+  return IsServiceVerb(FindVerb(argc, argv)) || IsSolveWithView(argc, argv) ? "radflux-service"
+                                                                             : "radflux-local";
 }
 
 void ExecSibling(const char* name, char** argv) {

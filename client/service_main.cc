@@ -1,6 +1,7 @@
 // radflux-service: the service verbs of `radflux` (submit, watch, result, cancel, list, view),
-// talking to radfluxd. `radflux` runs it for those verbs (client/service_dispatch.h); it
-// can be run directly with the same arguments.
+// talking to radfluxd, and `solve --view` (the one verb of radflux-local that serves HTTP).
+// `radflux` runs it for those (client/service_dispatch.h); it can be run directly with the
+// same arguments.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,8 @@
 
 #include "client/run_app.h"
 #include "client/service_commands.h"
+#include "client/solve_command.h"
+#include "client/view/solve_view.h"
 
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
@@ -18,6 +21,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   radflux::cli::AddServiceCommands(app, exit_code);
+  // `radflux solve --view` comes here: the solve in-process, its page served as `view`'s.
+  radflux::cli::AddSolveCommand(app, exit_code, [](int port) {
+    return std::make_unique<radflux::cli::SolveView>(port);
+  });
   const int code = radflux::cli::RunApp(app, argc, argv, exit_code);
   // Everything the verb writes is written and closed by now; what is left is gRPC's
   // teardown of its threads and channel (~3-6 ms of a round trip, with sleeps of 1 and 2 ms

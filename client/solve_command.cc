@@ -29,6 +29,8 @@ struct SolveArgs {
   bool quiet = false;
   uint64_t memory_limit = 0;  // bytes of rows kept in memory (0 = all)
   std::string spill_dir;
+  bool view = false;  // --view: the solve's page in the browser
+  int view_port = 0;
 };
 
 absl::Status WriteReport(const std::string& path, const nlohmann::json& report) {
@@ -69,9 +71,31 @@ struct SolveOutcome {
   std::string balance_off;  // EnergyBalance::OffMessage(), empty when the balance closed
 };
 
-absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
+// The observer of --view (null without it). Hierarchical and adaptive solves change the
+// mesh as they go, which the page (one mesh, then B per patch) cannot follow.
+absl::StatusOr<std::unique_ptr<SolveObserver>> MakeObserver(const SolveArgs& args,
+                                                            const JobOptions& options,
+                                                            const SolveObserverFactory& view) {
+  if (!args.view) return nullptr;
+  if (!view) {
+    return absl::FailedPreconditionError(
+        "--view is served by radflux-service: run it as `radflux solve ... --view`");
+  }
+  if (options.hierarchical.enabled || options.adaptive.passes > 0) {
+    return absl::InvalidArgumentError(
+        "--view shows uniform meshes only (not --solver hierarchical or --adaptive-passes)");
+  }
+  return view(args.view_port);
+}
+
+absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
+                      SolveOutcome& outcome, std::unique_ptr<SolveObserver>& observer) {
   absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
   if (!options.ok()) return options.status();
+  absl::StatusOr<std::unique_ptr<SolveObserver>> made = MakeObserver(args, *options, view);
+  if (!made.ok()) return made.status();
+  observer = *std::move(made);
+  if (observer) options->solver.snapshot_every = 1;
   options->spill.memory_limit = args.memory_limit;
   options->spill.directory = args.spill_dir;
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
@@ -82,6 +106,9 @@ absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
   absl::StatusOr<Scene> scene = LoadScene(args.scene, *import);
   if (!scene.ok()) return scene.status();
   PrintImportLog(scene->import_log, args.quiet);
+  if (observer) {
+    if (absl::Status s = observer->Start(*scene, *options); !s.ok()) return s;
+  }
   const double load_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -89,10 +116,12 @@ absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
   JobCallbacks callbacks;
   callbacks.phase = [&](std::string_view phase, int64_t done, int64_t total) {
     progress.Phase(phase, done, total);
+    if (observer) observer->Phase(done, total);
     return true;
   };
   callbacks.solve = [&](const SolveProgress& p) {
     progress.Iteration(p.iteration, p.residual, p.unshot_fraction);
+    if (observer) observer->Iteration(p);
   };
   absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options, callbacks);
   if (!result.ok()) return result.status();
@@ -113,19 +142,28 @@ absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
   for (const std::string& line : RefinementLines(*result)) progress.Line(line);
 
   const auto output_start = std::chrono::steady_clock::now();
-  if (absl::Status s =
-          WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity, args.job.threads);
+  OutputTimings output_timings;
+  if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
+                                    args.job.threads, &output_timings);
       !s.ok()) {
     return s;
   }
-  if (!args.output.report.empty()) {
+  if (args.output.gather > 0 && !args.output.render.empty()) {
+    progress.Line(absl::StrFormat("final gather: %d rays per pixel at %s, %.3fs (solve %.3fs)",
+                                  args.output.gather, args.output.size, output_timings.gather,
+                                  result->timings.solve));
+  }
+  if (!args.output.report.empty() || observer) {
     nlohmann::json report = MakeJobReport(*result, *options, args.scene);
     report["seconds"]["load"] = load_seconds;
+    if (args.output.gather > 0) report["seconds"]["gather"] = output_timings.gather;
     report["seconds"]["output"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - output_start).count();
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     report["peak_rss_bytes"] = static_cast<int64_t>(usage.ru_maxrss) * 1024;
+    if (observer) observer->Finish(*result, report);
+    if (args.output.report.empty()) return absl::OkStatus();
     if (absl::Status s = WriteReport(args.output.report, report); !s.ok()) return s;
   }
   return absl::OkStatus();
@@ -133,7 +171,7 @@ absl::Status RunSolve(const SolveArgs& args, SolveOutcome& outcome) {
 
 }  // namespace
 
-void AddSolveCommand(CLI::App& app, int& exit_code) {
+void AddSolveCommand(CLI::App& app, int& exit_code, SolveObserverFactory view) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* solve = app.add_subcommand(
       "solve", "Solve a scene in-process (no server): mesh, form factors, radiosity, outputs");
@@ -152,14 +190,24 @@ void AddSolveCommand(CLI::App& app, int& exit_code) {
   solve->add_option("--spill-dir", args->spill_dir,
                     "with --memory-limit: directory for the spill file (default: a fresh "
                     "directory under $TMPDIR or /tmp, removed at the end)");
-  solve->callback([args, &exit_code] {
+  solve->add_flag("--view", args->view,
+                  "watch the solve in the browser (as `radflux view JOB`): prints a URL on "
+                  "127.0.0.1 and keeps serving the page after the solve, until Ctrl-C");
+  solve->add_option("--view-port", args->view_port, "with --view: port (default: a free one)")
+      ->check(CLI::Range(0, 65535));
+  solve->callback([args, view, &exit_code] {
     SolveOutcome outcome;
-    exit_code = ReportStatus("solve", RunSolve(*args, outcome));
+    std::unique_ptr<SolveObserver> observer;
+    exit_code = ReportStatus("solve", RunSolve(*args, view, outcome, observer));
     if (exit_code == 0 && !outcome.converged) {
       exit_code =
           ReportNotConverged("solve", outcome.iterations, outcome.residual, outcome.tolerance);
     } else if (exit_code == 0 && !outcome.balance_off.empty()) {
       exit_code = ReportEnergyImbalance("solve", outcome.balance_off);
+    }
+    // The page stays for a solve that ended (converged or not), not for a failed one.
+    if (observer && (exit_code == 0 || exit_code == kExitNotConverged)) {
+      observer->ServeUntilStopped();
     }
   });
 }

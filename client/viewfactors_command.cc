@@ -59,10 +59,11 @@ void PrintReport(const ViewFactorReport& r) {
     const SurfaceRowsStats& s = *r.adaptive;
     std::fprintf(stderr,
                  "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
-                 "adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
+                 "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
                  "pairs traced with %llu segments; cull %.2f s, rows %.2f s\n",
                  static_cast<unsigned long long>(s.pairs.culled),
                  static_cast<unsigned long long>(s.pairs.one_point),
+                 static_cast<unsigned long long>(s.pairs.middle),
                  static_cast<unsigned long long>(s.pairs.adaptive),
                  static_cast<unsigned long long>(s.pairs.evaluations),
                  static_cast<unsigned long long>(s.blockers),
@@ -146,6 +147,11 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--far-ratio", args->pairs.far_ratio,
                   "adaptive: one point when distance / the surface's diameter is at least this")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  cmd->add_option("--middle-ratio", args->pairs.middle_ratio,
+                  "adaptive: 2 x 2 Gauss points (no refinement) when distance / the surface's "
+                  "diameter is at least this and below --far-ratio")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   cmd->add_option("--memory-limit", args->memory_limit,

@@ -17,3 +17,4 @@ file(WRITE "${OUT}.tmp"
   "const char kViewJs[] = R\"radflux_asset(${view_js})radflux_asset\";\n"
   "}  // namespace radflux::cli\n")
 file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
+file(REMOVE "${OUT}.tmp")

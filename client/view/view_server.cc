@@ -73,12 +73,15 @@ void ServeEvents(std::shared_ptr<ViewState> state, httplib::Response& res) {
 }
 
 void ServeJob(const ViewRoutes& routes, httplib::Server& server) {
-  server.Get(R"(/job/([A-Za-z0-9_-]+)/)", [](const httplib::Request&, httplib::Response& res) {
+  server.Get(R"(/job/([A-Za-z0-9_-]+)/)", [&routes](const httplib::Request& req,
+                                                     httplib::Response& res) {
+    if (!routes.job(req.matches[1])) return void(res.status = 404);
     res.set_content(kViewIndexHtml, "text/html");
   });
   server.Get(R"(/job/([A-Za-z0-9_-]+)/(info|mesh|events|snapshot|report|result\.glb))",
              [&routes](const httplib::Request& req, httplib::Response& res) {
                std::shared_ptr<ViewState> state = routes.job(req.matches[1]);
+               if (!state) return void(res.status = 404);
                const std::string part = req.matches[2];
                if (part == "info") return res.set_content(state->info(), "application/json");
                if (part == "mesh") return res.set_content(state->mesh(), "application/octet-stream");

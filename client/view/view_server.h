@@ -16,7 +16,7 @@ namespace radflux::cli {
 
 // What the server shows; each part may be empty.
 struct ViewRoutes {
-  // The view of a job id (started on first use), for /job/ID/...
+  // The view of a job id (started on first use; null: no such job, 404), for /job/ID/...
   std::function<std::shared_ptr<ViewState>(const std::string& job_id)> job;
   // The server's jobs as a JSON array (ListJobs), for /jobs/.
   std::function<absl::StatusOr<std::string>()> jobs;

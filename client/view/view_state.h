@@ -47,6 +47,7 @@ class ViewState {
   std::string Message(size_t* cursor) const;
   // The newest snapshot (null before the first).
   std::shared_ptr<const ViewSnapshot> Snapshot() const;
+  // Copies of what SetInfo and End set ("{}" / empty before), and whether the job ended.
   std::string info() const;
   std::string mesh() const;
   std::string report() const;

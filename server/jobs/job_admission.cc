@@ -5,8 +5,10 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "server/jobs/job_manager.h"
 #include "server/jobs/row_budget.h"
+#include "server/store/disk_space.h"
 #include "solver/pipeline.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
@@ -79,8 +81,30 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  return RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, PerJobMemoryLimit(options_.max_memory))
-      .status();
+  const uint64_t patches = (*loaded)->PatchCount(options->mesh);
+  if (absl::Status s =
+          RowMemoryBudget(patches, *options, PerJobMemoryLimit(options_.max_memory)).status();
+      !s.ok()) {
+    return s;
+  }
+  return CheckDiskRoom(patches, *options);
+}
+
+absl::Status JobManager::CheckDiskRoom(uint64_t patches, const JobOptions& options) {
+  // On disk a job keeps its row blocks (stored compressed), the rows it spills (at most
+  // all), its checkpoint and its result: bounded by its memory estimate with its rows in
+  // memory, which counts the rows twice (for cg's copy) besides mesh and solver vectors.
+  JobOptions in_memory = options;
+  in_memory.spill.memory_limit = 0;
+  const uint64_t need = EstimateJobBytes(patches, in_memory);
+  const absl::StatusOr<uint64_t> free = FreeDiskBytes(store_.data_dir());
+  if (!free.ok() || need <= *free) return absl::OkStatus();
+  constexpr double kMiB = 1 << 20;
+  return absl::ResourceExhaustedError(absl::StrFormat(
+      "job would need up to %.1f MiB of disk (%d patches: rows, checkpoint, result); the data "
+      "directory %s has %.1f MiB free",
+      static_cast<double>(need) / kMiB, patches, store_.data_dir(),
+      static_cast<double>(*free) / kMiB));
 }
 
 }  // namespace radflux

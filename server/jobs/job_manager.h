@@ -26,6 +26,7 @@
 namespace radflux {
 
 class RowFarm;
+struct JobOptions;
 
 struct ManagerOptions {
   int jobs = 1;                        // jobs running at once
@@ -92,6 +93,8 @@ class JobManager {
   };
 
   absl::Status CheckLimits(const v1::SubmitJobRequest& request);
+  // RESOURCE_EXHAUSTED when the job's disk estimate exceeds the data directory's free space.
+  absl::Status CheckDiskRoom(uint64_t patches, const JobOptions& options);
   void WorkerLoop();
   void RunOne(const std::string& job_id);
   // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`

@@ -1,6 +1,7 @@
 #include "server/store/disk_space.h"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,6 +20,14 @@ absl::Status DiskWriteError(std::string_view what, const std::string& path, int 
         absl::StrCat("disk full writing ", std::string(what), " at ", path, ": ", why));
   }
   return absl::InternalError(absl::StrCat("cannot write ", std::string(what), " at ", path, ": ", why));
+}
+
+absl::StatusOr<uint64_t> FreeDiskBytes(const std::string& dir) {
+  struct statvfs fs {};
+  if (::statvfs(dir.c_str(), &fs) != 0) {
+    return absl::InternalError(absl::StrCat("cannot statvfs ", dir, ": ", std::strerror(errno)));
+  }
+  return static_cast<uint64_t>(fs.f_bavail) * fs.f_frsize;
 }
 
 bool IsDiskFull(const absl::Status& status) {

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "absl/status/status.h"
+#include "absl/status/statusor.h"
 
 namespace radflux {
 
@@ -18,6 +18,9 @@ namespace radflux {
 // RESOURCE_EXHAUSTED "disk full writing WHAT at PATH: ..." for ENOSPC and EDQUOT, else
 // INTERNAL "cannot write WHAT at PATH: ...". 0 (a short write with no errno) says so.
 absl::Status DiskWriteError(std::string_view what, const std::string& path, int error_number);
+
+// Bytes an unprivileged writer may still use on the filesystem of `dir` (statvfs).
+absl::StatusOr<uint64_t> FreeDiskBytes(const std::string& dir);
 
 // True when `status` is a full disk (RESOURCE_EXHAUSTED from DiskWriteError or SQLite).
 bool IsDiskFull(const absl::Status& status);

@@ -126,6 +126,7 @@ class JobStore {
   void RemoveWorkFiles(const std::string& job_id);
   // The directory of a job's work files (removed with them: a file left in it goes too).
   std::string JobDir(const std::string& job_id) const;
+  const std::string& data_dir() const { return data_dir_; }
 
  private:
   std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb

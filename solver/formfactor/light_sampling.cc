@@ -68,12 +68,6 @@ int NearFieldFactor(const PatchMesh& mesh, uint32_t i, const LightTree& tree) {
   return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
 }
 
-// A light sample waiting for its shadow ray: the column and the value it adds if visible.
-struct PendingSample {
-  uint32_t column = 0;
-  double value = 0;
-};
-
 }  // namespace
 
 LightSampler::LightSampler(const RowContext& context)
@@ -131,49 +125,60 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   pending.clear();
   MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
   MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
-  const uint32_t choice_pattern = PatternSeed(seed, i, kLightChoiceStream);
   const PatchPointSampler sample_point(mesh, i);
-  const Frame frame = Frame::FromNormal(n);
   for (size_t p = 0; p < on_patch.size(); ++p) {
-    const Vec3 x = sample_point(on_patch[p]);
-    const PointChooser choose(tree_, x, n);
-    for (uint32_t k = 0; k < static_cast<uint32_t>(per_point); ++k) {
-      // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
-      const uint32_t s = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point) + k;
-      const uint32_t stratum =
-          PermuteIndex(k, static_cast<uint32_t>(per_point), choice_pattern + s);
-      const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
-      const auto choice = choose(std::min(u, 0x1.fffffffffffffp-1));
-      if (!choice) continue;
-      const EmitterShape& emitter = tree_.Emitter(choice->emitter);
-      if (emitter.patch == i) continue;
-      const double form_factor = EmitterFormFactor(emitter, x, n);
-      if (!(form_factor > 0)) continue;
-      Vec3 target;
-      double value;  // the sample's F_ij estimate, if its ray is unoccluded
-      if (form_factor >= kRejectionFormFactor &&
-          CosineDirectionOnEmitter(emitter, x, frame, PatternSeed(seed ^ s, i, kRejectionStream),
-                                   target)) {
-        value = form_factor / choice->probability;
-      } else {
-        const EmitterSample sample = SampleEmitterSolidAngle(emitter, x, n, directions[s]);
-        if (!(sample.pdf > 0)) continue;
-        const Vec3 d = sample.point - x;
-        const double cos_x = Dot(n, d) / Length(d);
-        if (!(cos_x > 0)) continue;
-        target = sample.point;
-        value = cos_x / (std::numbers::pi * sample.pdf * choice->probability);
-      }
-      rays.push_back(StreamRay::Segment(x + n * context_.ray_epsilon,
-                                        target + emitter.normal * context_.ray_epsilon));
-      pending.push_back({emitter.patch, value / static_cast<double>(count)});
-    }
+    const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
+    SamplePoint(sample_point(on_patch[p]), n, i, seed, i, first,
+                std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
   }
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
-    if (!rays[r].Occluded()) row.Add(pending[r].column, pending[r].value);
+    if (!rays[r].Occluded()) {
+      row.Add(pending[r].emitter, pending[r].form_factor / static_cast<double>(count));
+    }
   }
   return rays.size();
+}
+
+void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed,
+                               uint64_t index, uint32_t first, std::span<const Point2> directions,
+                               std::vector<StreamRay>& rays,
+                               std::vector<PendingSample>& pending) const {
+  if (tree_.empty()) return;
+  const uint32_t per_point = static_cast<uint32_t>(directions.size());
+  const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
+  const Frame frame = Frame::FromNormal(n);
+  const PointChooser choose(tree_, x, n);
+  for (uint32_t k = 0; k < per_point; ++k) {
+    // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
+    const uint32_t s = first + k;
+    const uint32_t stratum = PermuteIndex(k, per_point, choice_pattern + s);
+    const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
+    const auto choice = choose(std::min(u, 0x1.fffffffffffffp-1));
+    if (!choice) continue;
+    const EmitterShape& emitter = tree_.Emitter(choice->emitter);
+    if (emitter.patch == receiver) continue;
+    const double form_factor = EmitterFormFactor(emitter, x, n);
+    if (!(form_factor > 0)) continue;
+    Vec3 target;
+    double value;  // the sample's F_j(x) estimate, if its ray is unoccluded
+    if (form_factor >= kRejectionFormFactor &&
+        CosineDirectionOnEmitter(emitter, x, frame, PatternSeed(seed ^ s, index, kRejectionStream),
+                                 target)) {
+      value = form_factor / choice->probability;
+    } else {
+      const EmitterSample sample = SampleEmitterSolidAngle(emitter, x, n, directions[k]);
+      if (!(sample.pdf > 0)) continue;
+      const Vec3 d = sample.point - x;
+      const double cos_x = Dot(n, d) / Length(d);
+      if (!(cos_x > 0)) continue;
+      target = sample.point;
+      value = cos_x / (std::numbers::pi * sample.pdf * choice->probability);
+    }
+    rays.push_back(StreamRay::Segment(x + n * context_.ray_epsilon,
+                                      target + emitter.normal * context_.ray_epsilon));
+    pending.push_back({emitter.patch, value});
+  }
 }
 
 }  // namespace radflux

@@ -18,6 +18,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "solver/formfactor/light_tree.h"
 #include "solver/formfactor/row_builder.h"
@@ -38,6 +40,22 @@ class LightSampler {
   // whatever the number of emitter patches).
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                              RowAccumulator& row) const;
+
+  // One light sample waiting for its shadow ray: the emitter patch it chose and its
+  // estimate of that emitter's form factor F_j(x) from the receiver point, if the ray is
+  // unoccluded (divide by the samples drawn at the point: their mean estimates F_j(x)).
+  struct PendingSample {
+    uint32_t emitter = 0;
+    double form_factor = 0;
+  };
+  // The light samples number first + k, k < directions.size(), at receiver point x (unit
+  // normal n) on patch `receiver` (never sampled as its own emitter), seeded from (seed,
+  // index), with one multi-jittered direction sample each: appends the shadow rays of those
+  // that can see an emitter to `rays` and their samples to `pending`, index for index. The
+  // choices are stratified over [0, 1) across the directions.size() samples.
+  void SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed, uint64_t index,
+                   uint32_t first, std::span<const Point2> directions, std::vector<StreamRay>& rays,
+                   std::vector<PendingSample>& pending) const;
 
  private:
   class PointChooser;

@@ -1,6 +1,7 @@
 #include "solver/formfactor/shaft_cull.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "solver/core/parallel.h"
@@ -17,26 +18,16 @@ bool AnyVertexInFront(const SurfaceShape& plane, const std::vector<Vec3>& points
   return false;
 }
 
-// Whether the projections of the two point sets on `axis` are disjoint (with a margin).
-bool Separates(const Vec3& axis, const SurfaceShape& i, const SurfaceShape& j,
-               const SurfaceShape& k, double margin) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const SurfaceShape* s : {&i, &j}) {
-    for (const Vec3& p : s->polygon) {
-      const double d = Dot(p, axis);
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
+// The extent [lo, hi] of the points of `s` along `axis`, merged into lo and hi.
+void Extend(const SurfaceShape& s, const Vec3& axis, double& lo, double& hi) {
+  for (const Vec3& p : s.polygon) {
+    const double v = Dot(p, axis);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
   }
-  double klo = std::numeric_limits<double>::infinity(), khi = -klo;
-  for (const Vec3& p : k.polygon) {
-    const double d = Dot(p, axis);
-    klo = std::min(klo, d);
-    khi = std::max(khi, d);
-  }
-  const double scale = margin * Length(axis);
-  return khi < lo - scale || klo > hi + scale;
 }
+
+Vec3 Abs(const Vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
 
 }  // namespace
 
@@ -65,41 +56,83 @@ std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes)
   return out;
 }
 
-std::vector<uint32_t> RowBlockers(const std::vector<SurfaceShape>& shapes,
-                                  const std::vector<uint32_t>& blockers, uint32_t i) {
-  std::vector<uint32_t> out;
-  const double tolerance = kRelativeTolerance * shapes[i].diameter;
-  for (uint32_t k : blockers) {
-    if (k != i && AnyVertexInFront(shapes[i], shapes[k].polygon, tolerance)) out.push_back(k);
+Shaft::Shaft(const SurfaceShape& i, const SurfaceShape& j, double margin)
+    : i_(i), j_(j), d_(j.centroid - i.centroid), margin_(margin) {
+  const Vec3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int a = 0; a < 3; ++a) {
+    axis_[a] = units[a];
+    abs_axis_[a] = units[a];
+    lo_[a] = std::min(i.lo[a], j.lo[a]) - margin;
+    hi_[a] = std::max(i.hi[a], j.hi[a]) + margin;
   }
-  return out;
+}
+
+void Shaft::Complete() const {
+  const Vec3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int a = 0; a < 3; ++a) axis_[5 + a] = Cross(d_, units[a]);
+  axis_[3] = i_.normal;
+  axis_[4] = j_.normal;
+  for (int a = 3; a < kAxes; ++a) {
+    lo_[a] = std::numeric_limits<double>::infinity();
+    hi_[a] = -lo_[a];
+    Extend(i_, axis_[a], lo_[a], hi_[a]);
+    Extend(j_, axis_[a], lo_[a], hi_[a]);
+    abs_axis_[a] = Abs(axis_[a]);
+    const double m = margin_ * Length(axis_[a]);
+    lo_[a] -= m;
+    hi_[a] += m;
+  }
+  complete_ = true;
+}
+
+bool Shaft::MayMeetBox(const Vec3& center, const Vec3& half) const {
+  for (int a = 0; a < 3; ++a) {
+    if (center[a] + half[a] < lo_[a] || center[a] - half[a] > hi_[a]) return false;
+  }
+  if (!complete_) Complete();
+  for (int a = 3; a < kAxes; ++a) {
+    const double c = Dot(center, axis_[a]), r = Dot(half, abs_axis_[a]);
+    if (c + r < lo_[a] || c - r > hi_[a]) return false;
+  }
+  return true;
+}
+
+// Whether the projections of the shaft (i and j) and of k on `axis` are disjoint.
+bool Shaft::Separates(const Vec3& axis, const SurfaceShape& k) const {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  Extend(i_, axis, lo, hi);
+  Extend(j_, axis, lo, hi);
+  double klo = std::numeric_limits<double>::infinity(), khi = -klo;
+  Extend(k, axis, klo, khi);
+  const double m = margin_ * Length(axis);
+  return khi < lo - m || klo > hi + m;
+}
+
+bool Shaft::MayHold(const SurfaceShape& k) const {
+  for (int a = 0; a < 3; ++a) {  // the coordinate axes: bounding boxes
+    if (k.hi[a] < lo_[a] || k.lo[a] > hi_[a]) return false;
+  }
+  if (!complete_) Complete();
+  for (int a = 3; a < kAxes; ++a) {  // the normals of i and j, d x axes: k's polygon
+    double klo = std::numeric_limits<double>::infinity(), khi = -klo;
+    Extend(k, axis_[a], klo, khi);
+    if (khi < lo_[a] || klo > hi_[a]) return false;
+  }
+  if (!AnyVertexInFront(i_, k.polygon, kRelativeTolerance * i_.diameter) ||
+      !AnyVertexInFront(j_, k.polygon, margin_)) {
+    return false;
+  }
+  if (Separates(k.normal, k)) return false;
+  for (size_t e = 0; e < k.polygon.size(); ++e) {
+    const Vec3 axis = Cross(d_, k.polygon[(e + 1) % k.polygon.size()] - k.polygon[e]);
+    if (Dot(axis, axis) > 0 && Separates(axis, k)) return false;
+  }
+  return true;
 }
 
 bool ShaftMayHold(const SurfaceShape& i, const SurfaceShape& j, const SurfaceShape& k) {
   if (&k == &i || &k == &j) return false;
-  const double size = i.diameter + j.diameter + k.diameter;
-  const double margin = kRelativeTolerance * size;
-  for (int c = 0; c < 3; ++c) {  // the coordinate axes: bounding boxes
-    if (k.hi[c] < std::min(i.lo[c], j.lo[c]) - margin ||
-        k.lo[c] > std::max(i.hi[c], j.hi[c]) + margin) {
-      return false;
-    }
-  }
-  if (!AnyVertexInFront(j, k.polygon, margin)) return false;
-  const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  for (const Vec3& n : {i.normal, j.normal, k.normal}) {
-    if (Separates(n, i, j, k, margin)) return false;
-  }
-  const Vec3 d = j.centroid - i.centroid;
-  for (size_t e = 0; e < k.polygon.size(); ++e) {
-    const Vec3 axis = Cross(d, k.polygon[(e + 1) % k.polygon.size()] - k.polygon[e]);
-    if (Dot(axis, axis) > 0 && Separates(axis, i, j, k, margin)) return false;
-  }
-  for (const Vec3& a : axes) {
-    const Vec3 axis = Cross(d, a);
-    if (Dot(axis, axis) > 0 && Separates(axis, i, j, k, margin)) return false;
-  }
-  return true;
+  return Shaft(i, j, kRelativeTolerance * (i.diameter + j.diameter + k.diameter)).MayHold(k);
 }
 
 }  // namespace radflux

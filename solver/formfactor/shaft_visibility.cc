@@ -28,8 +28,8 @@ bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k) {
   return true;
 }
 
-double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
-                       std::span<const SurfaceShape* const> blockers, uint64_t& segments) {
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
+                       uint64_t& segments) {
   Vec3 pi[kMaxSamplePoints], pj[kMaxSamplePoints];
   const size_t ni = SamplePoints(i, pi), nj = SamplePoints(j, pj);
   double seen = 0, total = 0;
@@ -43,14 +43,7 @@ double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
       if (w <= 0) continue;
       ++segments;
       total += w;
-      bool blocked = false;
-      for (const SurfaceShape* k : blockers) {
-        if (SegmentHitsSurface(pi[a], pj[b], *k)) {
-          blocked = true;
-          break;
-        }
-      }
-      if (!blocked) seen += w;
+      if (!blocked(pi[a], pj[b])) seen += w;
     }
   }
   return total > 0 ? seen / total : 1.0;

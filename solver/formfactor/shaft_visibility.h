@@ -6,7 +6,8 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
+
+#include "absl/functional/function_ref.h"
 
 #include "solver/formfactor/surface_pair_integrator.h"
 
@@ -15,9 +16,12 @@ namespace radflux {
 // Whether the open segment from a to b crosses the convex polygon of k.
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
 
-// The kernel-weighted fraction of segments from i to j that no shape in `blockers` crosses,
-// in [0, 1]; adds the segments tested to `segments`.
-double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
-                       std::span<const SurfaceShape* const> blockers, uint64_t& segments);
+// blocked(a, b): whether something crosses the open segment from a to b.
+using SegmentTest = absl::FunctionRef<bool(const Vec3& a, const Vec3& b)>;
+
+// The kernel-weighted fraction of segments from i to j that are not `blocked`, in [0, 1];
+// adds the segments tested to `segments`.
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
+                       uint64_t& segments);
 
 }  // namespace radflux

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "solver/core/gauss_legendre.h"
 #include "solver/formfactor/polygon_form_factor.h"
@@ -112,15 +113,17 @@ double Adaptive(const Integrand& f, const Cell& cell, const PairIntegration& opt
   return sum;
 }
 
-// The region of i as cells: the polygon itself when it is a triangle or quadrilateral, else
-// a fan of triangles.
-std::vector<Cell> Cells(const std::vector<Vec3>& polygon) {
-  if (polygon.size() == 4) return {Cell{{polygon[0], polygon[1], polygon[2], polygon[3]}, true}};
-  std::vector<Cell> cells;
-  for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-    cells.push_back(Cell{{polygon[0], polygon[k], polygon[k + 1], {}}, false});
+// Calls visit(cell) for the region of i as cells: the polygon itself when it is a triangle
+// or quadrilateral, else a fan of triangles. Allocates nothing.
+template <typename Visit>
+void ForEachCell(std::span<const Vec3> polygon, Visit&& visit) {
+  if (polygon.size() == 4) {
+    visit(Cell{{polygon[0], polygon[1], polygon[2], polygon[3]}, true});
+    return;
   }
-  return cells;
+  for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+    visit(Cell{{polygon[0], polygon[k], polygon[k + 1], {}}, false});
+  }
 }
 
 }  // namespace
@@ -128,6 +131,7 @@ std::vector<Cell> Cells(const std::vector<Vec3>& polygon) {
 void PairCounts::Merge(const PairCounts& o) {
   culled += o.culled;
   one_point += o.one_point;
+  middle += o.middle;
   adaptive += o.adaptive;
   evaluations += o.evaluations;
 }
@@ -179,12 +183,18 @@ double UnoccludedViewFactor(const SurfaceShape& i, const SurfaceShape& j,
     ++counts.one_point;
     return std::clamp(f(i.centroid), 0.0, 1.0);
   }
+  if (i_in_front && gap >= options.middle_ratio * i.diameter) {
+    ++counts.middle;
+    double integral = 0;
+    ForEachCell(i.polygon, [&](const Cell& cell) { integral += cell.Integrate(f, 2); });
+    return std::clamp(integral / i.area, 0.0, 1.0);
+  }
   ++counts.adaptive;
   // The part of i in front of j's plane.
   const std::vector<Vec3> region =
       i_in_front ? i.polygon : ClipPolygonToHalfSpace(i.polygon, j.centroid, j.normal);
   double integral = 0;
-  for (const Cell& cell : Cells(region)) integral += Adaptive(f, cell, options, 0);
+  ForEachCell(region, [&](const Cell& cell) { integral += Adaptive(f, cell, options, 0); });
   return std::clamp(integral / i.area, 0.0, 1.0);
 }
 

@@ -2,6 +2,7 @@
 // (issue 23, after View3D's idea): the inner integral over j is always exact (Lambert's
 // contour sum, PointToPolygonFormFactor); the outer integral over i is
 //   - one point, i's centroid, when the pair is far (distance / i's diameter >= far_ratio),
+//   - 2 x 2 Gauss points per cell of i between middle_ratio and far_ratio,
 //   - adaptive otherwise: i (a quadrilateral through its bilinear map, a triangle through
 //     Duffy's collapsed square, other polygons as a fan of triangles) is integrated with 2 x 2
 //     and 3 x 3 Gauss points; where they disagree by more than `tolerance` (relative) the
@@ -32,6 +33,7 @@ SurfaceShape MakeSurfaceShape(std::vector<Vec3> polygon);
 
 struct PairIntegration {
   double far_ratio = 8;      // one point beyond this distance / diameter of i
+  double middle_ratio = 2;   // 2 x 2 Gauss points per cell of i beyond this one
   double tolerance = 1e-3;   // adaptive: relative disagreement accepted per triangle
   int max_depth = 6;         // adaptive: at most this many splits of a cell of i
 };
@@ -40,6 +42,7 @@ struct PairIntegration {
 struct PairCounts {
   uint64_t culled = 0;       // j behind i's plane or i behind j's: no work
   uint64_t one_point = 0;    // far pairs
+  uint64_t middle = 0;       // pairs between middle_ratio and far_ratio
   uint64_t adaptive = 0;     // near pairs
   uint64_t evaluations = 0;  // exact point-to-polygon integrals
   void Merge(const PairCounts& o);

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "solver/core/parallel.h"
+#include "solver/formfactor/blocker_bvh.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
 
@@ -18,21 +19,16 @@ double SecondsSince(Clock::time_point start) {
 }
 
 // Row i into `row` (size radiating).
-void BuildRow(const std::vector<SurfaceShape>& shapes, const std::vector<uint32_t>& blockers,
-              uint32_t i, const PairIntegration& integration, std::span<double> row,
-              SurfaceRowsStats& stats) {
-  const std::vector<uint32_t> candidates = RowBlockers(shapes, blockers, i);
-  std::vector<const SurfaceShape*> in_shaft;
+void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
+              const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
   for (uint32_t j = 0; j < row.size(); ++j) {
     row[j] = j == i ? 0 : UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-    if (row[j] == 0) continue;
-    in_shaft.clear();
-    for (uint32_t k : candidates) {
-      if (k != j && ShaftMayHold(shapes[i], shapes[j], shapes[k])) in_shaft.push_back(&shapes[k]);
-    }
-    if (in_shaft.empty()) continue;
+    if (row[j] == 0 || !blockers.AnyInShaft(i, j)) continue;
     ++stats.traced_pairs;
-    row[j] *= VisibleFraction(shapes[i], shapes[j], in_shaft, stats.segments);
+    row[j] *= VisibleFraction(
+        shapes[i], shapes[j],
+        [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
+        stats.segments);
   }
 }
 
@@ -65,7 +61,7 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
                               const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
                               SurfaceRowsStats& stats) {
   auto start = Clock::now();
-  const std::vector<uint32_t> blockers = PotentialBlockers(shapes);
+  const BlockerBvh blockers(shapes, PotentialBlockers(shapes));
   stats.blockers = blockers.size();
   stats.cull_seconds = SecondsSince(start);
   start = Clock::now();

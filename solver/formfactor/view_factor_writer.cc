@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -15,6 +16,14 @@ std::string CsvField(const std::string& s) {
   std::string quoted = "\"";
   for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
+}
+
+// Appends `v` as printf would with "%.<precision>f" (fixed) or "%.<precision>g" (general):
+// std::to_chars with a precision is specified as printf in the C locale, without its cost.
+void AppendNumber(std::string& out, double v, std::chars_format format, int precision) {
+  char buffer[64];
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v, format, precision);
+  out.append(buffer, r.ptr);
 }
 
 absl::StatusOr<std::FILE*> OpenFile(const std::string& path, const char* kind) {
@@ -77,7 +86,7 @@ absl::Status ViewFactorWriter::WriteHeader() {
                                          surfaces_.emittances ? 1 : 0, n);
     header.resize(std::max<size_t>(header.size(), 30), ' ');  // View3D pads to 30 characters
     absl::FPrintF(file_, "%s\n", header);
-    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %g" : "%g", surfaces_.area[k]);
+    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, "%s%g", k ? " " : "", surfaces_.area[k]);
     std::fputc('\n', file_);
   }
   return absl::OkStatus();
@@ -97,7 +106,14 @@ void ViewFactorWriter::WriteSparseRow(std::span<const double> row) {
   if (!any_kept) dropped -= row[largest];  // keep the largest entry (see the header)
   for (size_t j = 0; j < row.size(); ++j) {
     const bool kept = row[j] > 0 && (row[j] >= output_.min_vf || (!any_kept && j == largest));
-    if (kept) absl::FPrintF(file_, "%d %d %.8g %.8g\n", rows_ + 1, j + 1, row[j], dropped);
+    if (!kept) continue;
+    line_.clear();
+    absl::StrAppend(&line_, rows_ + 1, " ", j + 1, " ");
+    AppendNumber(line_, row[j], std::chars_format::general, 8);
+    line_ += ' ';
+    AppendNumber(line_, dropped, std::chars_format::general, 8);
+    line_ += '\n';
+    std::fwrite(line_.data(), 1, line_.size(), file_);
   }
 }
 
@@ -109,17 +125,26 @@ absl::Status ViewFactorWriter::WriteRow(std::span<const double> row) {
   }
   switch (output_.format) {
     case ViewFactorFormat::kCsv:
-      std::fputs(CsvField(surfaces_.names[rows_]).c_str(), file_);
-      for (double f : row) absl::FPrintF(file_, ",%.9g", f);
-      std::fputc('\n', file_);
+      line_ = CsvField(surfaces_.names[rows_]);
+      for (double f : row) {
+        line_ += ',';
+        AppendNumber(line_, f, std::chars_format::general, 9);
+      }
       break;
     case ViewFactorFormat::kSparse:
       WriteSparseRow(row);
       break;
     case ViewFactorFormat::kView3d:
-      for (size_t j = 0; j < n; ++j) absl::FPrintF(file_, j ? " %.6f" : "%.6f", row[j]);
-      std::fputc('\n', file_);
+      line_.clear();
+      for (size_t j = 0; j < n; ++j) {
+        if (j > 0) line_ += ' ';
+        AppendNumber(line_, row[j], std::chars_format::fixed, 6);
+      }
       break;
+  }
+  if (output_.format != ViewFactorFormat::kSparse) {
+    line_ += '\n';
+    std::fwrite(line_.data(), 1, line_.size(), file_);
   }
   if (svf_ != nullptr) {
     double sum = 0;
@@ -133,7 +158,9 @@ absl::Status ViewFactorWriter::WriteRow(std::span<const double> row) {
 absl::Status ViewFactorWriter::Close() {
   const size_t n = surfaces_.names.size();
   if (file_ != nullptr && output_.format == ViewFactorFormat::kView3d) {
-    for (size_t k = 0; k < n; ++k) absl::FPrintF(file_, k ? " %.3f" : "%.3f", surfaces_.emittance[k]);
+    for (size_t k = 0; k < n; ++k) {
+      absl::FPrintF(file_, "%s%.3f", k ? " " : "", surfaces_.emittance[k]);
+    }
     std::fputc('\n', file_);
   }
   absl::Status file = CloseFile(file_, output_.path);

@@ -74,6 +74,7 @@ class ViewFactorWriter {
 
   ViewFactorOutput output_;
   ViewFactorSurfaces surfaces_;
+  std::string line_;  // the line being formatted, kept to reuse its buffer
   std::FILE* file_ = nullptr;
   std::FILE* svf_ = nullptr;
   size_t rows_ = 0;

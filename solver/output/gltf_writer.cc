@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "solver/output/export_mesh.h"
 #include "solver/output/output_file.h"
-#include "solver/output/vertex_radiosity.h"
 
 namespace radflux {
 namespace {
@@ -36,20 +36,6 @@ int AddAccessor(tinygltf::Model& model, const std::vector<float>& values, int ty
   return static_cast<int>(model.accessors.size() - 1);
 }
 
-// Triangle indices: triangles as they are, quads as (v0,v1,v3) and (v2,v3,v1).
-std::vector<uint32_t> TriangleIndices(const PatchMesh& mesh) {
-  std::vector<uint32_t> indices;
-  indices.reserve(mesh.size() * 6);
-  for (const Patch& p : mesh.patches) {
-    if (p.IsTriangle()) {
-      indices.insert(indices.end(), {p.v[0], p.v[1], p.v[2]});
-    } else {
-      indices.insert(indices.end(), {p.v[0], p.v[1], p.v[3], p.v[2], p.v[3], p.v[1]});
-    }
-  }
-  return indices;
-}
-
 int AddIndices(tinygltf::Model& model, const std::vector<uint32_t>& indices) {
   std::vector<float> bits(indices.size());  // same 4 bytes, copied verbatim
   std::memcpy(bits.data(), indices.data(), indices.size() * sizeof(uint32_t));
@@ -64,20 +50,18 @@ struct VertexArrays {
   std::vector<double> min, max;
 };
 
-VertexArrays BuildVertexArrays(const PatchMesh& mesh, const std::vector<Rgb>& vertex_b,
-                               const GltfOptions& options) {
+VertexArrays BuildVertexArrays(const ExportMesh& mesh, const GltfOptions& options) {
   VertexArrays a;
   a.min.assign(3, std::numeric_limits<double>::infinity());
   a.max.assign(3, -std::numeric_limits<double>::infinity());
-  const std::vector<Vec3> normals = VertexNormals(mesh);
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
       const float x = static_cast<float>(mesh.positions[i][k] * options.metres_per_unit);
       a.positions.push_back(x);
       a.min[k] = std::min<double>(a.min[k], x);
       a.max[k] = std::max<double>(a.max[k], x);
-      a.normals.push_back(static_cast<float>(normals[i][k]));
-      const double b = vertex_b[i][k];
+      a.normals.push_back(static_cast<float>(mesh.normals[i][k]));
+      const double b = mesh.radiosity[i][k];
       a.colours.push_back(static_cast<float>(ToneMapLinear(b / std::numbers::pi, options.tone)));
       a.radiosity.push_back(static_cast<float>(b));
     }
@@ -95,14 +79,14 @@ tinygltf::Material UnlitMaterial() {
   return material;
 }
 
-tinygltf::Model BuildModel(const PatchMesh& mesh, const std::vector<Rgb>& vertex_b,
-                           const GltfOptions& options) {
+tinygltf::Model BuildModel(ExportMesh& mesh, const GltfOptions& options) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "radflux";
   model.extensionsUsed.push_back("KHR_materials_unlit");
   model.buffers.emplace_back();
-  const VertexArrays arrays = BuildVertexArrays(mesh, vertex_b, options);
+  const std::vector<uint32_t> indices = TriangulateExportMesh(mesh);
+  const VertexArrays arrays = BuildVertexArrays(mesh, options);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.material = 0;
@@ -115,7 +99,7 @@ tinygltf::Model BuildModel(const PatchMesh& mesh, const std::vector<Rgb>& vertex
   primitive.attributes["COLOR_0"] = AddAccessor(model, arrays.colours, TINYGLTF_TYPE_VEC3, target);
   primitive.attributes["_RADIOSITY"] =
       AddAccessor(model, arrays.radiosity, TINYGLTF_TYPE_VEC3, target);
-  primitive.indices = AddIndices(model, TriangleIndices(mesh));
+  primitive.indices = AddIndices(model, indices);
   model.materials.push_back(UnlitMaterial());
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = "radiosity";
@@ -133,17 +117,17 @@ tinygltf::Model BuildModel(const PatchMesh& mesh, const std::vector<Rgb>& vertex
 
 }  // namespace
 
-absl::Status WriteGlb(const std::string& path, const PatchMesh& mesh,
+absl::Status WriteGlb(const std::string& path, const PatchMesh& mesh, const ShadingMesh& shading,
                       const std::vector<Rgb>& patch_radiosity, const GltfOptions& options) {
   if (mesh.size() == 0) {
     return absl::InvalidArgumentError(absl::StrCat("glTF file '", path, "': the mesh is empty"));
   }
-  auto vertex_b = VertexRadiosity(mesh, patch_radiosity);
-  if (!vertex_b.ok()) {
+  auto lit = BuildExportMesh(mesh, shading, patch_radiosity);
+  if (!lit.ok()) {
     return absl::InvalidArgumentError(
-        absl::StrCat("glTF file '", path, "': ", vertex_b.status().message()));
+        absl::StrCat("glTF file '", path, "': ", lit.status().message()));
   }
-  const tinygltf::Model model = BuildModel(mesh, *vertex_b, options);
+  const tinygltf::Model model = BuildModel(*lit, options);
   std::ostringstream stream;
   tinygltf::TinyGLTF gltf;
   if (!gltf.WriteGltfSceneToStream(&model, stream, false, true)) {

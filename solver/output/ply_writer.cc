@@ -1,12 +1,13 @@
 #include "solver/output/ply_writer.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <numbers>
 
 #include "absl/strings/str_cat.h"
+#include "solver/output/export_mesh.h"
 #include "solver/output/output_file.h"
-#include "solver/output/vertex_radiosity.h"
 
 namespace radflux {
 namespace {
@@ -20,7 +21,9 @@ void Append(std::string& out, T value) {
   out.append(bytes, sizeof(T));
 }
 
-std::string PlyHeader(size_t vertices, size_t faces) {
+// `wide`: a face has more than 255 vertices (a patch with many T-junctions), so the
+// vertex count of a face is written as uint32 instead of uint8.
+std::string PlyHeader(size_t vertices, size_t faces, bool wide) {
   return absl::StrCat(
       "ply\nformat binary_little_endian 1.0\n",
       "comment radflux lit mesh: positions in scene units, radiosity in W/m^2,\n",
@@ -29,7 +32,7 @@ std::string PlyHeader(size_t vertices, size_t faces) {
       "property float nx\nproperty float ny\nproperty float nz\n",
       "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n",
       "property uchar red\nproperty uchar green\nproperty uchar blue\n", "element face ", faces,
-      "\n", "property list uchar int vertex_indices\nend_header\n");
+      "\n", "property list ", wide ? "uint" : "uchar", " int vertex_indices\nend_header\n");
 }
 
 void AppendVertex(std::string& out, const Vec3& position, const Vec3& normal, const Rgb& b,
@@ -43,22 +46,33 @@ void AppendVertex(std::string& out, const Vec3& position, const Vec3& normal, co
 
 }  // namespace
 
-absl::Status WritePly(const std::string& path, const PatchMesh& mesh,
+absl::Status WritePly(const std::string& path, const PatchMesh& mesh, const ShadingMesh& shading,
                       const std::vector<Rgb>& patch_radiosity, const ToneMapOptions& tone) {
-  auto vertex_radiosity = VertexRadiosity(mesh, patch_radiosity);
-  if (!vertex_radiosity.ok()) {
+  auto lit = BuildExportMesh(mesh, shading, patch_radiosity);
+  if (!lit.ok()) {
     return absl::InvalidArgumentError(
-        absl::StrCat("PLY file '", path, "': ", vertex_radiosity.status().message()));
+        absl::StrCat("PLY file '", path, "': ", lit.status().message()));
   }
-  const std::vector<Vec3> normals = VertexNormals(mesh);
-  std::string out = PlyHeader(mesh.positions.size(), mesh.size());
-  out.reserve(out.size() + mesh.positions.size() * 39 + mesh.size() * 17);
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    AppendVertex(out, mesh.positions[i], normals[i], (*vertex_radiosity)[i], tone);
+  size_t largest = 0;
+  for (size_t i = 0; i < lit->polygons(); ++i) {
+    largest = std::max<size_t>(largest, lit->polygon_first[i + 1] - lit->polygon_first[i]);
   }
-  for (const Patch& patch : mesh.patches) {
-    Append(out, static_cast<uint8_t>(patch.VertexCount()));
-    for (int k = 0; k < patch.VertexCount(); ++k) Append(out, static_cast<int32_t>(patch.v[k]));
+  const bool wide = largest > 255;
+  std::string out = PlyHeader(lit->positions.size(), lit->polygons(), wide);
+  out.reserve(out.size() + lit->positions.size() * 39 + lit->polygon_vertices.size() * 5);
+  for (size_t i = 0; i < lit->positions.size(); ++i) {
+    AppendVertex(out, lit->positions[i], lit->normals[i], lit->radiosity[i], tone);
+  }
+  for (size_t i = 0; i < lit->polygons(); ++i) {
+    const uint32_t count = lit->polygon_first[i + 1] - lit->polygon_first[i];
+    if (wide) {
+      Append(out, count);
+    } else {
+      Append(out, static_cast<uint8_t>(count));
+    }
+    for (uint32_t k = lit->polygon_first[i]; k < lit->polygon_first[i + 1]; ++k) {
+      Append(out, static_cast<int32_t>(lit->polygon_vertices[k]));
+    }
   }
   return WriteOutputFile(path, out, "PLY");
 }

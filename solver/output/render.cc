@@ -1,12 +1,12 @@
 #include "solver/output/render.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "solver/core/parallel.h"
-#include "solver/output/vertex_radiosity.h"
-#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -40,22 +40,56 @@ void RenderRow(const PatchMesh& mesh, const RayCaster& caster,
   }
 }
 
+// Parameters (s, t) in [0, 1]^2 of `point` (in the plane of quad p) under the bilinear map
+// v0 + s (v1 - v0) + t (v3 - v0) + s t (v0 - v1 + v2 - v3): the root in [0, 1] (or the
+// nearest to it) of the quadratic in s that the map's 2D cross product gives.
+std::pair<double, double> InverseBilinear(const PatchMesh& mesh, uint32_t p, const Vec3& point) {
+  const Frame frame = Frame::FromNormal(mesh.patches[p].normal);
+  const Vec3 v0 = mesh.Vertex(p, 0);
+  auto flat = [&](const Vec3& d) {
+    return std::array<double, 2>{Dot(d, frame.s), Dot(d, frame.t)};
+  };
+  auto cross = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return a[0] * b[1] - a[1] * b[0];
+  };
+  const auto e = flat(mesh.Vertex(p, 1) - v0), f = flat(mesh.Vertex(p, 3) - v0),
+             h = flat(point - v0);
+  const auto g = flat(v0 - mesh.Vertex(p, 1) + mesh.Vertex(p, 2) - mesh.Vertex(p, 3));
+  const double a = -cross(e, g), b = cross(h, g) - cross(e, f), c = cross(h, f);
+  const double root = std::sqrt(std::max(0.0, b * b - 4 * a * c));
+  const double q = -0.5 * (b + std::copysign(root, b));
+  auto outside = [](double x) { return std::isfinite(x) ? std::max(-x, x - 1) : 1e300; };
+  const double first = q != 0 ? c / q : 0, second = a != 0 ? q / a : 1e300;
+  const double s = std::clamp(outside(first) <= outside(second) ? first : second, 0.0, 1.0);
+  const std::array<double, 2> along = {f[0] + s * g[0], f[1] + s * g[1]};
+  const double length2 = along[0] * along[0] + along[1] * along[1];
+  const double t =
+      length2 > 0 ? ((h[0] - s * e[0]) * along[0] + (h[1] - s * e[1]) * along[1]) / length2 : 0;
+  return {s, std::clamp(t, 0.0, 1.0)};
+}
+
 }  // namespace
 
-std::array<double, 4> PatchVertexWeights(const Patch& patch, double u, double v) {
+std::array<double, 4> PatchVertexWeights(const PatchMesh& mesh, uint32_t p, double u, double v) {
+  const Patch& patch = mesh.patches[p];
   u = std::clamp(u, 0.0, 1.0);
   v = std::clamp(v, 0.0, 1.0);
   if (patch.IsTriangle()) {
     const double s = u + v > 1 ? 1 / (u + v) : 1;  // only rounding can push u+v past 1
     return {1 - (u + v) * s, u * s, v * s, 0};
   }
-  if (u + v <= 1) return {1 - u - v, u, 0, v};  // triangle (v0, v1, v3)
-  return {0, 1 - v, u + v - 1, 1 - u};          // triangle (v2, v3, v1) with u = 1-u', v = 1-v'
+  const std::array<double, 4> in_triangle = u + v <= 1
+                                                ? std::array<double, 4>{1 - u - v, u, 0, v}
+                                                : std::array<double, 4>{0, 1 - v, u + v - 1, 1 - u};
+  Vec3 point;
+  for (int k = 0; k < 4; ++k) point += mesh.Vertex(p, k) * in_triangle[k];
+  const auto [s, t] = InverseBilinear(mesh, p, point);
+  return {(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t};
 }
 
 Rgb InterpolateAtHit(const PatchMesh& mesh, const std::vector<Rgb>& vertex_values, const Hit& hit) {
   const Patch& patch = mesh.patches[hit.patch];
-  const std::array<double, 4> w = PatchVertexWeights(patch, hit.u, hit.v);
+  const std::array<double, 4> w = PatchVertexWeights(mesh, hit.patch, hit.u, hit.v);
   Rgb value{};
   for (int k = 0; k < 4; ++k) {
     if (w[k] == 0) continue;
@@ -85,16 +119,6 @@ absl::StatusOr<Image> RenderRadiance(const PatchMesh& mesh, const RayCaster& cas
     }
   });
   return image;
-}
-
-absl::StatusOr<Image> RenderPatchRadiosity(const PatchMesh& mesh,
-                                           const std::vector<Rgb>& patch_radiosity,
-                                           const Camera& camera, const RenderOptions& options) {
-  auto vertex_radiosity = VertexRadiosity(mesh, patch_radiosity);
-  if (!vertex_radiosity.ok()) return vertex_radiosity.status();
-  auto caster = EmbreeRayCaster::Create(mesh);
-  if (!caster.ok()) return caster.status();
-  return RenderRadiance(mesh, **caster, *vertex_radiosity, camera, options);
 }
 
 }  // namespace radflux

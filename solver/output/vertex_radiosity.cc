@@ -1,44 +1,203 @@
 #include "solver/output/vertex_radiosity.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "absl/strings/str_cat.h"
+#include "solver/core/parallel.h"
 
 namespace radflux {
+namespace {
 
-absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh,
-                                                 const std::vector<Rgb>& patch_radiosity) {
+// Interior angle of patch p's corner at welded vertex w (radians).
+double CornerAngle(const PatchMesh& mesh, const ShadingMesh& shading, uint32_t p, uint32_t w) {
+  const Patch& patch = mesh.patches[p];
+  const int n = patch.VertexCount();
+  for (int k = 0; k < n; ++k) {
+    if (shading.welded[patch.v[k]] != w) continue;
+    const Vec3 here = mesh.positions[patch.v[k]];
+    const Vec3 a = mesh.positions[patch.v[(k + n - 1) % n]] - here;
+    const Vec3 b = mesh.positions[patch.v[(k + 1) % n]] - here;
+    return std::atan2(Length(Cross(a, b)), Dot(a, b));
+  }
+  return 0;
+}
+
+// Patches whose edge holds welded vertex w as a T-junction, per vertex (CSR).
+struct JunctionPatches {
+  std::vector<uint32_t> first, patches;
+  JunctionPatches(const ShadingMesh& s) : first(s.size() + 1, 0) {
+    for (const TJunction& j : s.t_junctions) ++first[j.vertex + 1];
+    for (size_t v = 0; v < s.size(); ++v) first[v + 1] += first[v];
+    patches.resize(s.t_junctions.size());
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (const TJunction& j : s.t_junctions) patches[fill[j.vertex]++] = j.patch;
+  }
+};
+
+// Adds the patches around every corner of the patches in `out` (through shared corners
+// and T-junctions), keeping `out` sorted and unique.
+void GrowRing(const PatchMesh& mesh, const ShadingMesh& s, const JunctionPatches& junctions,
+              std::vector<uint32_t>& out) {
+  const size_t ring = out.size();
+  for (size_t i = 0; i < ring; ++i) {
+    const Patch& patch = mesh.patches[out[i]];
+    for (int k = 0; k < patch.VertexCount(); ++k) {
+      const uint32_t v = s.welded[patch.v[k]];
+      out.insert(out.end(), s.vertex_patches.begin() + s.first_patch[v],
+                 s.vertex_patches.begin() + s.first_patch[v + 1]);
+      out.insert(out.end(), junctions.patches.begin() + junctions.first[v],
+                 junctions.patches.begin() + junctions.first[v + 1]);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+// Whether the patches' centroids spread in two directions of the plane of `normal` (the
+// smaller eigenvalue of their covariance is not negligible).
+bool CentroidsSpanThePlane(const PatchMesh& mesh, const std::vector<uint32_t>& patches,
+                           const Vec3& normal) {
+  const Frame frame = Frame::FromNormal(normal);
+  double mx = 0, my = 0, cxx = 0, cxy = 0, cyy = 0;
+  for (uint32_t p : patches) {
+    mx += Dot(mesh.patches[p].centroid, frame.s) / patches.size();
+    my += Dot(mesh.patches[p].centroid, frame.t) / patches.size();
+  }
+  for (uint32_t p : patches) {
+    const double x = Dot(mesh.patches[p].centroid, frame.s) - mx;
+    const double y = Dot(mesh.patches[p].centroid, frame.t) - my;
+    cxx += x * x, cxy += x * y, cyy += y * y;
+  }
+  const double root = std::hypot((cxx - cyy) / 2, cxy), half_trace = (cxx + cyy) / 2;
+  return half_trace - root > 1e-6 * (half_trace + root);
+}
+
+// The patches a vertex's value is fitted to: those around it (using it as a corner or
+// holding it on an edge); for a boundary vertex (the angles around it do not close to a
+// full turn) also the patches around their corners, and a ring more (at most twice) while
+// their centroids lie on a line.
+void FitPatches(const PatchMesh& mesh, const ShadingMesh& s, const JunctionPatches& junctions,
+                uint32_t w, std::vector<uint32_t>& out) {
+  out.assign(s.vertex_patches.begin() + s.first_patch[w],
+             s.vertex_patches.begin() + s.first_patch[w + 1]);
+  double turn = std::numbers::pi * (junctions.first[w + 1] - junctions.first[w]);
+  for (uint32_t p : out) turn += CornerAngle(mesh, s, p, w);
+  out.insert(out.end(), junctions.patches.begin() + junctions.first[w],
+             junctions.patches.begin() + junctions.first[w + 1]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (std::abs(turn - 2 * std::numbers::pi) <= 1e-3) return;
+  GrowRing(mesh, s, junctions, out);
+  for (int more = 0; more < 2 && !CentroidsSpanThePlane(mesh, out, s.normals[w]); ++more) {
+    GrowRing(mesh, s, junctions, out);
+  }
+}
+
+// Per band, the value at `at` of the area-weighted least-squares plane through the
+// patches' (centroid, value) in the tangent plane of `normal`. Directions in which the
+// centroids do not spread (a row of patches) get zero slope.
+Rgb FitPlaneAt(const PatchMesh& mesh, const std::vector<Rgb>& b,
+               const std::vector<uint32_t>& patches, const Vec3& at, const Vec3& normal) {
+  const Frame frame = Frame::FromNormal(normal);
+  double weight = 0, mx = 0, my = 0;
+  Rgb mean{};
+  for (uint32_t p : patches) {
+    const Vec3 d = mesh.patches[p].centroid - at;
+    const double a = mesh.patches[p].area;
+    weight += a, mx += a * Dot(d, frame.s), my += a * Dot(d, frame.t);
+    for (int k = 0; k < kBands; ++k) mean[k] += a * b[p][k];
+  }
+  if (!(weight > 0)) return mean;
+  mx /= weight, my /= weight;
+  for (double& v : mean) v /= weight;
+  double cxx = 0, cxy = 0, cyy = 0;
+  Rgb rx{}, ry{};
+  for (uint32_t p : patches) {
+    const Vec3 d = mesh.patches[p].centroid - at;
+    const double a = mesh.patches[p].area;
+    const double x = Dot(d, frame.s) - mx, y = Dot(d, frame.t) - my;
+    cxx += a * x * x, cxy += a * x * y, cyy += a * y * y;
+    for (int k = 0; k < kBands; ++k) {
+      rx[k] += a * x * (b[p][k] - mean[k]);
+      ry[k] += a * y * (b[p][k] - mean[k]);
+    }
+  }
+  // Pseudo-inverse of the 2x2 covariance through its eigen decomposition.
+  const double half_trace = (cxx + cyy) / 2;
+  const double root = std::hypot((cxx - cyy) / 2, cxy);
+  const double lambda[2] = {half_trace + root, half_trace - root};
+  const double angle = 0.5 * std::atan2(2 * cxy, cxx - cyy);
+  const double ex[2] = {std::cos(angle), -std::sin(angle)};
+  const double ey[2] = {std::sin(angle), std::cos(angle)};
+  Rgb value = mean;
+  for (int e = 0; e < 2; ++e) {
+    if (!(lambda[e] > 1e-6 * lambda[0])) continue;
+    const double along_mean = ex[e] * mx + ey[e] * my;  // the vertex is at 0
+    for (int k = 0; k < kBands; ++k) {
+      const double slope = (ex[e] * rx[k] + ey[e] * ry[k]) / lambda[e];
+      value[k] -= slope * along_mean;
+    }
+  }
+  for (double& v : value) v = std::max(v, 0.0);
+  return value;
+}
+
+// Each T-junction vertex takes the interpolation along its edge; longer edges first, so
+// a junction on an edge whose end is itself a junction sees that end's final value.
+void ApplyTJunctions(const PatchMesh& mesh, const ShadingMesh& s, std::vector<Rgb>& values) {
+  std::vector<std::pair<double, size_t>> order;
+  for (size_t i = 0; i < s.t_junctions.size(); ++i) {
+    const TJunction& j = s.t_junctions[i];
+    const Patch& patch = mesh.patches[j.patch];
+    const Vec3 a = mesh.positions[patch.v[j.edge]];
+    const Vec3 b = mesh.positions[patch.v[(j.edge + 1) % patch.VertexCount()]];
+    order.push_back({-Length(b - a), i});
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [unused, i] : order) {
+    const TJunction& j = s.t_junctions[i];
+    const Patch& patch = mesh.patches[j.patch];
+    const Rgb& a = values[s.welded[patch.v[j.edge]]];
+    const Rgb& b = values[s.welded[patch.v[(j.edge + 1) % patch.VertexCount()]]];
+    for (int k = 0; k < kBands; ++k) values[j.vertex][k] = (1 - j.t) * a[k] + j.t * b[k];
+  }
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
+                                                       const ShadingMesh& shading,
+                                                       const std::vector<Rgb>& patch_radiosity) {
   if (patch_radiosity.size() != mesh.size()) {
     return absl::InvalidArgumentError(absl::StrCat("radiosity has ", patch_radiosity.size(),
                                                    " values for ", mesh.size(), " patches"));
   }
-  std::vector<Rgb> sum(mesh.positions.size(), Rgb{});
-  std::vector<double> weight(mesh.positions.size(), 0.0);
-  for (size_t p = 0; p < mesh.size(); ++p) {
-    const Patch& patch = mesh.patches[p];
-    for (int k = 0; k < patch.VertexCount(); ++k) {
-      const uint32_t vertex = patch.v[k];
-      if (vertex >= sum.size()) {
-        return absl::InvalidArgumentError(
-            absl::StrCat("patch ", p, " uses vertex ", vertex, " of ", sum.size()));
-      }
-      for (int b = 0; b < kBands; ++b) sum[vertex][b] += patch.area * patch_radiosity[p][b];
-      weight[vertex] += patch.area;
+  if (shading.welded.size() != mesh.positions.size()) {
+    return absl::InvalidArgumentError("the shading mesh was built for another mesh");
+  }
+  const JunctionPatches junctions(shading);
+  std::vector<Rgb> values(shading.size(), Rgb{});
+  ParallelFor(static_cast<int64_t>(shading.size()), 4096, 0, [&](int64_t begin, int64_t end) {
+    std::vector<uint32_t> patches;
+    for (auto w = static_cast<uint32_t>(begin); w < end; ++w) {
+      FitPatches(mesh, shading, junctions, w, patches);
+      values[w] = FitPlaneAt(mesh, patch_radiosity, patches,
+                             mesh.positions[shading.representative[w]], shading.normals[w]);
     }
-  }
-  for (size_t i = 0; i < sum.size(); ++i) {
-    if (weight[i] <= 0) continue;
-    for (double& value : sum[i]) value /= weight[i];
-  }
-  return sum;
+  });
+  ApplyTJunctions(mesh, shading, values);
+  return values;
 }
 
-std::vector<Vec3> VertexNormals(const PatchMesh& mesh) {
-  std::vector<Vec3> normals(mesh.positions.size(), Vec3{0, 0, 1});
-  for (const Patch& patch : mesh.patches) {
-    for (int k = 0; k < patch.VertexCount(); ++k) {
-      if (patch.v[k] < normals.size()) normals[patch.v[k]] = patch.normal;
-    }
-  }
-  return normals;
+absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh, const ShadingMesh& shading,
+                                                 const std::vector<Rgb>& patch_radiosity) {
+  auto welded = WeldedVertexRadiosity(mesh, shading, patch_radiosity);
+  if (!welded.ok()) return welded.status();
+  std::vector<Rgb> values(mesh.positions.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = (*welded)[shading.welded[i]];
+  return values;
 }
 
 }  // namespace radflux

@@ -1,24 +1,30 @@
-// Per-vertex values of a PatchMesh, for Gouraud shading and mesh export. A vertex takes
-// the area-weighted mean of the patches that use it; since PatchMesh never shares a
-// vertex between faces, the mean stays inside one source face and creases stay sharp.
+// Per-vertex values of a PatchMesh, for Gouraud shading and mesh export, continuous
+// across the faces that ShadingMesh welds. Each welded vertex takes, per band, the value
+// at its position of the plane fitted by area-weighted least squares to its patches'
+// values at their centroids: the patches around it for an interior vertex, those and
+// their neighbours for a boundary vertex (so the value there is extrapolated from the
+// inside, not averaged: a linear field is reproduced exactly everywhere). A T-junction
+// vertex then takes the linear interpolation along the edge it lies on, so both sides of
+// that edge interpolate the same values.
 #pragma once
 
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "solver/core/bands.h"
-#include "solver/core/vec3.h"
 #include "solver/mesh/patch_mesh.h"
+#include "solver/output/shading_mesh.h"
 
 namespace radflux {
 
-// Radiosity per vertex (W/m^2 per band) from radiosity per patch; one entry per
-// mesh.positions, zero for a vertex no patch uses. Fails if the sizes disagree.
-absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh,
-                                                 const std::vector<Rgb>& patch_radiosity);
+// Radiosity per welded vertex (W/m^2 per band, >= 0) from radiosity per patch; one entry
+// per shading.size(). Fails if the sizes disagree.
+absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
+                                                       const ShadingMesh& shading,
+                                                       const std::vector<Rgb>& patch_radiosity);
 
-// Unit normal per vertex: the normal of the (single) face whose patches use it;
-// +z for a vertex no patch uses.
-std::vector<Vec3> VertexNormals(const PatchMesh& mesh);
+// The same, one entry per mesh.positions (a position takes its welded vertex's value).
+absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh, const ShadingMesh& shading,
+                                                 const std::vector<Rgb>& patch_radiosity);
 
 }  // namespace radflux

@@ -3,7 +3,8 @@
 // rows. The job ends FAILED with a plain "disk full writing ..." message, never SUCCEEDED;
 // its partial files are gone; the server keeps answering; the FAILED state is written even
 // when SQLite itself finds the disk full (the store's space reserve) and survives a restart;
-// once space is back a small job succeeds with the exact result.
+// once space is back a small job succeeds with the exact result. A job that cannot fit the
+// disk at all is refused at submit.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -67,8 +68,8 @@ TEST_F(DiskFullTest, JobOnAFillingDiskFailsCleanlyAndTheServerGoesOn) {
   EXPECT_TRUE(FilesNamed(data_dir_ + "/jobs/" + big.job_id(), "").empty());
   EXPECT_TRUE(FilesNamed(data_dir_, ".tmp").empty());
 
-  // While the disk stays full, a submit is refused as such (it was INTERNAL) or its job
-  // fails the same way; never a success.
+  // While the disk stays full, a submit is refused as such (no room for its estimate or for
+  // the space reserve; it was INTERNAL) or its job fails the same way; never a success.
   disk.Fill();
   v1::Job refused;
   const grpc::Status status = Submit(SmallOptions(100, "jacobi"), &refused, sha);
@@ -76,7 +77,7 @@ TEST_F(DiskFullTest, JobOnAFillingDiskFailsCleanlyAndTheServerGoesOn) {
     EXPECT_EQ(Watch(refused.job_id()).back().state(), v1::JOB_STATE_FAILED);
   } else {
     EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
-    EXPECT_NE(status.error_message().find("disk full"), std::string::npos);
+    EXPECT_NE(status.error_message().find("disk"), std::string::npos) << status.error_message();
   }
 
   // Space back: a small job succeeds with the exact result, and a restart keeps the failed
@@ -93,6 +94,24 @@ TEST_F(DiskFullTest, JobOnAFillingDiskFailsCleanlyAndTheServerGoesOn) {
   StartServer();
   ASSERT_TRUE(stub_->GetJob(Context().get(), get, &stored).ok());
   EXPECT_EQ(stored.state(), v1::JOB_STATE_FAILED);
+}
+
+// A job whose disk estimate (rows, checkpoint, result) exceeds the data directory's free
+// space is refused at submit, before any work, naming both; a job that fits is taken.
+TEST_F(DiskFullTest, JobThatCannotFitTheDiskIsRefusedAtSubmit) {
+  TinyFilesystem disk(data_dir_, 16 << 20);
+  ASSERT_TRUE(disk.ok());
+  StartServer();
+  const std::string sha = UploadCornell();
+  v1::SolveOptions huge = SmallOptions(5000, "jacobi");
+  huge.set_rays(4096);  // up to 4160 entries in each of 5000 rows: far beyond 16 MiB
+  v1::Job job;
+  const grpc::Status status = Submit(huge, &job, sha);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_NE(status.error_message().find("MiB of disk"), std::string::npos) << status.error_message();
+  EXPECT_NE(status.error_message().find(data_dir_), std::string::npos) << status.error_message();
+  ASSERT_TRUE(Submit(SmallOptions(100, "jacobi"), &job, sha).ok());
+  EXPECT_EQ(Watch(job.job_id()).back().state(), v1::JOB_STATE_SUCCEEDED);
 }
 
 // SQLite itself finds the disk full: a RUNNING update is refused with a plain message,

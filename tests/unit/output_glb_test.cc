@@ -14,6 +14,7 @@ namespace {
 
 using output_testing::AddGridFace;
 using output_testing::AddTriangleFace;
+using output_testing::ShadeOneMaterial;
 using output_testing::TempPath;
 
 // The accessor's elements as floats (or raw uint32 bits for indices).
@@ -38,7 +39,7 @@ TEST(OutputGlb, TinyGltfLoadsItBackWithColoursAndUnlitMaterial) {
   options.metres_per_unit = 0.001;
   options.tone.scale = 0.5;
   const std::string path = TempPath("mesh.glb");
-  ASSERT_TRUE(WriteGlb(path, mesh, b, options).ok());
+  ASSERT_TRUE(WriteGlb(path, mesh, ShadeOneMaterial(mesh), b, options).ok());
 
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
@@ -61,7 +62,7 @@ TEST(OutputGlb, TinyGltfLoadsItBackWithColoursAndUnlitMaterial) {
   EXPECT_EQ(model.accessors[static_cast<size_t>(primitive.indices)].componentType,
             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
   ASSERT_EQ(indices.size(), 4u * 6 + 3);  // four quads as two triangles, one triangle
-  const std::vector<Rgb> expected = *VertexRadiosity(mesh, b);
+  const std::vector<Rgb> expected = *VertexRadiosity(mesh, ShadeOneMaterial(mesh), b);
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
       EXPECT_FLOAT_EQ(positions[3 * i + k], mesh.positions[i][k] * 0.001);
@@ -88,10 +89,11 @@ TEST(OutputGlb, UnwritableDirectoryAndEmptyMeshAreErrors) {
   PatchMesh mesh;
   AddGridFace(mesh);
   const std::string path = "/nonexistent_radflux_dir/mesh.glb";
-  const absl::Status status = WriteGlb(path, mesh, std::vector<Rgb>(4, Rgb{1, 1, 1}), {});
+  const absl::Status status =
+      WriteGlb(path, mesh, ShadeOneMaterial(mesh), std::vector<Rgb>(4, Rgb{1, 1, 1}), {});
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find(path), std::string::npos) << status;
-  EXPECT_FALSE(WriteGlb(TempPath("empty.glb"), PatchMesh{}, {}, {}).ok());
+  EXPECT_FALSE(WriteGlb(TempPath("empty.glb"), PatchMesh{}, ShadingMesh{}, {}, {}).ok());
 }
 
 }  // namespace

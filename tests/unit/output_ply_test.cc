@@ -15,6 +15,7 @@ namespace {
 
 using output_testing::AddGridFace;
 using output_testing::AddTriangleFace;
+using output_testing::ShadeOneMaterial;
 using output_testing::TempPath;
 
 // A just-enough reader for the writer's layout: header lines, then the binary body.
@@ -59,7 +60,7 @@ TEST(OutputPly, WrittenFileParsesBackWithCountsAndValues) {
   ToneMapOptions tone;
   tone.scale = 0.5;
   const std::string path = TempPath("mesh.ply");
-  ASSERT_TRUE(WritePly(path, mesh, b, tone).ok());
+  ASSERT_TRUE(WritePly(path, mesh, ShadeOneMaterial(mesh), b, tone).ok());
 
   const PlyFile ply = ReadPly(path);
   ASSERT_GE(ply.header.size(), 2u);
@@ -71,7 +72,7 @@ TEST(OutputPly, WrittenFileParsesBackWithCountsAndValues) {
             ply.header.end());
   EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property uchar red"),
             ply.header.end());
-  const std::vector<Rgb> expected = *VertexRadiosity(mesh, b);
+  const std::vector<Rgb> expected = *VertexRadiosity(mesh, ShadeOneMaterial(mesh), b);
   size_t offset = 0;
   for (size_t i = 0; i < ply.vertices; ++i) {
     for (int k = 0; k < 3; ++k)
@@ -100,7 +101,8 @@ TEST(OutputPly, UnwritableDirectoryNamesTheFile) {
   PatchMesh mesh;
   AddGridFace(mesh);
   const std::string path = "/nonexistent_radflux_dir/mesh.ply";
-  const absl::Status status = WritePly(path, mesh, std::vector<Rgb>(4, Rgb{1, 1, 1}), {});
+  const absl::Status status =
+      WritePly(path, mesh, ShadeOneMaterial(mesh), std::vector<Rgb>(4, Rgb{1, 1, 1}), {});
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find(path), std::string::npos) << status;
   EXPECT_NE(status.message().find("PLY"), std::string::npos) << status;

@@ -8,6 +8,7 @@
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/output/render.h"
+#include "solver/output/shading_mesh.h"
 #include "solver/output/vertex_radiosity.h"
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "solver/raytrace/embree_ray_caster.h"
@@ -51,7 +52,12 @@ TEST(OutputRender, CornellRedWallIsOnTheLeft) {
     if (ObjectOf(c, p) == "red_wall") b[p] = {1, 1, 1};
   }
   const int n = 64;
-  auto image = RenderPatchRadiosity(c.mesh, b, CornellCamera(n, n), {});
+  auto caster = EmbreeRayCaster::Create(c.mesh);
+  ASSERT_TRUE(caster.ok());
+  auto shading = BuildShadingMesh(c.mesh, FaceMaterials(c.scene));
+  ASSERT_TRUE(shading.ok());
+  auto image = RenderRadiance(c.mesh, **caster, *VertexRadiosity(c.mesh, *shading, b),
+                              CornellCamera(n, n), {});
   ASSERT_TRUE(image.ok()) << image.status();
   int lit_left = 0, lit_right = 0;
   for (int y = 0; y < n; ++y) {
@@ -103,7 +109,8 @@ TEST(OutputRender, CornellPreviewHasRedLeftGreenRightAndIsThreadIndependent) {
   auto caster = EmbreeRayCaster::Create(c.mesh);
   ASSERT_TRUE(caster.ok()) << caster.status();
   const std::vector<Rgb> b = DirectLightPreview(c, **caster);
-  const std::vector<Rgb> vertex_b = *VertexRadiosity(c.mesh, b);
+  const std::vector<Rgb> vertex_b =
+      *VertexRadiosity(c.mesh, *BuildShadingMesh(c.mesh, FaceMaterials(c.scene)), b);
   const int n = 128;
   RenderOptions options;
   options.samples_per_axis = 2;
@@ -197,7 +204,8 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
         for (int k = 0; k < 3; ++k)
           EXPECT_NEAR(got[k], expected[k], 2e-4) << p << " " << i << " " << j;
         // Bilinear weights (1-u)(1-v), u(1-v), uv, (1-u)v on Embree's u,v would be exact
-        // only on a parallelogram: Embree's quad u,v are per-triangle, not bilinear.
+        // only on a parallelogram: Embree's quad u,v are per-triangle, not the quad's own
+        // bilinear parameters, which PatchVertexWeights recovers from the hit point.
         const double u = hit.u, v = hit.v;
         const std::array<double, 4> bilinear = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
         double at_bilinear = 0;
@@ -211,19 +219,62 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
   }
   EXPECT_EQ(hits, 2 * 11 * 11);
   EXPECT_GT(second_triangle_hits, 20);  // both halves of the quad were exercised
-  EXPECT_GT(max_bilinear_error, 0.1);   // why PatchVertexWeights uses per-triangle weights
+  EXPECT_GT(max_bilinear_error, 0.1);   // why PatchVertexWeights inverts the bilinear map
 }
 
-TEST(OutputRender, WeightsOfTheTwoQuadHalvesAndTriangle) {
-  Patch quad;
-  quad.v = {0, 1, 2, 3};
-  Patch triangle;
-  triangle.v = {0, 1, 2, 2};
+TEST(OutputRender, QuadWeightsAreBilinearInTheQuadsOwnParameters) {
+  PatchMesh mesh;  // a trapezoid: bilinear parameters differ from Embree's per-triangle u,v
+  AddFace(mesh, {{0, 0, 0}, {4, 0, 0}, {3, 2, 0}, {1, 2, 0}}, {{0, 1, 2, 3}}, {0, 0, 1});
+  AddFace(mesh, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {{0, 1, 2, 2}}, {0, 0, 1});
   using W = std::array<double, 4>;
-  EXPECT_EQ(PatchVertexWeights(quad, 0.25, 0.5), (W{0.25, 0.25, 0, 0.5}));
-  EXPECT_EQ(PatchVertexWeights(quad, 0.75, 0.5), (W{0, 0.5, 0.25, 0.25}));
-  EXPECT_EQ(PatchVertexWeights(quad, 1, 1), (W{0, 0, 1, 0}));
-  EXPECT_EQ(PatchVertexWeights(triangle, 0.25, 0.5), (W{0.25, 0.25, 0.5, 0}));
+  // The first triangle's u,v (0.375, 0.5) is the point (2, 1), the trapezoid's bilinear
+  // centre s = t = 0.5 (per-triangle weights there would be 0.125, 0.375, 0, 0.5).
+  const W w = PatchVertexWeights(mesh, 0, 0.375, 0.5);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(w[k], 0.25, 1e-12) << k;
+  const W corner = PatchVertexWeights(mesh, 0, 1, 1);  // the second triangle's v0 = v2
+  EXPECT_NEAR(corner[2], 1, 1e-12);
+  // Along the edge v1-v2 (u + v = 1 in the first triangle is the diagonal, not an edge),
+  // the weights are linear in the distance: halfway gives 1/2, 1/2.
+  const W edge = PatchVertexWeights(mesh, 0, 1, 0.5);  // second triangle: u' = 0, v' = 0.5
+  EXPECT_NEAR(edge[1], 0.5, 1e-12);
+  EXPECT_NEAR(edge[2], 0.5, 1e-12);
+  EXPECT_EQ(PatchVertexWeights(mesh, 1, 0.25, 0.5), (W{0.25, 0.25, 0.5, 0}));
+}
+
+// A linear field on a flat wall of three faces with T-junctions: the picture shows it
+// exactly, so there is no jump where the faces meet (x = 2).
+TEST(OutputRender, FlatWallOfSeveralFacesShowsALinearFieldWithoutAJump) {
+  PatchMesh mesh;
+  output_testing::AddTJunctionWall(mesh);
+  auto field = [](const Vec3& p) { return 2 + 0.5 * p.x - 0.75 * p.y; };
+  std::vector<Rgb> b;
+  for (const Patch& patch : mesh.patches) {
+    const double value = field(patch.centroid);
+    b.push_back({value, value, value});
+  }
+  auto caster = EmbreeRayCaster::Create(mesh);
+  ASSERT_TRUE(caster.ok());
+  const std::vector<Rgb> vertex_b =
+      *VertexRadiosity(mesh, output_testing::ShadeOneMaterial(mesh), b);
+  Camera camera;
+  camera.position = {2, 0.5, 1};  // sees x in [1.53, 2.47], y in [0.03, 0.97]
+  camera.look_at = {2, 0.5, 0};
+  camera.vertical_fov_degrees = 50;
+  camera.width = camera.height = 96;
+  auto image = RenderRadiance(mesh, **caster, vertex_b, camera, {});
+  ASSERT_TRUE(image.ok());
+  const PinholeProjection projection(camera);
+  int left = 0, right = 0;
+  for (int y = 0; y < camera.height; ++y) {
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = projection.RayThrough(x + 0.5, y + 0.5);
+      const Vec3 p = ray.origin + ray.direction * (-ray.origin.z / ray.direction.z);
+      ++(p.x < 2 ? left : right);
+      EXPECT_NEAR(image->Pixel(x, y)[0], field(p) / std::numbers::pi, 2e-6) << x << "," << y;
+    }
+  }
+  EXPECT_GT(left, 1000);  // the picture spans the edge x = 2
+  EXPECT_GT(right, 1000);
 }
 
 TEST(OutputRender, InvalidInputsAreErrors) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "solver/mesh/patch_mesh.h"
+#include "solver/output/shading_mesh.h"
 
 namespace radflux::output_testing {
 
@@ -51,9 +52,45 @@ inline void AddGridFace(PatchMesh& mesh) {
   AddFace(mesh, v, patches, {0, 0, 1});
 }
 
+// A face [x0, x1] x [y0, y1] in the z = 0 plane facing +z, split into nx x ny equal quads
+// (vertex (i, j) is the face's local index j (nx + 1) + i).
+inline void AddQuadGridFace(PatchMesh& mesh, double x0, double x1, int nx, double y0, double y1,
+                            int ny) {
+  std::vector<Vec3> v;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i)
+      v.push_back({x0 + (x1 - x0) * i / nx, y0 + (y1 - y0) * j / ny, 0});
+  }
+  std::vector<std::array<uint32_t, 4>> patches;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const auto a = static_cast<uint32_t>(j * (nx + 1) + i), row = static_cast<uint32_t>(nx + 1);
+      patches.push_back({a, a + 1, a + 1 + row, a + row});
+    }
+  }
+  AddFace(mesh, v, patches, {0, 0, 1});
+}
+
+// A flat wall of three faces with T-junctions where they meet: A = [0,2]x[0,1] as 2x3
+// quads, B = [2,3]x[0,0.5] and C = [2,3]x[0.5,1] as 1x2 quads each. A's edge x = 2 has
+// vertices at y = 1/3, 2/3; B's and C's at y = 0.25, 0.5, 0.75.
+inline void AddTJunctionWall(PatchMesh& mesh) {
+  AddQuadGridFace(mesh, 0, 2, 2, 0, 1, 3);
+  AddQuadGridFace(mesh, 2, 3, 1, 0, 0.5, 2);
+  AddQuadGridFace(mesh, 2, 3, 1, 0.5, 1, 2);
+}
+
 // A triangle face (0,0,1), (0,2,1), (0,0,3) in the plane x = 0, facing +x.
 inline void AddTriangleFace(PatchMesh& mesh) {
   AddFace(mesh, {{0, 0, 1}, {0, 2, 1}, {0, 0, 3}}, {{0, 1, 2, 2}}, {1, 0, 0});
+}
+
+// The shading mesh of `mesh` with every face of one material and the default options.
+inline ShadingMesh ShadeOneMaterial(const PatchMesh& mesh) {
+  const size_t faces = mesh.face_first_patch.empty() ? 0 : mesh.face_first_patch.size() - 1;
+  auto shading = BuildShadingMesh(mesh, std::vector<uint32_t>(faces, 0));
+  EXPECT_TRUE(shading.ok()) << shading.status();
+  return shading.ok() ? *shading : ShadingMesh{};
 }
 
 // A fresh path in the test's temporary directory.

@@ -8,51 +8,89 @@ namespace {
 
 using output_testing::AddFace;
 using output_testing::AddGridFace;
+using output_testing::AddQuadGridFace;
+using output_testing::AddTJunctionWall;
+using output_testing::ShadeOneMaterial;
 
-TEST(OutputVertexRadiosity, AreaWeightedMeanOfThePatchesAroundEachVertex) {
-  PatchMesh mesh;
-  AddGridFace(mesh);  // patch areas 2, 4, 1, 2
-  ASSERT_DOUBLE_EQ(mesh.patches[1].area, 4);
-  const std::vector<Rgb> b = {{1, 10, 0}, {2, 20, 0}, {3, 30, 0}, {4, 40, 0}};
-  auto v = VertexRadiosity(mesh, b);
+// A linear field per band; a patch's mean of it is its value at the patch's centroid.
+Rgb Linear(const Vec3& p) { return {2 + 0.5 * p.x - 0.25 * p.y, 1 + 0.1 * p.y, 3 - 0.3 * p.x}; }
+
+std::vector<Rgb> LinearPerPatch(const PatchMesh& mesh) {
+  std::vector<Rgb> b;
+  for (const Patch& patch : mesh.patches) b.push_back(Linear(patch.centroid));
+  return b;
+}
+
+void ExpectLinearAtEveryVertex(const PatchMesh& mesh) {
+  auto v = VertexRadiosity(mesh, ShadeOneMaterial(mesh), LinearPerPatch(mesh));
   ASSERT_TRUE(v.ok()) << v.status();
-  ASSERT_EQ(v->size(), 9u);
-  // Corners take their one patch.
-  EXPECT_DOUBLE_EQ((*v)[0][0], 1);
-  EXPECT_DOUBLE_EQ((*v)[2][0], 2);
-  EXPECT_DOUBLE_EQ((*v)[6][0], 3);
-  EXPECT_DOUBLE_EQ((*v)[8][0], 4);
-  // Edge midpoints: two patches.
-  EXPECT_DOUBLE_EQ((*v)[1][0], (2 * 1 + 4 * 2) / 6.0);  // bottom edge: patches 0, 1
-  EXPECT_DOUBLE_EQ((*v)[3][0], (2 * 1 + 1 * 3) / 3.0);  // left edge: patches 0, 2
-  EXPECT_DOUBLE_EQ((*v)[5][0], (4 * 2 + 2 * 4) / 6.0);  // right edge: patches 1, 3
-  EXPECT_DOUBLE_EQ((*v)[7][0], (1 * 3 + 2 * 4) / 3.0);  // top edge: patches 2, 3
-  // Centre: all four.
-  EXPECT_DOUBLE_EQ((*v)[4][0], (2 * 1 + 4 * 2 + 1 * 3 + 2 * 4) / 9.0);
-  EXPECT_DOUBLE_EQ((*v)[4][1], (2 * 10 + 4 * 20 + 1 * 30 + 2 * 40) / 9.0);
-  EXPECT_DOUBLE_EQ((*v)[4][2], 0);
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Rgb expected = Linear(mesh.positions[i]);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR((*v)[i][k], expected[k], 1e-12)
+          << "vertex " << mesh.positions[i].x << "," << mesh.positions[i].y << " band " << k;
+    }
+  }
+}
+
+TEST(OutputVertexRadiosity, ExtrapolationReproducesALinearFieldExactlyAtTheBoundary) {
+  PatchMesh uneven;  // 2x2 quads of unequal size: every vertex but one is on the boundary
+  AddGridFace(uneven);
+  ExpectLinearAtEveryVertex(uneven);
+  PatchMesh grid;
+  AddQuadGridFace(grid, -1, 3, 4, 0, 1.5, 3);
+  ExpectLinearAtEveryVertex(grid);
+  PatchMesh triangles;  // a quad as four triangles around its centre
+  AddFace(triangles, {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {1, 0.5, 0}},
+          {{0, 1, 4, 4}, {1, 2, 4, 4}, {2, 3, 4, 4}, {3, 0, 4, 4}}, {0, 0, 1});
+  ExpectLinearAtEveryVertex(triangles);
+}
+
+TEST(OutputVertexRadiosity, LinearFieldAcrossFacesWithTJunctionsIsExact) {
+  PatchMesh wall;
+  AddTJunctionWall(wall);
+  ExpectLinearAtEveryVertex(wall);
+}
+
+TEST(OutputVertexRadiosity, ARowOfPatchesGetsNoSlopeAcrossIt) {
+  PatchMesh row;  // 3x1: centroids on a line, so only the slope along x is known
+  AddQuadGridFace(row, 0, 3, 3, 0, 1, 1);
+  auto v = VertexRadiosity(row, ShadeOneMaterial(row), {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}});
+  ASSERT_TRUE(v.ok());
+  for (size_t i = 0; i < row.positions.size(); ++i) {
+    EXPECT_NEAR((*v)[i][0], 0.5 + row.positions[i].x, 1e-12) << i;  // B = x + 0.5, any y
+  }
+}
+
+TEST(OutputVertexRadiosity, ExtrapolationIsClampedAtZero) {
+  PatchMesh row;
+  AddQuadGridFace(row, 0, 3, 3, 0, 1, 1);
+  auto v = VertexRadiosity(row, ShadeOneMaterial(row), {{0.1, 1, 1}, {2, 2, 2}, {3, 3, 3}});
+  ASSERT_TRUE(v.ok());
+  EXPECT_EQ((*v)[0][0], 0);  // the fitted line is negative at x = 0
+  EXPECT_GT((*v)[0][1], 0);
 }
 
 TEST(OutputVertexRadiosity, CreasesBetweenFacesStaySharp) {
   // Floor (y = 0, facing +y) and wall (z = 0, facing +z) share the geometric edge
-  // from (0,0,0) to (1,0,0), each with its own vertices as PatchMesh guarantees.
+  // from (0,0,0) to (1,0,0); 90 degrees is past the crease angle.
   PatchMesh mesh;
   AddFace(mesh, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, {{0, 1, 2, 3}}, {0, 1, 0});
   AddFace(mesh, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2, 3}}, {0, 0, 1});
-  auto v = VertexRadiosity(mesh, {{1, 1, 1}, {5, 5, 5}});
+  const ShadingMesh shading = ShadeOneMaterial(mesh);
+  auto v = VertexRadiosity(mesh, shading, {{1, 1, 1}, {5, 5, 5}});
   ASSERT_TRUE(v.ok()) << v.status();
   for (uint32_t i = 0; i < 4; ++i) EXPECT_DOUBLE_EQ((*v)[i][0], 1) << "floor vertex " << i;
   for (uint32_t i = 4; i < 8; ++i) EXPECT_DOUBLE_EQ((*v)[i][0], 5) << "wall vertex " << i;
   EXPECT_EQ(mesh.positions[0], mesh.positions[4]);  // same point, different values
-  const std::vector<Vec3> normals = VertexNormals(mesh);
-  EXPECT_EQ(normals[0], Vec3(0, 1, 0));
-  EXPECT_EQ(normals[4], Vec3(0, 0, 1));
+  EXPECT_EQ(shading.normals[shading.welded[0]], Vec3(0, 1, 0));
+  EXPECT_EQ(shading.normals[shading.welded[4]], Vec3(0, 0, 1));
 }
 
 TEST(OutputVertexRadiosity, WrongNumberOfValuesIsAnError) {
   PatchMesh mesh;
   AddGridFace(mesh);
-  auto v = VertexRadiosity(mesh, {{1, 1, 1}});
+  auto v = VertexRadiosity(mesh, ShadeOneMaterial(mesh), {{1, 1, 1}});
   ASSERT_FALSE(v.ok());
   EXPECT_EQ(v.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(v.status().message().find("1 values for 4 patches"), std::string::npos);

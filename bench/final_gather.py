@@ -1,0 +1,73 @@
+#!/usr/bin/python3
+"""Block error of a final-gathered picture against a path-traced reference.
+
+Usage: final_gather.py RADFLUX.pfm REPORT.json REF_SEED1.npy REF_SEED2.npy [--block 4] [--tol 0.03]
+
+The picture and the reference (two Cycles renders with different seeds, n1 and n2 samples per
+pixel read from the .json beside each .npy, linear radiance, row 0 = top, combined as their
+sample-weighted mean) are cut into BLOCK x BLOCK pixel blocks (16 pixels at the default). A
+block's error is |mean radflux - mean reference| / mean reference of the sum over the three
+bands; blocks the reference sees as black (below 1e-3 of the image's mean: outside the box)
+are left out and counted. Prints the fraction of blocks within TOL and the error percentiles;
+the reference's own noise per block (sigma of the combined reference, from the two renders'
+difference: sigma = |h1 - h2| sqrt(n1 n2) / (n1 + n2), as a fraction, its RMS over blocks);
+and the final gather's and the solve's seconds from REPORT.
+"""
+import json
+import sys
+
+import numpy as np
+
+from cornell_vs_cycles import read_pfm
+
+
+def block_means(image, block):
+    h, w = image.shape[0] // block * block, image.shape[1] // block * block
+    s = image[:h, :w].sum(axis=2)
+    return s.reshape(h // block, block, w // block, block).mean(axis=(1, 3))
+
+
+def errors(test, ref, keep):
+    return np.abs(test[keep] - ref[keep]) / ref[keep]
+
+
+def summary(name, e, tol):
+    p = np.percentile(e, [50, 90, 99])
+    print(f"{name}: {np.mean(e <= tol) * 100:.1f}% of {e.size} blocks within {tol * 100:g}%; "
+          f"error median {p[0] * 100:.2f}%, 90th {p[1] * 100:.2f}%, 99th {p[2] * 100:.2f}%")
+
+
+def main():
+    args = sys.argv[1:]
+    opts = {"--block": "4", "--tol": "0.03"}
+    for k in list(opts):
+        if k in args:
+            i = args.index(k)
+            opts[k] = args[i + 1]
+            del args[i:i + 2]
+    if len(args) != 4:
+        raise SystemExit(__doc__)
+    block, tol = int(opts["--block"]), float(opts["--tol"])
+    radflux = read_pfm(args[0])
+    halves = [np.load(p).astype(np.float64) for p in args[2:4]]
+    n1, n2 = (json.load(open(p[:-len(".npy")] + ".json"))["opts"]["samples"] for p in args[2:4])
+    n1, n2 = int(n1), int(n2)
+    ref = (n1 * halves[0] + n2 * halves[1]) / (n1 + n2)
+    if radflux.shape != ref.shape:
+        raise SystemExit(f"picture {radflux.shape} and reference {ref.shape} differ in size")
+    r, t = block_means(ref, block), block_means(radflux, block)
+    h1, h2 = block_means(halves[0], block), block_means(halves[1], block)
+    keep = r > 1e-3 * r.mean()
+    print(f"{block}x{block}-pixel blocks: {keep.sum()} lit, {(~keep).sum()} black in the reference")
+    summary("radflux vs reference", errors(t, r, keep), tol)
+    sigma = errors(h1, h2, keep) * np.sqrt(n1 * n2) / (n1 + n2)
+    print(f"reference: {n1} + {n2} samples per pixel; its own noise per block (sigma) RMS "
+          f"{np.sqrt(np.mean(sigma ** 2)) * 100:.2f}%, 90th percentile "
+          f"{np.percentile(sigma, 90) * 100:.2f}%")
+    seconds = json.load(open(args[1]))["seconds"]
+    print(f"final gather {seconds.get('gather', 0):.3f} s; rows {seconds['rows']:.3f} s, "
+          f"solve {seconds['solve']:.3f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,119 @@
+#include "solver/formfactor/blocker_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/formfactor/shaft_cull.h"
+#include "solver/formfactor/shaft_visibility.h"
+
+namespace radflux {
+namespace {
+
+constexpr uint32_t kLeafSize = 4;
+constexpr double kRelativeTolerance = 1e-9;  // shaft_cull.cc's margin, relative to the sizes
+
+}  // namespace
+
+BlockerBvh::BlockerBvh(const std::vector<SurfaceShape>& shapes, std::vector<uint32_t> blockers)
+    : shapes_(shapes), order_(std::move(blockers)) {
+  double extent = 0;
+  for (uint32_t k : order_) {
+    max_diameter_ = std::max(max_diameter_, shapes_[k].diameter);
+    for (int c = 0; c < 3; ++c) extent = std::max({extent, std::abs(shapes_[k].lo[c]), std::abs(shapes_[k].hi[c])});
+  }
+  pad_ = kRelativeTolerance * extent;
+  if (!order_.empty()) Build(0, static_cast<uint32_t>(order_.size()));
+}
+
+uint32_t BlockerBvh::Build(uint32_t begin, uint32_t end) {
+  Vec3 lo = shapes_[order_[begin]].lo, hi = shapes_[order_[begin]].hi;
+  Vec3 clo = shapes_[order_[begin]].centroid, chi = clo;
+  for (uint32_t k = begin; k < end; ++k) {
+    const SurfaceShape& s = shapes_[order_[k]];
+    lo = {std::min(lo.x, s.lo.x), std::min(lo.y, s.lo.y), std::min(lo.z, s.lo.z)};
+    hi = {std::max(hi.x, s.hi.x), std::max(hi.y, s.hi.y), std::max(hi.z, s.hi.z)};
+    clo = {std::min(clo.x, s.centroid.x), std::min(clo.y, s.centroid.y), std::min(clo.z, s.centroid.z)};
+    chi = {std::max(chi.x, s.centroid.x), std::max(chi.y, s.centroid.y), std::max(chi.z, s.centroid.z)};
+  }
+  const uint32_t index = static_cast<uint32_t>(nodes_.size());
+  nodes_.push_back(Node{(lo + hi) * 0.5, (hi - lo) * 0.5, begin, end - begin});
+  if (end - begin <= kLeafSize) return index;
+  const Vec3 extent = chi - clo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](uint32_t a, uint32_t b) {
+                     return shapes_[a].centroid[axis] < shapes_[b].centroid[axis];
+                   });
+  Build(begin, mid);
+  const uint32_t right = Build(mid, end);
+  nodes_[index].first = right;
+  nodes_[index].count = 0;
+  nodes_[index].axis = static_cast<uint8_t>(axis);
+  return index;
+}
+
+bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
+  if (nodes_.empty()) return false;
+  const SurfaceShape& si = shapes_[i];
+  const SurfaceShape& sj = shapes_[j];
+  const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t index = stack[--top];
+    const Node& node = nodes_[index];
+    if (!shaft.MayMeetBox(node.center, node.half)) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first;
+      stack[top++] = index + 1;
+      continue;
+    }
+    for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+      const uint32_t b = order_[k];
+      if (b != i && b != j && shaft.MayHold(shapes_[b])) return true;
+    }
+  }
+  return false;
+}
+
+bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
+  if (nodes_.empty()) return false;
+  const Vec3 d = b - a;
+  const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};  // +-inf along an axis the segment does not move
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t index = stack[--top];
+    const Node& node = nodes_[index];
+    // Slab test of the segment a + t d, t in [0, 1], against the box (widened a little).
+    double t0 = 0, t1 = 1;
+    for (int c = 0; c < 3; ++c) {
+      const double lo = node.center[c] - node.half[c] - pad_, hi = node.center[c] + node.half[c] + pad_;
+      if (d[c] == 0) {
+        if (a[c] < lo || a[c] > hi) t0 = 2;
+        continue;
+      }
+      const double ta = (lo - a[c]) * inv[c], tb = (hi - a[c]) * inv[c];
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
+    }
+    if (t0 > t1) continue;
+    if (node.count == 0) {
+      // The child nearer a along the split axis first: a blocked segment stops sooner.
+      const bool right_first = d[node.axis] < 0;
+      stack[top++] = right_first ? index + 1 : node.first;
+      stack[top++] = right_first ? node.first : index + 1;
+      continue;
+    }
+    for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+      const uint32_t s = order_[k];
+      if (s != i && s != j && SegmentHitsSurface(a, b, shapes_[s])) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace radflux

@@ -1,0 +1,202 @@
+#include "solver/output/default_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+
+namespace radflux {
+namespace {
+
+constexpr int kGrid = 6;               // probe points per box axis
+constexpr int kProbeRays = 64;         // rays per probe point
+constexpr int kAzimuths = 16;          // horizontal rays from the chosen point
+constexpr double kInsideLimit = 0.25;  // most rays that may escape or see a back face
+constexpr double kEyeHeight = 0.55;    // fraction of the floor-to-ceiling height
+constexpr double kBackOff = 0.9;       // fraction of the way to the wall behind
+constexpr double kSnapDegrees = 10;    // a long axis this close to a box axis is that axis
+constexpr int kOpeningRays = 3;        // horizontal rays that escape through a missing side
+                                       // (a window or a door lets fewer through)
+
+struct Box {
+  Vec3 lo, hi;
+  Vec3 Centre() const { return (lo + hi) * 0.5; }
+  Vec3 Extent() const { return hi - lo; }
+};
+
+Box Bounds(const PatchMesh& mesh) {
+  Box box{mesh.positions.at(0), mesh.positions.at(0)};
+  for (const Vec3& p : mesh.positions) {
+    box.lo = {std::min(box.lo.x, p.x), std::min(box.lo.y, p.y), std::min(box.lo.z, p.z)};
+    box.hi = {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y), std::max(box.hi.z, p.z)};
+  }
+  return box;
+}
+
+Vec3 Axis(int i, double sign) {
+  return {i == 0 ? sign : 0.0, i == 1 ? sign : 0.0, i == 2 ? sign : 0.0};
+}
+
+// Index of the box axis closest to direction d.
+int NearestAxis(const Vec3& d) {
+  int best = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(d[i]) > std::abs(d[best])) best = i;
+  }
+  return best;
+}
+
+// Unit direction i of n spread evenly over the sphere (a Fibonacci lattice).
+Vec3 SphereDirection(int i, int n) {
+  const double z = 1 - (2 * i + 1.0) / n;
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  const double phi = i * std::numbers::pi * (3 - std::sqrt(5.0));
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+struct Cast {
+  bool escaped = false;
+  bool back = false;  // hit the back of a one-sided patch
+  double distance = 0;
+};
+
+Cast CastFrom(const PatchMesh& mesh, const RayCaster& caster, const Vec3& origin,
+              const Vec3& unit) {
+  const Hit hit = caster.Intersect({origin, unit, 0, std::numeric_limits<double>::infinity()});
+  if (hit.patch == kNoPatch || hit.patch >= mesh.size()) return {true, false, 0};
+  const Patch& patch = mesh.patches[hit.patch];
+  return {false, Dot(unit, patch.normal) >= 0 && !patch.two_sided, hit.t};
+}
+
+// Distance from p (inside the box) to the box's boundary along unit d.
+double DistanceToBox(const Box& box, const Vec3& p, const Vec3& d) {
+  double t = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] > 0) t = std::min(t, (box.hi[i] - p[i]) / d[i]);
+    if (d[i] < 0) t = std::min(t, (box.lo[i] - p[i]) / d[i]);
+  }
+  return std::max(t, 0.0);
+}
+
+// The probe point with the largest mean free distance among those inside, if any.
+std::optional<Vec3> LargestOpenVolume(const PatchMesh& mesh, const RayCaster& caster,
+                                      const Box& box) {
+  std::optional<Vec3> best;
+  double best_distance = -1;
+  const Vec3 e = box.Extent();
+  for (int i = 0; i < kGrid * kGrid * kGrid; ++i) {
+    const Vec3 f{(i % kGrid + 0.5) / kGrid, (i / kGrid % kGrid + 0.5) / kGrid,
+                 (i / (kGrid * kGrid) + 0.5) / kGrid};
+    const Vec3 p = box.lo + Vec3{e.x * f.x, e.y * f.y, e.z * f.z};
+    int outside = 0, hits = 0;
+    double sum = 0;
+    for (int k = 0; k < kProbeRays; ++k) {
+      const Cast c = CastFrom(mesh, caster, p, SphereDirection(k, kProbeRays));
+      if (c.escaped || c.back) {
+        ++outside;
+      } else {
+        ++hits, sum += c.distance;
+      }
+    }
+    if (outside > kInsideLimit * kProbeRays || hits == 0) continue;
+    if (sum / hits > best_distance) best_distance = sum / hits, best = p;
+  }
+  return best;
+}
+
+// Looking at the box's centre along box axis `forward` from outside: the box's cross-section
+// fitted in the picture (`fill` false) or filling it (`fill` true: no background shows
+// around an opening).
+Camera Framed(const Box& box, Camera camera, const Vec3& forward, bool fill) {
+  const int f = NearestAxis(forward), u = NearestAxis(camera.up), side = 3 - f - u;
+  const Vec3 e = box.Extent();
+  const double half_height = e[u] / 2, half_width = e[side] / 2 * camera.height / camera.width;
+  const double half = fill ? std::min(half_height, half_width) : std::max(half_height, half_width);
+  const double distance = half / std::tan(camera.vertical_fov_degrees * std::numbers::pi / 360);
+  camera.look_at = box.Centre();
+  camera.position = camera.look_at - forward * (e[f] / 2 + distance);
+  return camera;
+}
+
+// Outside framing of an open scene: along +z, or +y when z is up.
+Vec3 OutsideAxis(const Vec3& up) { return NearestAxis(up) == 2 ? Vec3{0, 1, 0} : Vec3{0, 0, 1}; }
+
+// The view from inside, around open point p (see the header's rule).
+Camera InteriorView(const PatchMesh& mesh, const RayCaster& caster, const Box& box, Camera camera,
+                    const Vec3& p) {
+  const Vec3 up = Normalize(camera.up);
+  auto free = [&](const Vec3& from, const Vec3& d) {
+    const Cast c = CastFrom(mesh, caster, from, d);
+    return c.escaped ? DistanceToBox(box, from, d) : c.distance;
+  };
+  const double below = free(p, -up), above = free(p, up);
+  const Vec3 eye = p + up * (kEyeHeight * (below + above) - below);
+  const int up_axis = NearestAxis(up);
+  const Vec3 h1 = Normalize(Cross(up, Axis((up_axis + 2) % 3, 1)));
+  const Vec3 h2 = Cross(up, h1);
+  Vec3 dirs[kAzimuths], opening;
+  double distance[kAzimuths];
+  int escaped = 0;
+  for (int k = 0; k < kAzimuths; ++k) {
+    const double angle = 2 * std::numbers::pi * k / kAzimuths;
+    dirs[k] = h1 * std::cos(angle) + h2 * std::sin(angle);
+    const Cast c = CastFrom(mesh, caster, eye, dirs[k]);
+    distance[k] = c.escaped ? DistanceToBox(box, eye, dirs[k]) : c.distance;
+    if (c.escaped) opening += dirs[k], ++escaped;
+  }
+  if (escaped >= kOpeningRays) {
+    Vec3 in = -opening;
+    in = in - up * Dot(in, up);
+    const int axis = NearestAxis(in);
+    return Framed(box, camera, Axis(axis, in[axis] >= 0 ? 1 : -1), true);
+  }
+  // The principal axis of the horizontal hit points around the eye: the long axis.
+  double mx = 0, my = 0, cxx = 0, cxy = 0, cyy = 0;
+  for (int k = 0; k < kAzimuths; ++k) {
+    mx += distance[k] * Dot(dirs[k], h1) / kAzimuths,
+        my += distance[k] * Dot(dirs[k], h2) / kAzimuths;
+  }
+  for (int k = 0; k < kAzimuths; ++k) {
+    const double x = distance[k] * Dot(dirs[k], h1) - mx, y = distance[k] * Dot(dirs[k], h2) - my;
+    cxx += x * x, cxy += x * y, cyy += y * y;
+  }
+  const double angle = 0.5 * std::atan2(2 * cxy, cxx - cyy);
+  Vec3 ahead = h1 * std::cos(angle) + h2 * std::sin(angle);
+  const int axis = NearestAxis(ahead);  // within 10 degrees of a box axis: that axis
+  if (std::abs(ahead[axis]) > std::cos(kSnapDegrees * std::numbers::pi / 180)) {
+    ahead = Axis(axis, ahead[axis] > 0 ? 1 : -1);
+  }
+  double front = free(eye, ahead), back = free(eye, -ahead);
+  if (front < back) std::swap(front, back), ahead = -ahead;
+  camera.position = eye - ahead * (kBackOff * back);
+  camera.look_at = camera.position + ahead;
+  return camera;
+}
+
+}  // namespace
+
+Vec3 SceneUpAxis(const PatchMesh& mesh) {
+  double facing_y = 0, facing_z = 0;  // area of patches facing along the axis (either way)
+  for (const Patch& patch : mesh.patches) {
+    if (std::abs(patch.normal.y) > 0.9) facing_y += patch.area;
+    if (std::abs(patch.normal.z) > 0.9) facing_z += patch.area;
+  }
+  return facing_z > facing_y ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
+}
+
+Camera DefaultCamera(const PatchMesh& mesh, const RayCaster& caster, const Camera& camera,
+                     const Vec3& up) {
+  Camera view = camera;
+  const bool given = Length(up) > 0;
+  view.up = given ? up : Vec3{0, 1, 0};
+  const Box box = Bounds(mesh);
+  const Camera outside = Framed(box, view, OutsideAxis(view.up), false);
+  const std::optional<Vec3> open = LargestOpenVolume(mesh, caster, box);
+  if (!open) return outside;
+  if (!given) view.up = SceneUpAxis(mesh);
+  const Camera inside = InteriorView(mesh, caster, box, view, *open);
+  return ValidateCamera(inside).ok() ? inside : outside;
+}
+
+}  // namespace radflux

@@ -1,0 +1,47 @@
+// Final gather: a view-dependent second pass over a radiosity solution (the two-pass method).
+// Each pixel averages N paths; path k goes through its own multi-jittered point of the pixel to
+// the visible point x on patch p (front side; a miss or a back side gives black) and estimates
+//     L(x) = E_p / pi + rho_p / pi * (H_direct(x) + H_indirect(x))
+// with
+//   H_direct   = sum_j E_j F_j(x) V: one light sample on the emitters (LightSampler, as the
+//                emitter columns of monte_carlo's rows are sampled, over the emitting faces
+//                merged by MakeGatherLights), shadow ray included;
+//   H_indirect = the reflected radiosity R = B - E (Gouraud-interpolated, at least 0) where one
+//                cosine-weighted ray from x meets a front side (0 on a miss or a back side):
+//                its expectation is the irradiance from everything but the emitters' own
+//                emission, which H_direct already counts, so nothing is counted twice.
+// In a closed enclosure with B the exact solution, the expectation of L(x) is B_p / pi.
+// Seeds are per pixel (seed, y * width + x): the image does not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "solver/core/bands.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/mesh/patch_mesh.h"
+#include "solver/output/camera.h"
+#include "solver/output/image.h"
+#include "solver/output/shading_mesh.h"
+#include "solver/raytrace/ray_caster.h"
+
+namespace radflux {
+
+struct GatherOptions {
+  int rays = 16;      // N: paths per pixel, each with one gather ray and one light sample
+  int threads = 0;    // 0 = all cores; the image does not depend on it
+  uint64_t seed = 1;  // the pixels' sample patterns are seeded from (seed, pixel index)
+};
+
+// Radiance image (W/m^2/sr per band) of the scene whose patches have `attributes` and
+// radiosity `patch_radiosity` (W/m^2 per band), seen by `camera`, by final gathering with
+// rays cast by `caster` (which must report Embree's u,v: EmbreeRayCaster does); R is
+// interpolated from its values at `shading`'s welded vertices (VertexRadiosity).
+// INVALID_ARGUMENT for sizes that disagree, a bad camera, or rays outside [1, 4096].
+absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh& shading,
+                                        const RayCaster& caster, const PatchAttributes& attributes,
+                                        const std::vector<Rgb>& patch_radiosity,
+                                        const Camera& camera, const GatherOptions& options);
+
+}  // namespace radflux

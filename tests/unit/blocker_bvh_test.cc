@@ -1,0 +1,66 @@
+// The blocker hierarchy (blocker_bvh.h) answers as testing every blocker does (ShaftMayHold,
+// SegmentHitsSurface), for every pair of a cluttered scene of random quadrilaterals.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "solver/formfactor/blocker_bvh.h"
+#include "solver/formfactor/shaft_cull.h"
+#include "solver/formfactor/shaft_visibility.h"
+
+namespace radflux {
+namespace {
+
+std::vector<SurfaceShape> RandomSquares(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> pos(0, 10), size(0.2, 1.5), dir(-1, 1);
+  std::vector<SurfaceShape> shapes;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 o{pos(rng), pos(rng), pos(rng)};
+    Vec3 n = Normalize(Vec3{dir(rng), dir(rng), dir(rng)});
+    const Frame f = Frame::FromNormal(n);
+    const double s = size(rng);
+    shapes.push_back(MakeSurfaceShape({o, o + f.s * s, o + f.s * s + f.t * s, o + f.t * s}));
+  }
+  return shapes;
+}
+
+TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
+  const std::vector<SurfaceShape> shapes = RandomSquares(120, 7);
+  std::vector<uint32_t> blockers = PotentialBlockers(shapes);
+  ASSERT_GT(blockers.size(), 100u);  // random orientations: nearly every square can block
+  const BlockerBvh bvh(shapes, blockers);
+  EXPECT_EQ(bvh.size(), blockers.size());
+  int in_shaft = 0, blocked = 0;
+  for (uint32_t i = 0; i < shapes.size(); ++i) {
+    for (uint32_t j = 0; j < shapes.size(); ++j) {
+      if (i == j) continue;
+      bool any = false;
+      for (uint32_t k : blockers) any = any || ShaftMayHold(shapes[i], shapes[j], shapes[k]);
+      ASSERT_EQ(bvh.AnyInShaft(i, j), any) << "pair " << i << " " << j;
+      in_shaft += any;
+      // A segment between points of i and j (at a third of the way to two vertices).
+      const Vec3 a = shapes[i].centroid + (shapes[i].polygon[j % 4] - shapes[i].centroid) / 3;
+      const Vec3 b = shapes[j].centroid + (shapes[j].polygon[i % 4] - shapes[j].centroid) / 3;
+      bool hit = false;
+      for (uint32_t k : blockers) hit = hit || (k != i && k != j && SegmentHitsSurface(a, b, shapes[k]));
+      ASSERT_EQ(bvh.SegmentBlocked(a, b, i, j), hit) << "pair " << i << " " << j;
+      blocked += hit;
+    }
+  }
+  // The scene is cluttered: both answers are often yes, and often no.
+  EXPECT_GT(in_shaft, 2000);
+  EXPECT_LT(in_shaft, 14000);
+  EXPECT_GT(blocked, 1000);
+}
+
+TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
+  const std::vector<SurfaceShape> shapes = RandomSquares(3, 1);
+  const BlockerBvh bvh(shapes, {});
+  EXPECT_FALSE(bvh.AnyInShaft(0, 1));
+  EXPECT_FALSE(bvh.SegmentBlocked(shapes[0].centroid, shapes[1].centroid, 0, 1));
+}
+
+}  // namespace
+}  // namespace radflux
