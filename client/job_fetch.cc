@@ -24,8 +24,10 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   if (!stored.ok()) return stored.status();
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();
+  absl::StatusOr<ImportOptions> import = FromProto(job.options().import_options());
+  if (!import.ok()) return import.status();
   JobGeometry geometry;
-  absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
+  absl::StatusOr<Scene> scene = LoadStoredScene(*stored, *import);
   if (!scene.ok()) return scene.status();
   geometry.scene = *std::move(scene);
   if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;

@@ -12,6 +12,7 @@
 #include "solver/output/final_gather.h"
 #include "solver/output/gltf_writer.h"
 #include "solver/output/image.h"
+#include "solver/output/lightmap_gltf.h"
 #include "solver/output/patch_values_csv.h"
 #include "solver/output/ply_writer.h"
 #include "solver/output/render.h"
@@ -118,6 +119,10 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
                      "--render by final gather: N rays per pixel into the solution plus light "
                      "sampled on the emitters (0 = Gouraud-shaded B)")
           ->capture_default_str(),
+      app.add_option("--lightmap", f.lightmap,
+                     "with --out FILE.glb: bake B into a SIZE x SIZE lightmap on a second UV set "
+                     "(emissive texture, KHR_materials_emissive_strength; 0 = vertex colours)")
+          ->capture_default_str(),
   };
   for (CLI::Option* option : added) option->group(kOutputGroup);
 }
@@ -145,6 +150,13 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
         absl::StrCat("--size '", f.size, "': expected WxH with 1..16384 pixels each"));
   }
   if (!(f.metres_per_unit > 0)) return absl::InvalidArgumentError("--metres-per-unit must be > 0");
+  if (f.lightmap != 0 && !absl::EndsWith(f.out, ".glb")) {
+    return absl::InvalidArgumentError("--lightmap needs --out FILE.glb");
+  }
+  if (f.lightmap != 0 && (f.lightmap < 16 || f.lightmap > 16384)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--lightmap ", f.lightmap, ": must be in [16, 16384] texels"));
+  }
   if (f.gather < 0 || f.gather > 4096) {
     return absl::InvalidArgumentError(
         absl::StrCat("--gather ", f.gather, ": must be in [0, 4096]"));
@@ -198,7 +210,10 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
     GltfOptions gltf;
     gltf.metres_per_unit = f.metres_per_unit;
     gltf.tone = tone;
-    if (absl::Status s = WriteGlb(f.out, mesh, *shading, radiosity, gltf); !s.ok()) return s;
+    absl::Status s = f.lightmap > 0
+                         ? WriteLightmapGlb(f.out, mesh, *shading, radiosity, f.lightmap, gltf)
+                         : WriteGlb(f.out, mesh, *shading, radiosity, gltf);
+    if (!s.ok()) return s;
   }
   if (!f.render.empty()) {
     if (absl::Status s =

@@ -27,6 +27,7 @@ struct OutputFlags {
   bool linear_png = false;         // PNG without the sRGB curve
   double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
   int gather = 0;                  // final-gather rays per pixel for --render (0: Gouraud)
+  int lightmap = 0;                // --out .glb with a SIZE x SIZE lightmap (0: vertex colours)
 };
 
 // Adds the output flags to `app`, in its help group kOutputGroup.
@@ -42,8 +43,9 @@ absl::Status ValidateOutputFlags(const OutputFlags& flags);
 // The camera from the flags; without --camera-pos, the default view's rule places it
 // (solver/output/default_view.h: from inside for an enclosed scene, with `caster` probing
 // `mesh`, and choosing up unless --camera-up is given; with --camera-pos, up is +y unless
-// given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the camera is in the mesh's,
-// which are the file's minus `origin` (Scene::origin of a recentred scene).
+// given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the
+// camera is in the mesh's, which are the file's minus `origin` (Scene::origin of a recentred
+// scene).
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
                                        const RayCaster& caster, const Vec3& origin = {});
 

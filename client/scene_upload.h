@@ -1,19 +1,24 @@
-// Sending a scene file to radfluxd: the OBJ with its MTL, by content address first.
+// Sending a scene to radfluxd: the scene file with the files it names (MTL, textures, glTF
+// buffers and images, MGF includes) as one bundle, by content address first.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "client/service_client.h"
+#include "wire/scene_bundle.h"
 
 namespace radflux::cli {
 
-// An OBJ scene file as the client sends it: its text, its MTL text and their content address.
+// A scene as the client sends it: its bundle (the scene file first) and its content
+// address (BundleContentHash).
 struct SceneFile {
-  std::string name, obj, mtl, sha256;
+  std::string name, sha256;
+  std::vector<BundleFile> files;
 };
 
-// Reads the OBJ at `path` and its MTL (its mtllib file beside it, else SCENE.mtl, else none).
+// Reads the scene file at `path` and the files it names (ReadSceneBundle).
 absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path);
 
 // Submits `request` for `scene`: by its content address first, so that a scene the server

@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "client/exit_status.h"
 #include "client/job_flags.h"
+#include "client/import_flags.h"
 #include "client/job_watch.h"
 #include "client/output_flags.h"
 #include "client/scene_upload.h"
@@ -141,8 +142,14 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   auto scene = std::make_shared<std::string>();
   auto watch = std::make_shared<bool>(false);
   auto request_id = std::make_shared<std::string>();
-  submit->add_option("scene", *scene, "OBJ file (its MTL is found via mtllib)")->required();
+  submit
+      ->add_option("scene", *scene,
+                   "scene file (.obj, .gltf, .glb, .mgf, .stl, .vs3); the files it names (MTL, "
+                   "textures, buffers, includes) are sent with it")
+      ->required();
   AddJobFlags(*submit, *job_flags);
+  auto import_flags = std::make_shared<ImportFlags>();
+  AddImportFlags(*submit, *import_flags);
   auto submit_outputs = std::make_shared<OutputFlags>();
   submit->add_flag("--watch", *watch,
                    "watch the job until it ends; then write the output options' files, as "
@@ -176,11 +183,14 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
       exit_code = 1;
       return;
     }
+    absl::StatusOr<ImportOptions> import = ToImportOptions(*import_flags);
+    if (!import.ok()) return void(exit_code = Fail(import.status(), *c));
     absl::StatusOr<SceneFile> scene_file = ReadSceneFile(*scene);
     if (!scene_file.ok()) return void(exit_code = Fail(scene_file.status(), *c));
     Client& client = ProcessClient(*c);
     v1::SubmitJobRequest request;
     *request.mutable_options() = ToProto(*options);
+    *request.mutable_options()->mutable_import_options() = ToProto(*import);
     request.set_request_id(*request_id);
     v1::Job job;
     const grpc::Status status = SubmitScene(client, *scene_file, request, &job);

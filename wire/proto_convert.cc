@@ -1,6 +1,8 @@
 #include "wire/proto_convert.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -50,6 +52,43 @@ v1::SolveOptions ToProto(const JobOptions& o) {
   p.set_solver(std::string(SolverName(o.solver.method)));
   p.set_tolerance(o.solver.tolerance);
   p.set_max_iterations(o.solver.max_iterations);
+  return p;
+}
+
+absl::StatusOr<ImportOptions> FromProto(const v1::ImportOptions& p) {
+  ImportOptions o;
+  if (p.has_max_reflectance()) o.max_reflectance = p.max_reflectance();
+  o.strict = p.strict();
+  o.two_sided = p.two_sided();
+  if (p.has_curve_segments()) o.curve_segments = p.curve_segments();
+  for (const v1::MaterialEmission& e : p.emit()) {
+    const Rgb radiance{e.radiance().red(), e.radiance().green(), e.radiance().blue()};
+    const bool valid = std::all_of(radiance.begin(), radiance.end(),
+                                   [](double v) { return std::isfinite(v) && v >= 0; });
+    if (e.material().empty() || !valid) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("--emit '", e.material(), "=", radiance[0], ",", radiance[1], ",",
+                       radiance[2], "': expected MATERIAL=R,G,B (emitted radiance L_e, three "
+                       "numbers >= 0)"));
+    }
+    o.emit.emplace_back(e.material(), radiance);
+  }
+  return o;
+}
+
+v1::ImportOptions ToProto(const ImportOptions& o) {
+  v1::ImportOptions p;
+  p.set_max_reflectance(o.max_reflectance);
+  p.set_strict(o.strict);
+  p.set_two_sided(o.two_sided);
+  p.set_curve_segments(o.curve_segments);
+  for (const auto& [material, radiance] : o.emit) {
+    v1::MaterialEmission* e = p.add_emit();
+    e->set_material(material);
+    e->mutable_radiance()->set_red(radiance[0]);
+    e->mutable_radiance()->set_green(radiance[1]);
+    e->mutable_radiance()->set_blue(radiance[2]);
+  }
   return p;
 }
 

@@ -10,6 +10,7 @@
 #include "radflux/v1/job.pb.h"
 #include "solver/core/bands.h"
 #include "solver/pipeline.h"
+#include "solver/scene/import_options.h"
 
 namespace radflux {
 
@@ -19,6 +20,15 @@ absl::StatusOr<JobOptions> FromProto(const v1::SolveOptions& proto);
 
 // All solve options as a message (every field set), for clients submitting JobOptions.
 v1::SolveOptions ToProto(const JobOptions& options);
+
+// Import options from their message: unset fields keep ImportOptions' defaults. An --emit
+// with no material name or a radiance that is negative or not finite is INVALID_ARGUMENT
+// naming it; the other values are checked where they are used (ApplyImportRules, the MGF
+// loader), with the same messages as for `radflux solve`.
+absl::StatusOr<ImportOptions> FromProto(const v1::ImportOptions& proto);
+
+// All import options as a message (every field set), for clients submitting them.
+v1::ImportOptions ToProto(const ImportOptions& options);
 
 grpc::Status ToGrpcStatus(const absl::Status& status);
 absl::Status FromGrpcStatus(const grpc::Status& status);

@@ -43,10 +43,16 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
     return absl::DataLossError(
         absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
   }
-  if (scene.name.empty()) scene.name = scene.mesh.empty() ? "scene.obj" : "mesh";
-  absl::StatusOr<Scene> loaded = LoadStoredScene(scene);
+  if (scene.name.empty()) {
+    scene.name = !scene.files.empty() ? scene.files[0].path
+                 : scene.mesh.empty() ? "scene.obj"
+                                      : "mesh";
+  }
+  // Checked with the default import rules; a job's own (--strict, --emit, ...) are applied
+  // when it is submitted, so a scene lit only by --emit uploads without an emitter.
+  absl::StatusOr<Scene> loaded = LoadStoredScene(scene, ImportOptions{});
   if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
-  if (absl::Status s = ValidateScene(*loaded); !s.ok()) {
+  if (absl::Status s = ValidateScene(*loaded, /*require_emitter=*/false); !s.ok()) {
     return absl::InvalidArgumentError(s.message());
   }
   v1::SceneRef ref;
@@ -62,7 +68,8 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
 }
 
 absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
-  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = scenes_.Get(request.scene_sha256());
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
+      scenes_.Get(request.scene_sha256(), request.options().import_options());
   if (!loaded.ok()) return loaded.status();
   const Scene& scene = (*loaded)->scene;
   absl::StatusOr<JobOptions> options = FromProto(request.options());

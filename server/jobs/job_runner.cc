@@ -257,7 +257,8 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 
 absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
   const auto start = Clock::now();
-  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded = c.scenes->Get(job.scene_sha256());
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
+      c.scenes->Get(job.scene_sha256(), job.options().import_options());
   if (!loaded.ok()) return loaded.status();
   absl::StatusOr<JobOptions> options = FromProto(job.options());
   if (!options.ok()) return options.status();

@@ -1,5 +1,7 @@
 #include "server/jobs/scene_cache.h"
 
+#include "solver/scene/validation.h"
+#include "wire/proto_convert.h"
 #include "wire/stored_scene.h"
 
 namespace radflux {
@@ -17,16 +19,23 @@ uint64_t LoadedScene::PatchCount(const MeshOptions& options) const {
   return count;
 }
 
-absl::StatusOr<std::shared_ptr<const LoadedScene>> SceneCache::Get(const std::string& sha256) {
-  if (std::shared_ptr<const LoadedScene> cached = recent_.Get(sha256)) return cached;
+absl::StatusOr<std::shared_ptr<const LoadedScene>> SceneCache::Get(
+    const std::string& sha256, const v1::ImportOptions& import) {
+  const std::string key = sha256 + "\n" + import.SerializeAsString();
+  if (std::shared_ptr<const LoadedScene> cached = recent_.Get(key)) return cached;
+  absl::StatusOr<ImportOptions> options = FromProto(import);
+  if (!options.ok()) return options.status();
   absl::StatusOr<StoredScene> stored = store_.GetScene(sha256);
   if (!stored.ok()) return stored.status();
-  absl::StatusOr<Scene> loaded = LoadStoredScene(*stored);
+  absl::StatusOr<Scene> loaded = LoadStoredScene(*stored, *options);
   if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
+  if (absl::Status s = ValidateScene(*loaded); !s.ok()) {
+    return absl::InvalidArgumentError(std::string(s.message()));
+  }
   auto scene = std::make_shared<LoadedScene>();
   scene->name = stored->name;
   scene->scene = *std::move(loaded);
-  recent_.Put(sha256, scene);
+  recent_.Put(key, scene);
   return scene;
 }
 

@@ -1,6 +1,6 @@
 // SceneCache: the solver Scenes of the most recently used stored scenes, by content
-// address. A stored scene never changes under its address, so a cached Scene is the one
-// LoadStoredScene would return now; SubmitJob's limits check and the job's start then read,
+// address and import options. A stored scene never changes under its address, so a cached
+// Scene is the one LoadStoredScene would return now; SubmitJob's limits check and the job's start then read,
 // verify and parse a scene once instead of twice per job, and not at all for a scene the
 // server solved just before (warm state that `radflux solve` pays in every process).
 // Holds at most `capacity` scenes. Thread-safe.
@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "absl/status/statusor.h"
+#include "radflux/v1/job.pb.h"
 #include "server/jobs/recent_map.h"
 #include "server/store/job_store.h"
 #include "solver/mesh/subdivide.h"
@@ -39,9 +40,12 @@ class SceneCache {
  public:
   explicit SceneCache(JobStore& store, size_t capacity = 2) : store_(store), recent_(capacity) {}
 
-  // The scene stored under `sha256`, as LoadStoredScene returns it (not validated): NOT_FOUND
-  // when no scene has that address, INVALID_ARGUMENT when it does not load.
-  absl::StatusOr<std::shared_ptr<const LoadedScene>> Get(const std::string& sha256);
+  // The scene stored under `sha256` read with the import rules `import`, as LoadStoredScene
+  // returns it, and validated (ValidateScene, an emitter required): NOT_FOUND when no scene
+  // has that address, INVALID_ARGUMENT when it does not load or is not valid (the loader's,
+  // the rules' or the validation's message).
+  absl::StatusOr<std::shared_ptr<const LoadedScene>> Get(const std::string& sha256,
+                                                         const v1::ImportOptions& import);
 
  private:
   JobStore& store_;

@@ -148,11 +148,24 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
     absl::Status s = WriteBlobFile(base + suffix, text, "a scene");
     if (!s.ok()) {  // no part of the scene stays behind
       std::error_code ec;
-      for (const char* part : {".mesh.rfb", ".obj.rfb", ".mtl.rfb"}) fs::remove(base + part, ec);
+      for (const char* part : {".mesh.rfb", ".obj.rfb", ".mtl.rfb", ".files.rfb", ".bundle.rfb"}) {
+        fs::remove(base + part, ec);
+      }
     }
     return s;
   };
-  if (!scene.mesh.empty()) {
+  if (!scene.files.empty()) {
+    v1::SceneHeader index;  // the files' paths and sizes; their bytes follow in .bundle.rfb
+    std::string data;
+    for (const BundleFile& file : scene.files) {
+      v1::BundleFile* entry = index.add_files();
+      entry->set_path(file.path);
+      entry->set_size(file.data.size());
+      data += file.data;
+    }
+    if (absl::Status s = write(".files.rfb", index.SerializeAsString()); !s.ok()) return s;
+    if (absl::Status s = write(".bundle.rfb", data); !s.ok()) return s;
+  } else if (!scene.mesh.empty()) {
     if (absl::Status s = write(".mesh.rfb", scene.mesh); !s.ok()) return s;
   } else {
     if (absl::Status s = write(".obj.rfb", scene.obj); !s.ok()) return s;
@@ -168,6 +181,17 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
   return absl::OkStatus();
 }
 
+absl::StatusOr<StoredScene> JobStore::GetBundle(const std::string& base, const std::string& name) {
+  absl::StatusOr<std::string> index = ReadBlobFile(base + ".files.rfb");
+  if (!index.ok()) return index.status();
+  absl::StatusOr<std::string> data = ReadBlobFile(base + ".bundle.rfb");
+  if (!data.ok()) return data.status();
+  v1::SceneHeader header;
+  if (!header.ParseFromString(*index)) return absl::DataLossError(base + ".files.rfb: corrupt");
+  header.set_name(name);
+  return SplitScenePayload(header, *data);
+}
+
 absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
   StoredScene scene;
   {
@@ -181,6 +205,7 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
     scene.name = st.Column(0);
   }
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  if (std::error_code ec; fs::exists(base + ".files.rfb", ec)) return GetBundle(base, scene.name);
   if (std::error_code ec; fs::exists(base + ".mesh.rfb", ec)) {
     absl::StatusOr<std::string> mesh = ReadBlobFile(base + ".mesh.rfb");
     if (!mesh.ok()) return mesh.status();

@@ -130,6 +130,8 @@ class JobStore {
 
  private:
   std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb
+  // A bundle stored under `base` (+ .files.rfb: paths and sizes, + .bundle.rfb: the bytes).
+  static absl::StatusOr<StoredScene> GetBundle(const std::string& base, const std::string& name);
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::Status Exec(const std::string& sql);
   absl::Status UpdateJobLocked(const v1::Job& job, bool sync);

@@ -47,7 +47,7 @@ class Reader {
     uint64_t size = 0;
     if (!Get(size) || size > in_.size() / sizeof(T)) return false;
     v.resize(size);
-    std::memcpy(v.data(), in_.data(), size * sizeof(T));
+    if (size > 0) std::memcpy(v.data(), in_.data(), size * sizeof(T));  // data() may be null
     in_.remove_prefix(size * sizeof(T));
     return true;
   }

@@ -59,6 +59,10 @@ absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(const RowBlock& block, uint3
     if (end < begin) {
       return BadRow(row, absl::StrCat("offsets go backwards (", begin, " then ", end, ")"));
     }
+    if (end > block.col.size()) {  // a later offset going back to the end hides this one
+      return BadRow(row, absl::StrCat("offset ", end, " beyond the ", block.col.size(),
+                                      " entries"));
+    }
     double sum = 0;
     if (absl::Status s = CheckEntries(block, row, begin, end, patch_count, &sum); !s.ok()) return s;
     if (sum > 1 + kRowSumTolerance) high_sum.push_back(row);

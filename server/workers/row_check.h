@@ -23,10 +23,11 @@ inline constexpr double kRowSumTolerance = 1e-3;
 using RowRebuilder = std::function<RowBlock(uint32_t first, uint32_t count)>;
 
 // INVALID_ARGUMENT naming the row and what is wrong unless `block` has exactly the leased
-// rows (`first_row`, `row_count`), offsets from 0 that never go backwards and end at the
-// entry count, columns strictly increasing and < `patch_count` in every row, and every
-// value finite and >= 0. On success, the rows whose sum exceeds 1 + kRowSumTolerance
-// (absolute row numbers): they must be recomputed before the block is trusted.
+// rows (`first_row`, `row_count`), offsets from 0 that never go backwards nor beyond the
+// entries and end at the entry count, columns strictly increasing and < `patch_count` in
+// every row, and every value finite and >= 0. On success, the rows whose sum exceeds
+// 1 + kRowSumTolerance (absolute row numbers): they must be recomputed before the block is
+// trusted.
 absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(const RowBlock& block, uint32_t first_row,
                                                     uint32_t row_count, uint32_t patch_count);
 

@@ -99,7 +99,9 @@ class JobCache {
     if (!stored.ok()) return stored.status();
     absl::StatusOr<JobOptions> options = FromProto(lease.options());
     if (!options.ok()) return options.status();
-    absl::StatusOr<Scene> scene = LoadStoredScene(*stored);
+    absl::StatusOr<ImportOptions> import = FromProto(lease.options().import_options());
+    if (!import.ok()) return import.status();
+    absl::StatusOr<Scene> scene = LoadStoredScene(*stored, *import);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob(*std::move(scene), *options);
     if (!prepared.ok()) return prepared.status();

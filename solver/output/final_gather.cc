@@ -58,9 +58,17 @@ class GatherScene {
     uint32_t patch = kNoPatch;
     int64_t light = -1, gather = -1;
   };
+  // The row's light and gather rays, and the light samples' estimates.
+  struct Secondary {
+    std::vector<StreamRay> light_rays, gather_rays;
+    std::vector<LightSampler::PendingSample> pending;
+  };
   // Casts the row's primary rays, one per path, into `primary`.
   void CastPrimary(int y, int rays, uint64_t seed, int width,
                    std::vector<StreamRay>& primary) const;
+  // Sets up each path that sees a patch: its light sample and gather ray, into `secondary`.
+  void StartPaths(int y, int rays, uint64_t seed, std::span<const StreamRay> primary,
+                  std::vector<Path>& paths, Secondary& secondary) const;
   // The radiance path `path` estimates, given its traced light and gather rays.
   Rgb PathRadiance(const Path& path, std::span<const StreamRay> light_rays,
                    std::span<const LightSampler::PendingSample> pending,
@@ -120,12 +128,9 @@ Rgb GatherScene::PathRadiance(const Path& path, std::span<const StreamRay> light
   return radiance;
 }
 
-void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
-  const int width = image.width;
-  std::vector<StreamRay> primary, light_rays, gather_rays;
-  std::vector<LightSampler::PendingSample> pending;
-  std::vector<Path> paths(static_cast<size_t>(width) * rays);
-  CastPrimary(y, rays, seed, width, primary);
+void GatherScene::StartPaths(int y, int rays, uint64_t seed, std::span<const StreamRay> primary,
+                             std::vector<Path>& paths, Secondary& secondary) const {
+  const int width = static_cast<int>(primary.size()) / rays;
   std::vector<Point2> light_points(static_cast<size_t>(rays)), gather_points(light_points);
   for (int x = 0; x < width; ++x) {
     const uint64_t pixel = static_cast<uint64_t>(y) * width + x;
@@ -142,27 +147,37 @@ void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
       point = point - patch.normal * Dot(point - mesh_.Vertex(p, 0), patch.normal);  // on p
       Path& path = paths[at];
       path.patch = p;
-      const size_t before = light_rays.size();
-      sampler_.SamplePoint(
-          point, patch.normal, lights_.of_patch[p], seed, pixel, static_cast<uint32_t>(k),
-          std::span<const Point2>(light_points).subspan(k, 1), light_rays, pending);
-      if (light_rays.size() > before) path.light = static_cast<int64_t>(before);
+      const size_t before = secondary.light_rays.size();
+      sampler_.SamplePoint(point, patch.normal, lights_.of_patch[p], seed, pixel,
+                           static_cast<uint32_t>(k),
+                           std::span<const Point2>(light_points).subspan(k, 1),
+                           secondary.light_rays, secondary.pending);
+      if (secondary.light_rays.size() > before) path.light = static_cast<int64_t>(before);
       StreamRay g;
       g.SetOrigin(point + patch.normal * light_context_.ray_epsilon);
       g.SetDirection(
           Frame::FromNormal(patch.normal).ToWorld(SampleCosineHemisphere(gather_points[k])));
-      path.gather = static_cast<int64_t>(gather_rays.size());
-      gather_rays.push_back(g);
+      path.gather = static_cast<int64_t>(secondary.gather_rays.size());
+      secondary.gather_rays.push_back(g);
     }
   }
-  caster_.OccludedStream(light_rays);
-  caster_.IntersectStream(gather_rays);
-  for (int x = 0; x < width; ++x) {
+}
+
+void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
+  std::vector<StreamRay> primary;
+  CastPrimary(y, rays, seed, image.width, primary);
+  std::vector<Path> paths(primary.size());
+  Secondary secondary;
+  StartPaths(y, rays, seed, primary, paths, secondary);
+  caster_.OccludedStream(secondary.light_rays);
+  caster_.IntersectStream(secondary.gather_rays);
+  for (int x = 0; x < image.width; ++x) {
     Rgb sum{};
     for (int k = 0; k < rays; ++k) {
       const Path& path = paths[static_cast<size_t>(x) * rays + k];
       if (path.patch == kNoPatch) continue;
-      const Rgb radiance = PathRadiance(path, light_rays, pending, gather_rays);
+      const Rgb radiance =
+          PathRadiance(path, secondary.light_rays, secondary.pending, secondary.gather_rays);
       for (int b = 0; b < kBands; ++b) sum[b] += radiance[b];
     }
     float* out = image.Pixel(x, y);

@@ -96,9 +96,11 @@ GatherLights MakeGatherLights(const PatchMesh& mesh, const PatchAttributes& attr
   for (const auto& [face, patches] : emitting_faces) {
     const Vec3 normal = mesh.patches[patches[0]].normal;
     std::vector<uint32_t> outline = ConvexOutline(mesh, patches);
+    const auto& first_emission = attributes.emission[patches[0]];  // (clang 14 cannot
+    // capture a structured binding)
     const bool merged =
         !outline.empty() && std::all_of(patches.begin(), patches.end(), [&](uint32_t p) {
-          return attributes.emission[p] == attributes.emission[patches[0]];
+          return attributes.emission[p] == first_emission;
         });
     for (uint32_t p : patches) {
       if (!merged || p == patches[0]) {

@@ -6,44 +6,13 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "absl/strings/str_cat.h"
 #include "solver/output/export_mesh.h"
-#include "solver/output/output_file.h"
+#include "solver/output/gltf_buffers.h"
 
 namespace radflux {
 namespace {
-
-// Appends `values` to buffer 0 as a new buffer view and returns the accessor index.
-int AddAccessor(tinygltf::Model& model, const std::vector<float>& values, int type, int target) {
-  std::vector<unsigned char>& data = model.buffers[0].data;
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = values.size() * sizeof(float);
-  view.target = target;
-  data.resize(data.size() + view.byteLength);
-  std::memcpy(data.data() + view.byteOffset, values.data(), view.byteLength);
-  model.bufferViews.push_back(view);
-
-  tinygltf::Accessor accessor;
-  accessor.bufferView = static_cast<int>(model.bufferViews.size() - 1);
-  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  accessor.type = type;
-  accessor.count = values.size() / (type == TINYGLTF_TYPE_VEC3 ? 3 : 1);
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size() - 1);
-}
-
-int AddIndices(tinygltf::Model& model, const std::vector<uint32_t>& indices) {
-  std::vector<float> bits(indices.size());  // same 4 bytes, copied verbatim
-  std::memcpy(bits.data(), indices.data(), indices.size() * sizeof(uint32_t));
-  const int accessor =
-      AddAccessor(model, bits, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  model.accessors[accessor].componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  return accessor;
-}
 
 struct VertexArrays {
   std::vector<float> positions, normals, colours, radiosity;
@@ -128,12 +97,7 @@ absl::Status WriteGlb(const std::string& path, const PatchMesh& mesh, const Shad
         absl::StrCat("glTF file '", path, "': ", lit.status().message()));
   }
   const tinygltf::Model model = BuildModel(*lit, options);
-  std::ostringstream stream;
-  tinygltf::TinyGLTF gltf;
-  if (!gltf.WriteGltfSceneToStream(&model, stream, false, true)) {
-    return absl::InternalError(absl::StrCat("cannot encode glTF file '", path, "'"));
-  }
-  return WriteOutputFile(path, stream.str(), "glTF");
+  return WriteGlbModel(path, model);
 }
 
 }  // namespace radflux

@@ -43,16 +43,22 @@ absl::Status WritePfm(const std::string& path, const Image& image) {
   return WriteOutputFile(path, out, "PFM");
 }
 
-absl::Status WritePng(const std::string& path, const Image& image, const ToneMapOptions& tone) {
-  if (absl::Status s = CheckImage(path, image); !s.ok()) return s;
+absl::StatusOr<std::string> EncodePng(const Image& image, const ToneMapOptions& tone) {
   std::vector<unsigned char> bytes(image.rgb.size());
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = ToneMapByte(image.rgb[i], tone);
   std::string out;
   if (!stbi_write_png_to_func(AppendToString, &out, image.width, image.height, 3, bytes.data(),
                               3 * image.width)) {
-    return absl::InternalError(absl::StrCat("cannot encode PNG file '", path, "'"));
+    return absl::InternalError("cannot encode PNG");
   }
-  return WriteOutputFile(path, out, "PNG");
+  return out;
+}
+
+absl::Status WritePng(const std::string& path, const Image& image, const ToneMapOptions& tone) {
+  if (absl::Status s = CheckImage(path, image); !s.ok()) return s;
+  absl::StatusOr<std::string> out = EncodePng(image, tone);
+  if (!out.ok()) return absl::InternalError(absl::StrCat("cannot encode PNG file '", path, "'"));
+  return WriteOutputFile(path, *out, "PNG");
 }
 
 }  // namespace radflux

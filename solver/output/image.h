@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "solver/output/tone_map.h"
 
 namespace radflux {
@@ -28,5 +29,8 @@ absl::Status WritePfm(const std::string& path, const Image& image);
 
 // 8-bit RGB PNG, each band tone mapped with `tone` (sRGB curve when tone.srgb).
 absl::Status WritePng(const std::string& path, const Image& image, const ToneMapOptions& tone);
+
+// The bytes WritePng writes (an in-memory PNG, e.g. for a glTF texture).
+absl::StatusOr<std::string> EncodePng(const Image& image, const ToneMapOptions& tone);
 
 }  // namespace radflux

@@ -3,6 +3,7 @@
 // `radflux viewfactors` and the service read the same Scene from the same file.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -17,5 +18,18 @@ namespace radflux {
 // supported, and for what the rules refuse. The result is not yet validated: see
 // ValidateScene.
 absl::StatusOr<Scene> LoadScene(const std::string& path, const ImportOptions& options);
+
+// A scene as files in memory (an uploaded bundle): paths relative to the bundle's root,
+// '/'-separated, to their bytes; `main` is the scene file's path among them.
+struct SceneBundle {
+  std::string main;
+  std::map<std::string, std::string> files;
+};
+
+// The same as LoadScene on the bundle's files laid out on disk, except that only the
+// bundle's files are read: a name that leads outside it (an MGF include or an mtllib with
+// '..' past the root, an absolute path) or is not in it is read as a missing file.
+// Messages name the files by their bundle paths.
+absl::StatusOr<Scene> LoadSceneBundle(const SceneBundle& bundle, const ImportOptions& options);
 
 }  // namespace radflux

@@ -30,6 +30,12 @@ cmp -s "$tmp/c.pfm" "$tmp/g0.pfm" || fail "--gather 0 changes the picture"
   --report "$tmp/g4.json" || fail "gather 4 solve"
 grep -q '"gather"' "$tmp/g4.json" || fail "report lacks the gather's seconds"
 cmp -s "$tmp/c.pfm" "$tmp/g4.pfm" && fail "--gather 4 gives the Gouraud picture"
+# --lightmap SIZE: a GLB with a second UV set and an emissive lightmap texture.
+"$radflux" solve "$cornell" --patches 300 --quiet --out "$tmp/lm.glb" --lightmap 128 || fail "lightmap"
+[ "$(head -c 4 "$tmp/lm.glb")" = glTF ] || fail "lightmap GLB magic"
+for key in TEXCOORD_1 KHR_materials_emissive_strength image/png; do
+  grep -aq "$key" "$tmp/lm.glb" || fail "lightmap GLB lacks $key"
+done
 
 # --memory-limit: rows spill to disk and B is the same as in memory (same CSV, byte for byte).
 "$radflux" solve "$cornell" --patches 300 --quiet --memory-limit 1K --patch-values "$tmp/s.csv" \
@@ -93,6 +99,7 @@ expect_error "bad rays" "rays" solve "$cornell" --rays -3
 expect_error "odd hemicube" "hemicube-res" solve "$cornell" --form-factors hemicube --hemicube-res 7
 expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
 expect_error "gather range" "--gather" solve "$cornell" --render "$tmp/x.png" --gather -1
+expect_error "lightmap without glb" "--lightmap" solve "$cornell" --out "$tmp/x.ply" --lightmap 64
 expect_error "unknown solver" "solver" solve "$cornell" --solver magic
 printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
 expect_error "unknown material" "bad.obj:6: unknown material 'nothing'" solve "$tmp/bad.obj"
@@ -106,6 +113,13 @@ expect_error "link epsilon" "link-epsilon must be" solve "$cornell" --solver hie
 expect_error "cg cannot stream" "memory-limit" solve "$cornell" --memory-limit 1M --solver cg
 expect_error "spill dir is a file" "cannot create a spill file in" solve "$cornell" --patches 300 -q \
   --memory-limit 1K --spill-dir "$tmp/c.csv"
+# viewfactors: a flag that would do nothing is refused, by name (issue 23).
+expect_error "viewfactors solver flag" "--solver is for radflux solve only" viewfactors "$cornell" \
+  -o "$tmp/vf2.csv" --solver cg
+expect_error "viewfactors adaptive flag on patches" "--far-ratio applies to adaptive" viewfactors \
+  "$cornell" -o "$tmp/vf2.csv" --far-ratio 4
+expect_error "viewfactors patch flag on adaptive" "--samples applies to --integration patches" \
+  viewfactors "$cornell" --by face -o "$tmp/vf2.csv" --samples 16
 # grep reads the whole help (no -q): an early exit would SIGPIPE radflux once the help
 # outgrows one pipe write, and pipefail would report that.
 "$radflux" solve --help | grep -- "--hemicube-res" >/dev/null || fail "--help lists options"
@@ -121,7 +135,7 @@ expect_missing_sibling_for() {
 expect_missing_sibling_for radflux-local solve "$cornell"
 expect_missing_sibling_for radflux-service --server 127.0.0.1:1 list
 
-checks=34
+checks=37
 # The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
 # command line reaches them, connection flags before or after the verb.
 if [ -x "$(dirname "$radflux")/radflux-service" ]; then

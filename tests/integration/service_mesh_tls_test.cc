@@ -184,18 +184,34 @@ TEST_F(MeshUploadTest, MalformedMeshesGetInvalidArgumentNamingTheFaceAndTheServe
        "mesh: material 0 'lamp': emitted radiance is NaN or infinite"},
       {"positions", [](v1::Mesh& m) { m.add_positions(1); },
        "mesh: 25 position values are not x y z triples"},
-      // Then ValidateScene, as for OBJ uploads, naming the face index.
-      {"non-planar", [](v1::Mesh& m) { m.set_positions(3 * 6 + 2, 0); },
-       "mesh (face 1 of object 'wall'): non-planar face"},
-      {"reflectance range",
-       [](v1::Mesh& m) { m.mutable_materials(1)->mutable_reflectance()->set_red(1.5); },
-       "material 'wall': reflectance Kd 1.5 is outside [0,1)"},
   };
   for (const Case& c : cases) {
     v1::Mesh mesh = TwoSquares();
     c.spoil(mesh);
     v1::SceneRef ref;
     const grpc::Status s = UploadMesh(mesh.SerializeAsString(), &ref);
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << c.what;
+    EXPECT_NE(s.error_message().find(c.message), std::string::npos)
+        << c.what << ": " << s.error_message();
+  }
+  // What the import rules fix uploads, and is refused by a job with --strict (ValidateScene's
+  // message, as for OBJ uploads, naming the face index).
+  const std::vector<Case> strict_cases = {
+      {"non-planar", [](v1::Mesh& m) { m.set_positions(3 * 6 + 2, 0); },
+       "mesh (face 1 of object 'wall'): non-planar face"},
+      {"reflectance range",
+       [](v1::Mesh& m) { m.mutable_materials(1)->mutable_reflectance()->set_red(1.5); },
+       "material 'wall': reflectance Kd 1.5 is outside [0,1)"},
+  };
+  for (const Case& c : strict_cases) {
+    v1::Mesh mesh = TwoSquares();
+    c.spoil(mesh);
+    v1::SceneRef fixed;
+    ASSERT_TRUE(UploadMesh(mesh.SerializeAsString(), &fixed).ok()) << c.what;
+    v1::SolveOptions options = SmallOptions(8, "cg");
+    options.mutable_import_options()->set_strict(true);
+    v1::Job job;
+    const grpc::Status s = Submit(options, &job, fixed.sha256());
     EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << c.what;
     EXPECT_NE(s.error_message().find(c.message), std::string::npos)
         << c.what << ": " << s.error_message();

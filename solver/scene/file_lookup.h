@@ -1,0 +1,17 @@
+// Finding a file a scene names on disk as the user's tools would: MTL files written on
+// Windows name `textures\KAMEN.JPG` for `textures/kamen.JPG`. One lookup for the loaders and
+// for `radflux submit` (which sends the files a scene names), so both find the same file.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace radflux {
+
+// The file `name` (relative to the folder `dir`, '\' read as '/'; an absolute `name` is
+// looked up as it is): the exact path when it is a regular file, else the one whose path
+// parts match case-insensitively (the first in directory order when several do); nullopt
+// when there is none.
+std::optional<std::string> FindFile(const std::string& dir, const std::string& name);
+
+}  // namespace radflux
