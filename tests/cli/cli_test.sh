@@ -69,6 +69,21 @@ printf '%s' "$out" | grep -q "radflux solve: not converged: residual .* after 2 
 grep -q '"converged": false' "$tmp/n.json" || fail "unconverged solve: report not written"
 [ "$(wc -l <"$tmp/n.csv")" -gt 270 ] || fail "unconverged solve: patch values not written"
 
+# A converged solve whose energy balance is off (two coplanar floors that overlap make light
+# from nothing) exits 4 with one line saying by how much and why, and writes its outputs;
+# the same cube without the overlay closes its balance and exits 0.
+overlap="$source_dir/tests/data/overlapping_floor.obj"
+out=$("$radflux" solve "$overlap" --quiet --report "$tmp/o.json" 2>&1 >/dev/null)
+code=$?
+[ "$code" -eq 4 ] || fail "solve with overlapping floors exited $code, not 4"
+[ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "balance off: not one line: $out"
+printf '%s' "$out" | grep -q "radflux solve: energy balance off by [0-9.]*% of the emitted power (tolerance [0-9.]*%): absorbed + escaped exceed emitted" ||
+  fail "balance off: '$out'"
+grep -q '"ok": false' "$tmp/o.json" || fail "balance off: report not written"
+grep -v overlay "$overlap" | sed 's/^f 9 10 11 12$//' >"$tmp/closed.obj"
+cp "$source_dir/tests/data/overlapping_floor.mtl" "$tmp/"
+"$radflux" solve "$tmp/closed.obj" --quiet || fail "the cube without the overlay exited $?"
+
 # Bad input: non-zero exit and exactly one line naming the problem.
 expect_error() {
   local what=$1 pattern=$2
