@@ -69,22 +69,6 @@ nlohmann::json AdaptiveJson(const std::vector<AdaptivePass>& passes) {
   return out;
 }
 
-// Which term of a balance that is not ok is out, and the likely why.
-std::string BalanceWhy(const EnergyBalance& e, const Rgb& imbalance) {
-  for (int b = 0; b < kBands; ++b) {
-    if (e.escaped[b] < -kEnergyBalanceFloor * e.emitted[b]) {
-      return "escaped is negative: rows or emitter columns carry more than the power that "
-             "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
-    }
-  }
-  return imbalance[0] + imbalance[1] + imbalance[2] > 0
-             ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
-               "not reciprocal, e.g. emitter columns against the emitters' own rows, or a "
-               "solve that has not converged)"
-             : "absorbed + escaped exceed emitted: rows that carry more than they should "
-               "(row sums above 1, rows that are not reciprocal)";
-}
-
 // The balance with its threshold; when it is not ok, which term is out and why.
 nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
@@ -102,7 +86,7 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
                          "max(0.005, noise / emitted); noise: the imbalance the rows' Monte Carlo "
                          "noise gives (multinomial rows of k rays, an upper estimate)"},
                         {"ok", e.Ok()}};
-  if (!e.Ok()) out["why"] = BalanceWhy(e, imbalance);
+  if (!e.Ok()) out["why"] = e.Why();
   return out;
 }
 
@@ -176,16 +160,24 @@ nlohmann::json ImportJson(const ImportLog& log) {
 
 }  // namespace
 
-nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
+const absl::StatusOr<EnergyBalance>& SettleEnergyBalance(JobResult& result,
+                                                         const JobOptions& options) {
+  if (!result.solved_balance) {
+    result.solved_balance =
+        StreamEnergyBalance(result.System(), result.solve.radiosity,
+                            {SampledRays(options.form_factors),
+                             LightSamplesPerRow(options.form_factors)});
+  }
+  return *result.solved_balance;
+}
+
+nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
                              const std::string& scene_name) {
+  const absl::StatusOr<EnergyBalance>& balance = SettleEnergyBalance(result, options);
   const PreparedJob& job = *result.job;
   const JobTimings& t = result.timings;
   nlohmann::json spill = nullptr;
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
-  const absl::StatusOr<EnergyBalance> balance =
-      result.solved_balance ? *result.solved_balance
-                            : StreamEnergyBalance(result.System(), result.solve.radiosity,
-                                                  SampledRays(options.form_factors));
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
   nlohmann::json report = {

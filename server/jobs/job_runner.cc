@@ -331,6 +331,11 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
         absl::StrFormat("not converged: residual %.3g after %d iterations (tolerance %.3g)",
                         result.solve.residual, result.solve.iterations, options->solver.tolerance);
   }
+  if (encoded.ok() && result.solved_balance->ok() && !(*result.solved_balance)->Ok()) {
+    encoded->energy_balance_ok = false;
+    encoded->message = absl::StrCat(encoded->message, encoded->message.empty() ? "" : "; ",
+                                    (*result.solved_balance)->OffMessage());
+  }
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "
       "result encoding {:.1f}",
