@@ -179,7 +179,8 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
   const PatchClusters& clusters = result.job->clusters;
   if (clusters.empty()) return absl::OkStatus();
   absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
-      result.System(), result.solve.radiosity, SampledRays(options.form_factors));
+      result.System(), result.solve.radiosity,
+      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)});
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
   result.solve.radiosity = PushDownToPatches(clusters, result.solve.radiosity);
