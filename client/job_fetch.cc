@@ -1,7 +1,7 @@
 #include "client/job_fetch.h"
 
 #include "absl/strings/str_cat.h"
-#include "solver/mesh/subdivide.h"
+#include "solver/mesh/face_grouping.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
 #include "wire/scene_stream.h"
@@ -31,9 +31,10 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   if (!scene.ok()) return scene.status();
   geometry.scene = *std::move(scene);
   if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(geometry.scene, options->mesh);
+  // The patches the server solved on (split and grouped as it did); the result has a B each.
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(geometry.scene, JobMeshOptions(*options));
   if (!mesh.ok()) return mesh.status();
-  geometry.mesh = *std::move(mesh);
+  geometry.mesh = std::move(mesh->mesh);
   return geometry;
 }
 

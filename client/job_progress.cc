@@ -14,8 +14,10 @@ std::string PhaseWords(const v1::JobEvent& event) {
   switch (event.state()) {
     case v1::JOB_STATE_QUEUED: return "queued";
     case v1::JOB_STATE_SUCCEEDED:
-      return event.has_converged() && !event.converged() ? "stopped short of its tolerance"
-                                                         : "succeeded";
+      if (event.has_converged() && !event.converged()) return "stopped short of its tolerance";
+      if (event.has_energy_balance_ok() && !event.energy_balance_ok())
+        return "succeeded, energy balance off";
+      return "succeeded";
     case v1::JOB_STATE_FAILED: return "failed";
     case v1::JOB_STATE_CANCELLED: return "cancelled";
     default: break;

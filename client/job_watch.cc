@@ -63,7 +63,7 @@ grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
     progress->last_sequence = event.sequence();
     progress->state = event.state();
     progress->message = event.message();
-    progress->converged = !event.has_converged() || event.converged();
+    progress->verdict = SucceededJobExitCode(event);
     if (handlers.event) handlers.event(event);
     if (IsTerminal(event.state())) {
       context->TryCancel();
@@ -146,7 +146,8 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
               << (outcome->message.empty() ? "" : ": " + outcome->message) << "\n";
     return 1;
   }
-  if (!outcome->converged) return ReportJobNotConverged("watch", job_id, outcome->message);
+  if (outcome->verdict != 0)
+    return ReportJobShortfall("watch", job_id, outcome->message, outcome->verdict);
   return 0;
 }
 

@@ -30,7 +30,7 @@ struct WatchOutcome {
   uint64_t last_sequence = 0;  // of the last event (not snapshot) received
   v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
   std::string message;
-  bool converged = true;  // false when the final event says the solve stopped short
+  int verdict = 0;  // the final event's SucceededJobExitCode (3 short of tolerance, 4 balance off)
   int64_t snapshots = 0;
 };
 
@@ -46,7 +46,8 @@ absl::StatusOr<WatchOutcome> FollowJob(Client& client, const v1::WatchJobRequest
 // `snapshot_every` iterations (without a directory they are only counted). When the stream
 // drops after its first event (a server restart), it is reopened after the last event seen,
 // for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED,
-// kExitNotConverged when it SUCCEEDED short of its tolerance (one line says so).
+// kExitNotConverged when it SUCCEEDED short of its tolerance, kExitEnergyImbalance when its
+// energy balance is off (one line says so).
 int WatchJob(Client& client, const std::string& job_id, const std::string& snapshots_dir,
              const JobGeometry* geometry, const OutputArgs& args, int snapshot_every,
              int reconnect_seconds);

@@ -34,10 +34,11 @@ bool WantsGeometry(const OutputFlags& f) {
 
 // `radflux result`: the outputs of `radflux solve` from a finished job. `prefetched` is the
 // job's geometry when the caller already has it (else it is fetched when needed). A job whose
-// solve stopped short of its tolerance gets its outputs too, then kExitNotConverged (with one
-// line saying so unless `say_not_converged` is false: the caller said it already).
+// solve stopped short of its tolerance or whose energy balance is off gets its outputs too,
+// then kExitNotConverged or kExitEnergyImbalance (with one line saying so unless
+// `say_shortfall` is false: the caller said it already).
 int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
-              const JobGeometry* prefetched = nullptr, bool say_not_converged = true) {
+              const JobGeometry* prefetched = nullptr, bool say_shortfall = true) {
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return Fail(s, client.flags());
   // The mesh and B are streamed only for the outputs that need them (most of the bytes).
   absl::StatusOr<StreamedResult> result =
@@ -70,11 +71,10 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
       return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
   }
   std::cout << result->patch_count << " patches\n";
-  if (result->job.has_converged() && !result->job.converged()) {
-    return say_not_converged ? ReportJobNotConverged("result", job_id, result->job.message())
-                             : kExitNotConverged;
-  }
-  return 0;
+  const int verdict = SucceededJobExitCode(result->job);
+  if (verdict != 0 && say_shortfall)
+    return ReportJobShortfall("result", job_id, result->job.message(), verdict);
+  return verdict;
 }
 
 // `radflux watch` and `radflux submit --watch`: follows the job (snapshots as PNGs into
@@ -95,8 +95,10 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
   const JobGeometry* g = geometry ? &*geometry : nullptr;
   const int watched =
       WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every, reconnect_seconds);
-  if ((watched != 0 && watched != kExitNotConverged) || !wants_result) return watched;
-  return GetResult(client, job_id, args, g, /*say_not_converged=*/watched == 0);
+  const bool succeeded = watched == 0 || watched == kExitNotConverged ||
+                         watched == kExitEnergyImbalance;
+  if (!succeeded || !wants_result) return watched;
+  return GetResult(client, job_id, args, g, /*say_shortfall=*/watched == 0);
 }
 
 // The verb's connection, for the rest of the process: never destroyed, because destroying
@@ -278,9 +280,12 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
     const grpc::Status status = client.stub().ListJobs(client.Context().get(), request, &response);
     if (!status.ok()) return void(exit_code = Report(status, *c));
     for (const v1::Job& job : response.jobs()) {
-      const bool short_of_tolerance = job.has_converged() && !job.converged();
+      const int verdict = SucceededJobExitCode(job);
       std::cout << job.job_id() << "  " << v1::JobState_Name(job.state())
-                << (short_of_tolerance ? " NOT_CONVERGED" : "") << "  "
+                << (verdict == kExitNotConverged      ? " NOT_CONVERGED"
+                    : verdict == kExitEnergyImbalance ? " ENERGY_BALANCE_OFF"
+                                                      : "")
+                << "  "
                 << v1::Phase_Name(job.phase()) << "  patches " << job.patches() << "  "
                 << job.message() << "\n";
     }

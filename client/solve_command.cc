@@ -68,6 +68,7 @@ struct SolveOutcome {
   bool converged = true;
   int iterations = 0;
   double residual = 0, tolerance = 0;
+  std::string balance_off;  // EnergyBalance::OffMessage(), empty when the balance closed
 };
 
 // The observer of --view (null without it). Hierarchical and adaptive solves change the
@@ -127,7 +128,11 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
   progress.Finish();
   const PreparedJob& job = *result->job;
   outcome = {result->solve.converged, result->solve.iterations, result->solve.residual,
-             options->solver.tolerance};
+             options->solver.tolerance, ""};
+  if (const absl::StatusOr<EnergyBalance>& balance = SettleEnergyBalance(*result, *options);
+      balance.ok()) {
+    outcome.balance_off = balance->OffMessage();
+  }
   progress.Line(
       absl::StrFormat("%d patches, %d non-zeros (%.1f MB), %d iterations, residual %.2e; "
                       "mesh %.3fs embree %.3fs rows %.3fs solve %.3fs",
@@ -197,6 +202,8 @@ void AddSolveCommand(CLI::App& app, int& exit_code, SolveObserverFactory view) {
     if (exit_code == 0 && !outcome.converged) {
       exit_code =
           ReportNotConverged("solve", outcome.iterations, outcome.residual, outcome.tolerance);
+    } else if (exit_code == 0 && !outcome.balance_off.empty()) {
+      exit_code = ReportEnergyImbalance("solve", outcome.balance_off);
     }
     // The page stays for a solve that ended (converged or not), not for a failed one.
     if (observer && (exit_code == 0 || exit_code == kExitNotConverged)) {

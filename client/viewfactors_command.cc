@@ -2,8 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_format.h"
@@ -18,6 +22,18 @@
 namespace radflux::cli {
 namespace {
 
+// Flags shared with `radflux solve` (job_flags.h, import_flags.h) that mean nothing for view
+// factors (issue 23: "no solver options, which mean nothing here"), and the flags of each
+// integration: a flag that would do nothing is an error naming it.
+constexpr const char* kSolverOnlyFlags[] = {
+    "--solver",  "--tolerance",       "--max-iterations",  "--link-epsilon", "--clusters",
+    "--min-element-area", "--adaptive-passes", "--adaptive-threshold", "--emit"};
+constexpr const char* kImportFlags[] = {"--max-reflectance", "--strict", "--two-sided"};
+constexpr const char* kPatchFlags[] = {"--patches", "--max-edge", "--form-factors", "--rays",
+                                       "--hemicube-res", "--samples", "--cutoff", "--seed"};
+constexpr const char* kAdaptiveFlags[] = {"--vf-tolerance", "--far-ratio", "--middle-ratio",
+                                          "--memory-limit"};
+
 struct ViewFactorArgs {
   std::string scene, by = "object", output, format = "csv", svf, integration = "auto";
   double min_vf = 0;
@@ -25,6 +41,7 @@ struct ViewFactorArgs {
   uint64_t memory_limit = 0;
   bool quiet = false;
   bool form_factors_given = false;  // --form-factors on the command line: auto means patches
+  std::vector<std::string> given;   // the flags on the command line
   JobFlags job;
   ImportFlags import;
 };
@@ -54,13 +71,53 @@ absl::StatusOr<Scene> LoadViewFactorScene(const ViewFactorArgs& args,
   return std::move(model->scene);
 }
 
+bool Given(const ViewFactorArgs& args, std::span<const char* const> flags, std::string& which) {
+  for (const char* flag : flags) {
+    if (std::find(args.given.begin(), args.given.end(), flag) != args.given.end()) {
+      which = flag;
+      return true;
+    }
+  }
+  return false;
+}
+
+// INVALID_ARGUMENT naming the first given flag that does nothing for this scene and
+// integration (kAuto already resolved).
+absl::Status CheckFlagsApply(const ViewFactorArgs& args, ViewFactorIntegration integration) {
+  std::string flag;
+  if (Given(args, kSolverOnlyFlags, flag)) {
+    return absl::InvalidArgumentError(
+        flag + " is for radflux solve only; view factors are geometry only (no emitter, no solver)");
+  }
+  const bool raw = absl::EndsWithIgnoreCase(args.scene, ".stl") ||
+                   absl::EndsWithIgnoreCase(args.scene, ".vs3");
+  if (raw && Given(args, kImportFlags, flag)) {
+    return absl::InvalidArgumentError(flag + " is an import rule; .stl and .vs3 files are read "
+                                             "as they are (surface k = facet or record k)");
+  }
+  if (integration == ViewFactorIntegration::kAdaptive && Given(args, kPatchFlags, flag)) {
+    return absl::InvalidArgumentError(
+        flag + " applies to --integration patches; this run integrates per surface pair "
+               "(adaptive: every surface is one face)");
+  }
+  if (integration == ViewFactorIntegration::kPatches && Given(args, kAdaptiveFlags, flag)) {
+    return absl::InvalidArgumentError(
+        flag + " applies to adaptive integration; this run uses patch rows (" +
+        (args.integration == "patches" ? "--integration patches"
+         : args.form_factors_given     ? "--form-factors given"
+                                       : "a surface with several faces: try --by face") +
+        ")");
+  }
+  return absl::OkStatus();
+}
+
 void PrintReport(const ViewFactorReport& r) {
   if (r.adaptive) {
     const SurfaceRowsStats& s = *r.adaptive;
     std::fprintf(stderr,
                  "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
                  "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
-                 "pairs traced with %llu segments; cull %.2f s, rows %.2f s\n",
+                 "pairs traced with %llu segments%s; cull %.2f s, rows %.2f s\n",
                  static_cast<unsigned long long>(s.pairs.culled),
                  static_cast<unsigned long long>(s.pairs.one_point),
                  static_cast<unsigned long long>(s.pairs.middle),
@@ -68,7 +125,9 @@ void PrintReport(const ViewFactorReport& r) {
                  static_cast<unsigned long long>(s.pairs.evaluations),
                  static_cast<unsigned long long>(s.blockers),
                  static_cast<unsigned long long>(s.traced_pairs),
-                 static_cast<unsigned long long>(s.segments), s.cull_seconds, s.rows_seconds);
+                 static_cast<unsigned long long>(s.segments),
+                 s.reciprocal ? "; each pair once (reciprocity)" : "", s.cull_seconds,
+                 s.rows_seconds);
   }
   std::fprintf(stderr,
                "viewfactors: %zu surfaces (%zu patches); mesh %.2f s, embree %.2f s, rows %.2f s "
@@ -107,6 +166,12 @@ absl::Status RunViewFactors(const ViewFactorArgs& args) {
   options.output.svf_path = args.svf;
   absl::StatusOr<Scene> scene = LoadViewFactorScene(args, options);
   if (!scene.ok()) return scene.status();
+  if (options.integration == ViewFactorIntegration::kAuto) {
+    options.integration = EverySurfaceIsOneFace(*scene, options.by)
+                              ? ViewFactorIntegration::kAdaptive
+                              : ViewFactorIntegration::kPatches;
+  }
+  if (absl::Status s = CheckFlagsApply(args, options.integration); !s.ok()) return s;
   absl::StatusOr<ViewFactorReport> report = RunViewFactorJob(*std::move(scene), options);
   if (!report.ok()) return report.status();
   PrintReport(*report);
@@ -163,6 +228,11 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
   AddImportFlags(*cmd, args->import);
   cmd->callback([args, cmd, &exit_code] {
     args->form_factors_given = cmd->count("--form-factors") > 0;
+    for (const CLI::Option* option : cmd->get_options()) {
+      if (option->count() > 0 && !option->get_lnames().empty()) {
+        args->given.push_back("--" + option->get_lnames()[0]);
+      }
+    }
     exit_code = ReportStatus("viewfactors", RunViewFactors(*args));
   });
 }

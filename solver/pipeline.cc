@@ -36,7 +36,7 @@ absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
     return absl::OkStatus();
   }
   result.row_store = std::make_unique<RowStore>(
-      static_cast<uint32_t>(result.job->mesh.size()), options.spill.memory_limit,
+      static_cast<uint32_t>(result.job->Unknowns()), options.spill.memory_limit,
       std::make_unique<FileBlockSpill>(options.spill.directory));
   absl::StatusOr<RowBuildSummary> rows =
       BuildFormFactorsInto(context, options.form_factors, *result.row_store, callbacks.phase);
@@ -103,25 +103,33 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   auto job = std::make_unique<PreparedJob>();
   job->scene = std::move(scene);
   auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(job->scene, options.mesh);
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(job->scene, JobMeshOptions(options));
   if (!mesh.ok()) return mesh.status();
-  job->mesh = *std::move(mesh);
+  job->mesh = std::move(mesh->mesh);
+  job->clusters = std::move(mesh->clusters);
   job->mesh_stats = ComputeMeshStats(job->mesh);
-  job->attributes = ComputePatchAttributes(job->scene, job->mesh);
+  job->attributes = job->clusters.empty()
+                        ? ComputePatchAttributes(job->scene, job->mesh)
+                        : ComputeClusterAttributes(job->scene, job->mesh, job->clusters);
   job->mesh_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
   absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
   if (!caster.ok()) return caster.status();
   job->caster = *std::move(caster);
-  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster);
+  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters);
   job->embree_seconds = SecondsSince(start);
   return job;
 }
 
 uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options.mesh);
-  return EstimateJobBytes(mesh.ok() ? mesh->size() : 0, options);
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
+  if (!mesh.ok()) return EstimateJobBytes(0, options);
+  const uint64_t patches = mesh->mesh.size();
+  const uint64_t unknowns = mesh->clusters.empty() ? patches : mesh->clusters.size();
+  // Rows and solver per unknown; the patches beyond them cost their mesh and Embree bytes.
+  return EstimateJobBytes(unknowns, options) +
+         (patches - unknowns) * (sizeof(Patch) + 4 * sizeof(Vec3) + 2 * sizeof(uint32_t) + 128);
 }
 
 uint64_t EstimateJobBytes(uint64_t n, const JobOptions& options) {
@@ -163,7 +171,20 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   if (!solved.ok()) return solved.status();
   result.solve = *std::move(solved);
   result.timings.solve = SecondsSince(start);
+  if (absl::Status s = PushDownGroupedSolve(options, result); !s.ok()) return s;
   return result;
+}
+
+absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) {
+  const PatchClusters& clusters = result.job->clusters;
+  if (clusters.empty()) return absl::OkStatus();
+  absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
+      result.System(), result.solve.radiosity,
+      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)});
+  if (!balance.ok()) return balance.status();
+  result.solved_balance = *balance;
+  result.solve.radiosity = PushDownToPatches(clusters, result.solve.radiosity);
+  return absl::OkStatus();
 }
 
 }  // namespace radflux

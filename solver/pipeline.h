@@ -16,6 +16,7 @@
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/hierarchical/hierarchical.h"
+#include "solver/mesh/face_grouping.h"
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
@@ -47,15 +48,31 @@ struct JobOptions {
 // the option.
 absl::Status ValidateJobOptions(const JobOptions& options);
 
+// The mesh options a job meshes with: faces are grouped (face_grouping.h) only for
+// monte_carlo rows of a lit scene (the other methods' rows are per patch, and view factors
+// are asked per patch). Inline: the service client meshes with it too, without the solver.
+inline MeshOptions JobMeshOptions(const JobOptions& options) {
+  MeshOptions mesh = options.mesh;
+  mesh.group_faces = mesh.group_faces && options.require_emitter &&
+                     options.form_factors.method == FormFactorMethod::kMonteCarlo;
+  return mesh;
+}
+
 // A job after meshing and the Embree build: everything the row and solve phases need.
+// The unknowns (rows, attributes, the solved B) are the patches, or the groups of them in
+// `clusters` when faces were grouped; outputs always get one B per patch.
 struct PreparedJob {
   Scene scene;
   PatchMesh mesh;
+  PatchClusters clusters;  // empty: one unknown per patch
   MeshStats mesh_stats;
-  PatchAttributes attributes;
+  PatchAttributes attributes;  // per unknown
   std::unique_ptr<EmbreeRayCaster> caster;
   RowContext rows;  // points into mesh and caster: PreparedJob is not copyable or movable
   double load_seconds = 0, mesh_seconds = 0, embree_seconds = 0;
+
+  // The number of unknowns: rows of the system and values the solve computes.
+  size_t Unknowns() const { return clusters.empty() ? mesh.size() : clusters.size(); }
 
   PreparedJob() = default;
   PreparedJob(const PreparedJob&) = delete;
@@ -106,6 +123,11 @@ struct JobCallbacks {
   PhaseProgress phase;  // "rows" progress; returning false cancels
   SolveCallback solve;  // per-iteration progress and snapshots
 };
+
+// After the solve of a job whose faces were grouped: the balance of the solved (grouped)
+// system into result.solved_balance, then result.solve.radiosity pushed down to one value
+// per patch (each patch its group's B). Nothing to do when the faces were not grouped.
+absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result);
 
 // Runs all phases in-process on options.form_factors.threads threads.
 absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,

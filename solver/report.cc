@@ -1,5 +1,6 @@
 #include "solver/report.h"
 
+#include <algorithm>
 #include <string>
 
 #include "solver/core/parallel.h"
@@ -68,22 +69,6 @@ nlohmann::json AdaptiveJson(const std::vector<AdaptivePass>& passes) {
   return out;
 }
 
-// Which term of a balance that is not ok is out, and the likely why.
-std::string BalanceWhy(const EnergyBalance& e, const Rgb& imbalance) {
-  for (int b = 0; b < kBands; ++b) {
-    if (e.escaped[b] < -kEnergyBalanceFloor * e.emitted[b]) {
-      return "escaped is negative: rows or emitter columns carry more than the power that "
-             "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
-    }
-  }
-  return imbalance[0] + imbalance[1] + imbalance[2] > 0
-             ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
-               "not reciprocal, e.g. emitter columns against the emitters' own rows, or a "
-               "solve that has not converged)"
-             : "absorbed + escaped exceed emitted: rows that carry more than they should "
-               "(row sums above 1, rows that are not reciprocal)";
-}
-
 // The balance with its threshold; when it is not ok, which term is out and why.
 nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
@@ -101,7 +86,7 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
                          "max(0.005, noise / emitted); noise: the imbalance the rows' Monte Carlo "
                          "noise gives (multinomial rows of k rays, an upper estimate)"},
                         {"ok", e.Ok()}};
-  if (!e.Ok()) out["why"] = BalanceWhy(e, imbalance);
+  if (!e.Ok()) out["why"] = e.Why();
   return out;
 }
 
@@ -118,18 +103,38 @@ nlohmann::json SolverJson(const SolveResult& s) {
 // Power the cut-off dropped, W per band: the dropped form-factor area sum_i A_i d_i times
 // the area-mean radiosity (an estimate: the dropped entries' own B_j are not kept).
 nlohmann::json DroppedPowerJson(const JobResult& result) {
-  const PatchAttributes& p = result.job->attributes;
+  const std::vector<Patch>& p = result.job->mesh.patches;  // B is per patch here
   const std::vector<Rgb>& b = result.solve.radiosity;
   Rgb mean{};
   double area = 0;
   for (size_t i = 0; i < b.size() && i < p.size(); ++i) {
-    area += p.area[i];
-    for (int k = 0; k < kBands; ++k) mean[k] += p.area[i] * b[i][k];
+    area += p[i].area;
+    for (int k = 0; k < kBands; ++k) mean[k] += p[i].area * b[i][k];
   }
   Rgb watts{};
   for (int k = 0; k < kBands; ++k)
     watts[k] = area > 0 ? result.row_stats.dropped_area * mean[k] / area : 0;
   return BandsJson(watts);
+}
+
+// The unknowns against the faces and patches: how many groups of patches (face_grouping.h)
+// the solve had, and their sizes.
+nlohmann::json UnknownsJson(const PreparedJob& job) {
+  const PatchClusters& c = job.clusters;
+  size_t groups = 0, grouped = 0, largest = c.empty() ? 1 : 0;
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    const size_t members = c.Members(u).size();
+    largest = std::max(largest, members);
+    if (members > 1) {
+      ++groups;
+      grouped += members;
+    }
+  }
+  return {{"unknowns", job.Unknowns()},
+          {"grouped", !c.empty()},
+          {"groups", groups},
+          {"grouped_patches", grouped},
+          {"largest_group", largest}};
 }
 
 // Where the rows lived when they spilled (before the report's own pass over them).
@@ -155,16 +160,24 @@ nlohmann::json ImportJson(const ImportLog& log) {
 
 }  // namespace
 
-nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
+const absl::StatusOr<EnergyBalance>& SettleEnergyBalance(JobResult& result,
+                                                         const JobOptions& options) {
+  if (!result.solved_balance) {
+    result.solved_balance =
+        StreamEnergyBalance(result.System(), result.solve.radiosity,
+                            {SampledRays(options.form_factors),
+                             LightSamplesPerRow(options.form_factors)});
+  }
+  return *result.solved_balance;
+}
+
+nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
                              const std::string& scene_name) {
+  const absl::StatusOr<EnergyBalance>& balance = SettleEnergyBalance(result, options);
   const PreparedJob& job = *result.job;
   const JobTimings& t = result.timings;
   nlohmann::json spill = nullptr;
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
-  const absl::StatusOr<EnergyBalance> balance =
-      result.solved_balance ? *result.solved_balance
-                            : StreamEnergyBalance(result.System(), result.solve.radiosity,
-                                                  SampledRays(options.form_factors));
   const int threads =
       options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
   nlohmann::json report = {
@@ -175,6 +188,7 @@ nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
       {"mesh",
        {{"faces", job.scene.faces.size()},
         {"patches", job.mesh_stats.patches},
+        {"unknowns", UnknownsJson(job)},
         {"min_area", job.mesh_stats.min_area},
         {"max_area", job.mesh_stats.max_area},
         {"max_aspect", job.mesh_stats.max_aspect}}},

@@ -12,7 +12,15 @@
 
 namespace radflux {
 
-nlohmann::json MakeJobReport(const JobResult& result, const JobOptions& options,
+// The energy balance of a finished job, computed once (one pass over the rows, unless the
+// strategy left its own in result.solved_balance) and kept in result.solved_balance, so the
+// report and the caller's verdict (a balance that is off is an exit status of its own, or a
+// job flagged so) read the same numbers.
+const absl::StatusOr<EnergyBalance>& SettleEnergyBalance(JobResult& result,
+                                                         const JobOptions& options);
+
+// The report as JSON; settles the energy balance (SettleEnergyBalance) if not yet done.
+nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
                              const std::string& scene_name);
 
 }  // namespace radflux

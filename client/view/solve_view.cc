@@ -4,7 +4,7 @@
 
 #include "client/view/view_content.h"
 #include "client/view/view_server.h"
-#include "solver/mesh/subdivide.h"
+#include "solver/mesh/face_grouping.h"
 #include "wire/proto_convert.h"
 
 namespace radflux::cli {
@@ -32,9 +32,10 @@ bool SolveView::Due(std::chrono::steady_clock::time_point& last, bool force) {
 absl::Status SolveView::Start(const Scene& scene, const JobOptions& options) {
   absl::StatusOr<std::string> three = FindThreeDir();
   if (!three.ok()) return three.status();
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options.mesh);
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
   if (!mesh.ok()) return mesh.status();
-  state_->SetInfo(ViewInfo("local", ToProto(options), mesh->size()), MeshBytes(*mesh));
+  clusters_ = std::move(mesh->clusters);
+  state_->SetInfo(ViewInfo("local", ToProto(options), mesh->mesh.size()), MeshBytes(mesh->mesh));
   words_ = std::make_unique<JobProgress>(options.solver.tolerance);
   PublishEvent(Event(v1::JOB_STATE_RUNNING, v1::PHASE_PREPARE), *words_, state_.get());
   ViewRoutes routes;
@@ -78,7 +79,10 @@ void SolveView::Iteration(const SolveProgress& p) {
     event.mutable_progress()->set_residual(p.residual);
     PublishEvent(event, *words_, state_.get());
   }
-  if (p.snapshot && Due(last_snapshot_, false)) PublishRadiosity(p.iteration, *p.snapshot, state_.get());
+  if (!p.snapshot || !Due(last_snapshot_, false)) return;
+  PublishRadiosity(p.iteration,
+                   clusters_.empty() ? *p.snapshot : PushDownToPatches(clusters_, *p.snapshot),
+                   state_.get());
 }
 
 void SolveView::Finish(const JobResult& result, const nlohmann::json& report) {

@@ -10,6 +10,7 @@
 #include "client/job_progress.h"
 #include "client/solve_command.h"
 #include "client/view/view_state.h"
+#include "solver/mesh/patch_clusters.h"
 
 namespace radflux::cli {
 
@@ -33,6 +34,7 @@ class SolveView : public SolveObserver {
   const int port_;
   std::shared_ptr<ViewState> state_ = std::make_shared<ViewState>();
   std::unique_ptr<JobProgress> words_;
+  PatchClusters clusters_;  // the job's groups of patches: snapshots are per group
   std::thread server_;
   std::chrono::steady_clock::time_point last_event_, last_snapshot_;
 };

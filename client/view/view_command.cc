@@ -50,6 +50,8 @@ absl::StatusOr<std::string> JobList(Client& client) {
     jobs.push_back({{"job_id", job.job_id()}, {"state", v1::JobState_Name(job.state())},
                     {"phase", v1::Phase_Name(job.phase())}, {"patches", job.patches()},
                     {"not_converged", job.has_converged() && !job.converged()},
+                    {"energy_balance_off",
+                     job.has_energy_balance_ok() && !job.energy_balance_ok()},
                     {"message", job.message()}});
   }
   return jobs.dump();

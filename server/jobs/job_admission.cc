@@ -88,7 +88,7 @@ absl::Status JobManager::CheckLimits(const v1::SubmitJobRequest& request) {
     const double bound = MaxEdgePatchBound(scene, options->mesh.max_edge);
     if (bound > 4.0 * static_cast<double>(max_patches)) return too_many(bound);
   }
-  const uint64_t patches = (*loaded)->PatchCount(options->mesh);
+  const uint64_t patches = (*loaded)->PatchCount(JobMeshOptions(*options));
   if (absl::Status s =
           RowMemoryBudget(patches, *options, PerJobMemoryLimit(options_.max_memory)).status();
       !s.ok()) {

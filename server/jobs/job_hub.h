@@ -36,6 +36,13 @@ struct SnapshotData {
   std::shared_ptr<const std::vector<Rgb>> radiosity;
 };
 
+// Copies a SUCCEEDED job's verdict (Job.converged, Job.energy_balance_ok, where set) onto
+// the job's final event.
+inline void CopyVerdict(const v1::Job& job, v1::JobEvent& event) {
+  if (job.has_converged()) event.set_converged(job.converged());
+  if (job.has_energy_balance_ok()) event.set_energy_balance_ok(job.energy_balance_ok());
+}
+
 class JobHub : public std::enable_shared_from_this<JobHub> {
  public:
   using Clock = WakeSchedule::Clock;

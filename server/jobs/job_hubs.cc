@@ -25,7 +25,7 @@ std::shared_ptr<JobHub> JobManager::RebuildHubLocked(const v1::Job& job, uint64_
   event.set_state(job.state());
   event.set_phase(job.phase());
   event.set_message(job.message());
-  if (job.has_converged()) event.set_converged(job.converged());
+  CopyVerdict(job, event);
   hub->Publish(event);
   if (IsTerminal(job.state())) {
     hub->Close();

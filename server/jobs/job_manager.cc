@@ -277,9 +277,7 @@ absl::Status JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase 
   event.set_state(state);
   event.set_phase(phase);
   event.set_message(message);
-  if (state == v1::JOB_STATE_SUCCEEDED && job.has_converged()) {
-    event.set_converged(job.converged());
-  }
+  if (state == v1::JOB_STATE_SUCCEEDED) CopyVerdict(job, event);
   hub->Publish(event);
   if (IsTerminal(state)) {
     hub->Close();
@@ -405,6 +403,7 @@ void JobManager::RunOne(const std::string& job_id) {
       std::future<absl::Status> synced =
           std::async(std::launch::async, [&] { return store_.SyncResult(job_id); });
       job.set_converged(result->converged);
+      job.set_energy_balance_ok(result->energy_balance_ok);
       (void)Transition(job, v1::JOB_STATE_SUCCEEDED, v1::PHASE_DONE, result->message, &synced);
     } else {
       store_.RemoveWorkFiles(job_id);

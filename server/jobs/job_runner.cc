@@ -64,7 +64,7 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
                                         const RunContext& c, RowBlockWriter& writer,
                                         ProgressThrottle& throttle, FarmReport* farm_report) {
   const auto start = Clock::now();
-  const uint32_t n = static_cast<uint32_t>(prepared.mesh.size());
+  const uint32_t n = static_cast<uint32_t>(prepared.Unknowns());
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
   RowSink sink = MakeRowSink(job, n, block_count, row_budget, c);
@@ -198,7 +198,7 @@ std::optional<SolverCheckpoint> UsableCheckpoint(const v1::Job& job, SolverMetho
 absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p,
                                         const JobRows& rows, SolverOptions so, const RunContext& c,
                                         ProgressThrottle& throttle) {
-  const int64_t n = static_cast<int64_t>(p.mesh.size());
+  const int64_t n = static_cast<int64_t>(p.Unknowns());
   so.threads = c.threads;
   so.cancel = c.stop;
   so.snapshot_every = 1;
@@ -227,7 +227,9 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
     }
     if (!sp.snapshot) return;
     throttle.PublishSnapshot(
-        {offset + sp.iteration, std::make_shared<const std::vector<Rgb>>(*sp.snapshot)});
+        {offset + sp.iteration,
+         std::make_shared<const std::vector<Rgb>>(
+             p.clusters.empty() ? *sp.snapshot : PushDownToPatches(p.clusters, *sp.snapshot))});
     if (!ResumableSolver(so.method) || sp.state == nullptr) return;
     last.iteration = offset + sp.iteration;
     last.radiosity = *sp.state;
@@ -264,7 +266,7 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   if (!options.ok()) return options.status();
   options->form_factors.threads = c.threads;
   absl::StatusOr<uint64_t> row_budget =
-      RowMemoryBudget((*loaded)->PatchCount(options->mesh), *options, c.max_memory);
+      RowMemoryBudget((*loaded)->PatchCount(JobMeshOptions(*options)), *options, c.max_memory);
   if (!row_budget.ok()) return row_budget.status();
   options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
@@ -273,7 +275,7 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob((*loaded)->scene, *options);
   if (!prepared.ok()) return prepared.status();
   const PreparedJob& p = **prepared;
-  const int64_t n = static_cast<int64_t>(p.mesh.size());
+  const int64_t n = static_cast<int64_t>(p.Unknowns());
   if (Stopped(c)) return absl::CancelledError("stopped before form-factor rows");
   // The result's bytes that do not depend on B, encoded beside the rows, so that after the
   // solve only B and the report are.
@@ -317,6 +319,7 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   result.timings.embree = result.job->embree_seconds;
   result.timings.rows = rows->seconds;
   result.timings.solve = SecondsSince(solve_start);
+  if (absl::Status s = PushDownGroupedSolve(*options, result); !s.ok()) return s;
   const auto encode_start = Clock::now();
   nlohmann::json report_json = MakeJobReport(result, *options, (*loaded)->name);
   report_json["workers"] = WorkersJson(farm_report);
@@ -327,6 +330,11 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
     encoded->message =
         absl::StrFormat("not converged: residual %.3g after %d iterations (tolerance %.3g)",
                         result.solve.residual, result.solve.iterations, options->solver.tolerance);
+  }
+  if (encoded.ok() && result.solved_balance->ok() && !(*result.solved_balance)->Ok()) {
+    encoded->energy_balance_ok = false;
+    encoded->message = absl::StrCat(encoded->message, encoded->message.empty() ? "" : "; ",
+                                    (*result.solved_balance)->OffMessage());
   }
   spdlog::debug(
       "job {}: ms scene load {:.1f}, mesh+embree {:.1f}, rows {:.1f}, solve {:.1f}, "

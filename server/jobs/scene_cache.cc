@@ -7,13 +7,15 @@
 namespace radflux {
 
 uint64_t LoadedScene::PatchCount(const MeshOptions& options) const {
-  const std::pair<int64_t, double> key{options.target_patches, options.max_edge};
+  const std::tuple<int64_t, double, bool> key{options.target_patches, options.max_edge,
+                                              options.group_faces};
   {
     std::lock_guard lock(mu_);
     if (auto it = counts_.find(key); it != counts_.end()) return it->second;
   }
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
-  const uint64_t count = mesh.ok() ? mesh->size() : 0;
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, options);
+  const uint64_t count =
+      !mesh.ok() ? 0 : (mesh->clusters.empty() ? mesh->mesh.size() : mesh->clusters.size());
   std::lock_guard lock(mu_);
   counts_.emplace(key, count);
   return count;

@@ -10,13 +10,14 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "absl/status/statusor.h"
 #include "radflux/v1/job.pb.h"
 #include "server/jobs/recent_map.h"
 #include "server/store/job_store.h"
-#include "solver/mesh/subdivide.h"
+#include "solver/mesh/face_grouping.h"
 #include "solver/scene/scene.h"
 
 namespace radflux {
@@ -28,12 +29,14 @@ struct LoadedScene {
   std::string name;
   Scene scene;
 
-  // The patch count of SubdivideScene(scene, options), 0 when it fails. Thread-safe.
+  // The number of unknowns of SubdivideAndGroup(scene, options) (patches, or groups of
+  // them), 0 when it fails. Thread-safe.
   uint64_t PatchCount(const MeshOptions& options) const;
 
  private:
   mutable std::mutex mu_;                                          // guards counts_
-  mutable std::map<std::pair<int64_t, double>, uint64_t> counts_;  // by target_patches, max_edge
+  // by target_patches, max_edge, group_faces
+  mutable std::map<std::tuple<int64_t, double, bool>, uint64_t> counts_;
 };
 
 class SceneCache {

@@ -34,6 +34,9 @@ struct EncodedResult {
   // Whether the solve reached its tolerance; if not, the job's message ("not converged:
   // residual R after N iterations (tolerance T)"). Set by RunStoredJob.
   bool converged = true;
+  // Whether the energy balance closed; if not, the message says so (after the not-converged
+  // clause when both). Set by RunStoredJob.
+  bool energy_balance_ok = true;
   std::string message;
 };
 

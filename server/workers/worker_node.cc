@@ -107,10 +107,10 @@ class JobCache {
     if (!prepared.ok()) return prepared.status();
     auto work = std::make_shared<PreparedWork>();
     work->job = *std::move(prepared);
-    if (work->job->mesh.size() != lease.patch_count()) {
+    if (work->job->Unknowns() != lease.patch_count()) {
       return absl::FailedPreconditionError(
-          absl::StrCat("job ", lease.job_id(), ": meshed ", work->job->mesh.size(),
-                       " patches, the server has ", lease.patch_count()));
+          absl::StrCat("job ", lease.job_id(), ": meshed ", work->job->Unknowns(),
+                       " unknowns, the server has ", lease.patch_count()));
     }
     work->builder = MakeRowBuilder(work->job->rows, options->form_factors);
     work->cutoff = options->form_factors.cutoff;
@@ -166,7 +166,7 @@ struct Scratch {
 v1::BlockResult BuildBlock(const v1::BlockLease& lease, const PreparedWork& work, Scratch& scratch,
                            int delay_ms) {
   const auto start = Clock::now();
-  const size_t n = work.job->mesh.size();
+  const size_t n = work.job->Unknowns();
   if (!scratch.row || scratch.n != n) {
     scratch.row = std::make_unique<RowAccumulator>(n);
     scratch.n = n;

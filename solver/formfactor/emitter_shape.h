@@ -12,7 +12,7 @@
 namespace radflux {
 
 struct EmitterShape {
-  uint32_t patch = 0;
+  uint32_t patch = 0;           // the unknown (row and column) it is: light sampling's column
   std::array<Vec3, 4> corner;  // ccw; corner[3] == corner[2] for a triangle
   uint32_t corners = 0;        // 3 or 4
   Vec3 normal;                 // unit, the emitting (front) side

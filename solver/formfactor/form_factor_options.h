@@ -25,10 +25,19 @@ struct FormFactorOptions {
   int block_size = 64;     // rows per block: the unit of work, checkpoint and retry
 };
 
+// monte_carlo's light samples at each of its s (--samples) points on the receiver: a row
+// casts 16 s shadow rays for its emitter columns (64 at the default s = 4; more for the few
+// receivers close to an emitter), whatever the number of emitter patches.
+inline constexpr int kLightSamplesPerPoint = 16;
+
 // k when the rows' non-emitter entries are Monte Carlo hit counts / k (monte_carlo), else 0:
 // what the energy balance needs to know of the rows' sampling noise.
 inline int SampledRays(const FormFactorOptions& o) {
   return o.method == FormFactorMethod::kMonteCarlo ? o.rays : 0;
+}
+// The light samples behind a row's emitter columns, at least (monte_carlo: 16 s), else 0.
+inline int LightSamplesPerRow(const FormFactorOptions& o) {
+  return o.method == FormFactorMethod::kMonteCarlo ? kLightSamplesPerPoint * o.samples : 0;
 }
 
 }  // namespace radflux

@@ -46,7 +46,10 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
   for (uint32_t j = 0; j < context.emitter.size(); ++j) {
     if (!context.emitter[j]) continue;
     const double exitance = j < context.emission.size() ? context.emission[j] : 1.0;
-    shapes.push_back(MakeEmitterShape(*context.mesh, j, exitance));
+    // An emitting unknown is one patch (grouping never groups emitters); the shape names
+    // the unknown, its column.
+    shapes.push_back(MakeEmitterShape(*context.mesh, context.FirstPatch(j), exitance));
+    shapes.back().patch = j;
   }
   return shapes;
 }
@@ -57,15 +60,40 @@ std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
 // receivers (every one in the Cornell box) keep the points asked for.
 constexpr double kMaxNearFieldFactor = 16;
 
-int NearFieldFactor(const PatchMesh& mesh, uint32_t i, const LightTree& tree) {
-  const Patch& patch = mesh.patches[i];
-  double radius = 0;
-  for (int k = 0; k < patch.VertexCount(); ++k)
-    radius = std::max(radius, Length(mesh.positions[patch.v[k]] - patch.centroid));
-  const double distance = tree.NearestDistance(patch.centroid, patch.normal);
+int NearFieldFactor(double radius, double distance) {
   if (!std::isfinite(distance)) return 1;
   const double ratio = 2 * radius / std::max(distance, 1e-300);
   return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
+}
+
+// NearFieldFactor of unknown i: a patch's size about its centroid against the nearest
+// emitter's distance from there; a group's (the members' vertices about the area-weighted
+// centroid, seen along the area-weighted normal), at one distance query per row.
+int UnknownNearFieldFactor(const RowContext& context, uint32_t i, const LightTree& tree) {
+  const PatchMesh& mesh = *context.mesh;
+  const std::span<const uint32_t> members =
+      context.SinglePatch(i) ? std::span<const uint32_t>() : context.clusters->Members(i);
+  const uint32_t first = context.FirstPatch(i);
+  Vec3 centroid = mesh.patches[first].centroid, normal = mesh.patches[first].normal;
+  if (!members.empty()) {
+    Vec3 weighted, summed;
+    double area = 0;
+    for (uint32_t p : members) {
+      weighted += mesh.patches[p].centroid * mesh.patches[p].area;
+      summed += mesh.patches[p].normal * mesh.patches[p].area;
+      area += mesh.patches[p].area;
+    }
+    if (area > 0 && Length(summed) > 0) centroid = weighted / area, normal = Normalize(summed);
+  }
+  double radius = 0;
+  const auto widen = [&](uint32_t p) {
+    const Patch& patch = mesh.patches[p];
+    for (int k = 0; k < patch.VertexCount(); ++k)
+      radius = std::max(radius, Length(mesh.positions[patch.v[k]] - centroid));
+  };
+  if (members.empty()) widen(first);
+  for (uint32_t p : members) widen(p);
+  return NearFieldFactor(radius, tree.NearestDistance(centroid, normal));
 }
 
 }  // namespace
@@ -111,9 +139,7 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
-  const PatchMesh& mesh = *context_.mesh;
-  const Vec3 n = mesh.patches[i].normal;
-  points *= NearFieldFactor(mesh, i, tree_);
+  points *= UnknownNearFieldFactor(context_, i, tree_);
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -125,10 +151,11 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   pending.clear();
   MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
   MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
-  const PatchPointSampler sample_point(mesh, i);
+  const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, i);
   for (size_t p = 0; p < on_patch.size(); ++p) {
     const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
-    SamplePoint(sample_point(on_patch[p]), n, i, seed, i, first,
+    const SurfacePoint at = sample_point(on_patch[p]);
+    SamplePoint(at.x, at.n, i, seed, i, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
   }
   context_.caster->OccludedStream(rays);

@@ -26,11 +26,6 @@
 
 namespace radflux {
 
-// monte_carlo's light samples at each of its s (--samples) points on the receiver: a row
-// casts 16 s shadow rays for its emitter columns (64 at the default s = 4; more for the few
-// receivers close to an emitter), whatever the number of emitter patches.
-inline constexpr int kLightSamplesPerPoint = 16;
-
 class LightSampler {
  public:
   // The emitter patches of `context`, with their power from context.emission.

@@ -35,15 +35,43 @@ class MonteCarloBuilder final : public RowBuilder {
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
-    const PatchMesh& mesh = *context_.mesh;
-    const Patch& patch = mesh.patches[i];
-    const Frame frame = Frame::FromNormal(patch.normal);
     const uint32_t shift = PatternSeed(options_.seed, i, kShiftStream);
     const Point2 ps = RandomShift(shift, 0);
     const Point2 ds = RandomShift(shift, 2);
+    thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
+    stream.resize(positions_.size());
+    if (context_.SinglePatch(i)) {
+      PatchRays(context_.FirstPatch(i), ps, ds, stream);
+    } else {
+      GroupRays(i, ps, ds, stream);
+    }
+    context_.caster->IntersectStream(stream);
+    const double weight = 1.0 / static_cast<double>(positions_.size());
+    for (const StreamRay& ray : stream) {
+      const uint32_t hit = ray.FrontPatch();  // a back side absorbs the ray
+      if (hit == kNoPatch) continue;
+      const uint32_t j = context_.UnknownOf(hit);  // a group's hits on itself: see face_grouping.h
+      if (j != i && !context_.emitter[j]) row.Add(j, weight);
+    }
+    const uint64_t light_rays =
+        lights_.AddEmitterColumns(i, options_.samples, kLightSamplesPerPoint, options_.seed, row);
+    // The two parts are independent estimates: where emitters fill much of the hemisphere
+    // their noise can add up to more than 1, which no row may (rho F B must converge for
+    // every rho < 1); such a row is scaled back to 1 (a closed room's rows sum to 1 exactly).
+    double sum = 0;
+    for (uint32_t j : row.Touched()) sum += row.Value(j);
+    if (sum > 1) row.Scale(1 / sum);
+    return stream.size() + light_rays;
+  }
+
+ private:
+  // The k rays of one patch p, shifted by (ps, ds).
+  void PatchRays(uint32_t p, Point2 ps, Point2 ds, std::vector<StreamRay>& stream) const {
+    const PatchMesh& mesh = *context_.mesh;
+    const Patch& patch = mesh.patches[p];
+    const Frame frame = Frame::FromNormal(patch.normal);
     const Vec3 lift = patch.normal * context_.ray_epsilon;
     const size_t k = positions_.size();
-    const double weight = 1.0 / static_cast<double>(k);
     // The k directions first, in float and in a loop of their own, which GCC vectorises
     // (this file is built with -fno-math-errno for the sqrt): per-thread scratch, x then y
     // then z, reused row to row.
@@ -66,32 +94,30 @@ class MonteCarloBuilder final : public RowBuilder {
       wy[r] = sy * x + ty * y + ny * z;
       wz[r] = sz * x + tz * y + nz * z;
     }
-    const PatchPointSampler sample_point(mesh, i);
-    thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
-    stream.resize(k);
+    const PatchPointSampler sample_point(mesh, p);
     for (size_t r = 0; r < k; ++r) {
       StreamRay& ray = stream[r];
       ray.SetOrigin(sample_point(CranleyPattersonShift(positions_[r], ps)) + lift);
       ray.dir_x = wx[r], ray.dir_y = wy[r], ray.dir_z = wz[r];
       ray.ResetHit();
     }
-    context_.caster->IntersectStream(stream);
-    for (const StreamRay& ray : stream) {
-      const uint32_t j = ray.FrontPatch();  // a back side absorbs the ray
-      if (j != kNoPatch && !context_.emitter[j]) row.Add(j, weight);
-    }
-    const uint64_t light_rays =
-        lights_.AddEmitterColumns(i, options_.samples, kLightSamplesPerPoint, options_.seed, row);
-    // The two parts are independent estimates: where emitters fill much of the hemisphere
-    // their noise can add up to more than 1, which no row may (rho F B must converge for
-    // every rho < 1); such a row is scaled back to 1 (a closed room's rows sum to 1 exactly).
-    double sum = 0;
-    for (uint32_t j : row.Touched()) sum += row.Value(j);
-    if (sum > 1) row.Scale(1 / sum);
-    return stream.size() + light_rays;
   }
 
- private:
+  // The k rays of a group of patches: each ray's origin is drawn over the members by area
+  // (UnknownPointSampler) and its direction is cosine-weighted about that member's normal.
+  void GroupRays(uint32_t u, Point2 ps, Point2 ds, std::vector<StreamRay>& stream) const {
+    const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, u);
+    for (size_t r = 0; r < positions_.size(); ++r) {
+      const SurfacePoint at = sample_point(CranleyPattersonShift(positions_[r], ps));
+      const Vec3 w = Frame::FromNormal(at.n).ToWorld(SampleCosineHemisphere(
+          {WrapShift(double{direction_x_[r]}, ds.x), WrapShift(double{direction_y_[r]}, ds.y)}));
+      StreamRay& ray = stream[r];
+      ray.SetOrigin(at.x + at.n * context_.ray_epsilon);
+      ray.SetDirection(w);
+      ray.ResetHit();
+    }
+  }
+
   const RowContext& context_;
   FormFactorOptions options_;
   LightSampler lights_;  // the emitter columns

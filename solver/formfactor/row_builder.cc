@@ -41,7 +41,7 @@ RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, dou
     if (context.needs_row[i]) stats.rays += builder.BuildRow(i, row);
     const double dropped = row.Flush(cutoff, block, &context.emitter);
     stats.dropped_sum += dropped;
-    stats.dropped_area += context.mesh->patches[i].area * dropped;
+    stats.dropped_area += context.Area(i) * dropped;
     stats.max_row_dropped = std::max(stats.max_row_dropped, dropped);
   }
   return block;
@@ -65,7 +65,7 @@ namespace {
 absl::StatusOr<RowBlockStats> BuildBlocks(
     const RowContext& context, const FormFactorOptions& options, const PhaseProgress& progress,
     const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
-  const uint32_t n = static_cast<uint32_t>(context.mesh->size());
+  const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
@@ -115,7 +115,7 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
                                                   const FormFactorOptions& options,
                                                   const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const uint32_t n = static_cast<uint32_t>(context.mesh->size());
+  const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   std::vector<RowBlock> blocks((n + block_size - 1) / block_size);
   absl::StatusOr<RowBlockStats> stats =

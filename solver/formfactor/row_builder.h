@@ -13,6 +13,7 @@
 #include "solver/core/cancel.h"
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_accumulator.h"
+#include "solver/mesh/patch_clusters.h"
 #include "solver/mesh/patch_mesh.h"
 #include "solver/raytrace/ray_caster.h"
 #include "solver/sparse/csr_matrix.h"
@@ -20,15 +21,32 @@
 
 namespace radflux {
 
-// What the row builders need to know about the scene besides its geometry.
+// What the row builders need to know about the scene besides its geometry. Rows and
+// columns are unknowns: the mesh's patches, or the groups of them in `clusters` (rays still
+// hit patches: UnknownOf maps them). Only monte_carlo builds rows of grouped unknowns.
 struct RowContext {
   const PatchMesh* mesh = nullptr;
   const RayCaster* caster = nullptr;
-  std::vector<uint8_t> needs_row;  // 1 where rho > 0 in some band: only those get rows
-  std::vector<uint8_t> emitter;    // 1 where the patch emits
+  const PatchClusters* clusters = nullptr;  // null: unknown u is patch u
+  std::vector<uint8_t> needs_row;  // per unknown, 1 where rho > 0 in some band: only those get rows
+  std::vector<uint8_t> emitter;    // 1 where the unknown emits
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;
                                    // empty: every emitter counts as 1)
   double ray_epsilon = 0;          // ray origin offset along the normal, scene units
+
+  // The number of unknowns: rows and columns.
+  uint32_t Unknowns() const {
+    return static_cast<uint32_t>(clusters ? clusters->size() : mesh->size());
+  }
+  // The unknown that patch p belongs to.
+  uint32_t UnknownOf(uint32_t p) const { return clusters ? clusters->of_patch[p] : p; }
+  // Whether unknown u is a single patch, and its (first) patch.
+  bool SinglePatch(uint32_t u) const {
+    return clusters == nullptr || clusters->first[u + 1] - clusters->first[u] == 1;
+  }
+  uint32_t FirstPatch(uint32_t u) const { return clusters ? clusters->Members(u)[0] : u; }
+  // Unknown u's area, scene units^2.
+  double Area(uint32_t u) const { return clusters ? clusters->area[u] : mesh->patches[u].area; }
 };
 
 class RowBuilder {

@@ -3,15 +3,17 @@
 namespace radflux {
 
 RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
-                          const RayCaster& caster) {
+                          const RayCaster& caster, const PatchClusters* clusters) {
   RowContext context;
   context.mesh = &mesh;
   context.caster = &caster;
+  context.clusters = clusters != nullptr && !clusters->empty() ? clusters : nullptr;
   context.ray_epsilon = RayEpsilonFor(mesh);
-  context.needs_row.resize(mesh.size());
-  context.emitter.resize(mesh.size());
-  context.emission.resize(mesh.size());
-  for (size_t p = 0; p < mesh.size(); ++p) {
+  const size_t n = attributes.size();
+  context.needs_row.resize(n);
+  context.emitter.resize(n);
+  context.emission.resize(n);
+  for (size_t p = 0; p < n; ++p) {
     context.needs_row[p] = MaxComponent(attributes.reflectance[p]) > 0;
     context.emitter[p] = MaxComponent(attributes.emission[p]) > 0;
     for (int b = 0; b < kBands; ++b) context.emission[p] += attributes.emission[p][b];

@@ -6,8 +6,9 @@
 
 namespace radflux {
 
-// Rows only where rho > 0 in some band; emitters where E > 0 in some band.
+// Rows only where rho > 0 in some band; emitters where E > 0 in some band. `attributes` are
+// per unknown: per patch, or per group of `clusters` when it is given and not empty.
 RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
-                          const RayCaster& caster);
+                          const RayCaster& caster, const PatchClusters* clusters = nullptr);
 
 }  // namespace radflux

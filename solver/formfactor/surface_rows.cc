@@ -1,6 +1,7 @@
 #include "solver/formfactor/surface_rows.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <chrono>
 #include <cstdio>
 
@@ -18,17 +19,37 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// F_ij with occlusion: the unoccluded factor, times the visible fraction when the pair's
+// shaft may hold a blocker.
+double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
+                  uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
+  const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
+  if (f == 0 || !blockers.AnyInShaft(i, j)) return f;
+  ++stats.traced_pairs;
+  return f * VisibleFraction(
+                 shapes[i], shapes[j],
+                 [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
+                 stats.segments);
+}
+
 // Row i into `row` (size radiating).
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-    if (row[j] == 0 || !blockers.AnyInShaft(i, j)) continue;
-    ++stats.traced_pairs;
-    row[j] *= VisibleFraction(
-        shapes[i], shapes[j],
-        [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
-        stats.segments);
+    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats);
+  }
+}
+
+// Row i of the upper triangle: A F for the pairs (i, j > i), each integrated over the one of
+// the two with the smaller diameter (the far and middle rules measure distance in its size).
+void BuildTriangleRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers,
+                      uint32_t i, const PairIntegration& integration, std::span<double> row,
+                      SurfaceRowsStats& stats) {
+  for (uint32_t k = 0; k < row.size(); ++k) {
+    const uint32_t j = i + 1 + k;
+    const bool i_outer = shapes[i].diameter <= shapes[j].diameter;
+    const uint32_t o = i_outer ? i : j, t = i_outer ? j : i;
+    row[k] = shapes[o].area * PairFactor(shapes, blockers, o, t, integration, stats);
   }
 }
 
@@ -41,12 +62,56 @@ size_t BlockRows(size_t radiating, const SurfaceRowsOptions& options) {
   return std::max<size_t>(rows, 1);
 }
 
-void PrintProgress(size_t done, size_t total, Clock::time_point start) {
+void PrintProgress(const char* what, size_t done, size_t total, Clock::time_point start) {
   const double elapsed = SecondsSince(start);
   const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0;
-  std::fprintf(stderr, "\rviewfactors: rows %zu/%zu (%.0f%%), %.0f s, ETA %.0f s   ", done, total,
-               100.0 * static_cast<double>(done) / static_cast<double>(total), elapsed, eta);
+  std::fprintf(stderr, "\rviewfactors: %s %zu/%zu (%.0f%%), %.0f s, ETA %.0f s   ", what, done,
+               total, 100.0 * static_cast<double>(done) / static_cast<double>(total), elapsed, eta);
   if (done == total) std::fputc('\n', stderr);
+}
+
+size_t TriangleSize(size_t n) { return n * (n - 1) / 2; }
+
+// Offset of pair (i, j), i < j, in the packed upper triangle of an n x n matrix.
+size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); }
+
+// Every pair once (reciprocity: A_i F_ij = A_j F_ji), the triangle held whole, then the rows.
+absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t n,
+                                 const BlockerBvh& blockers, const SurfaceRowsOptions& options,
+                                 const SurfaceRowSink& sink, SurfaceRowsStats& stats) {
+  const auto start = Clock::now();
+  std::vector<double> af(TriangleSize(n));
+  const size_t block = BlockRows(n, options);
+  auto last_print = start;
+  for (size_t first = 0; first < n; first += block) {
+    const size_t count = std::min(block, n - first);
+    std::vector<SurfaceRowsStats> per_thread(DefaultThreadCount() + 1);
+    ParallelFor(static_cast<int64_t>(count), 1, options.threads, [&](int64_t b, int64_t e) {
+      for (int64_t r = b; r < e; ++r) {
+        const size_t i = first + r;
+        if (i + 1 == n) continue;
+        BuildTriangleRow(shapes, blockers, static_cast<uint32_t>(i), options.integration,
+                         std::span<double>(af.data() + TriangleIndex(n, i, i + 1), n - i - 1),
+                         per_thread[ThreadIndex()]);
+      }
+    });
+    for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+    const size_t done = TriangleSize(n) - TriangleSize(n - first - count);
+    if (options.progress && (SecondsSince(last_print) > 1 || first + count == n)) {
+      PrintProgress("pairs", done, TriangleSize(n), start);
+      last_print = Clock::now();
+    }
+  }
+  std::vector<double> row(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = 0; j < n; ++j) {
+      const double a = i == j ? 0 : af[TriangleIndex(n, std::min(i, j), std::max(i, j))];
+      row[j] = std::min(1.0, a / shapes[i].area);
+    }
+    if (absl::Status s = sink(row); !s.ok()) return s;
+  }
+  stats.rows_seconds = SecondsSince(start);
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -64,6 +129,9 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   const BlockerBvh blockers(shapes, PotentialBlockers(shapes));
   stats.blockers = blockers.size();
   stats.cull_seconds = SecondsSince(start);
+  const uint64_t budget = options.memory_limit > 0 ? options.memory_limit : kReciprocalBytes;
+  stats.reciprocal = radiating > 1 && TriangleSize(radiating) * sizeof(double) <= budget;
+  if (stats.reciprocal) return BuildReciprocalRows(shapes, radiating, blockers, options, sink, stats);
   start = Clock::now();
   const size_t block = BlockRows(radiating, options);
   std::vector<double> rows(block * radiating);
@@ -84,7 +152,7 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
       if (!s.ok()) return s;
     }
     if (options.progress && (SecondsSince(last_print) > 1 || first + count == radiating)) {
-      PrintProgress(first + count, radiating, start);
+      PrintProgress("rows", first + count, radiating, start);
       last_print = Clock::now();
     }
   }

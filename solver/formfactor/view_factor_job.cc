@@ -46,8 +46,8 @@ struct FaceSurfaces {
 };
 
 std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by) {
+  if (!EverySurfaceIsOneFace(scene, by)) return std::nullopt;
   FaceSurfaces out;
-  std::map<uint32_t, int> faces_per_name;
   std::vector<SurfaceShape> obstructions;
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     const Face& face = scene.faces[f];
@@ -57,7 +57,6 @@ std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGroupin
       continue;
     }
     const uint32_t name = by == SurfaceGrouping::kGroup ? face.group : face.object;
-    if (by != SurfaceGrouping::kFace && ++faces_per_name[name] > 1) return std::nullopt;
     out.names.push_back(by == SurfaceGrouping::kFace    ? "face" + std::to_string(f)
                         : by == SurfaceGrouping::kGroup ? scene.groups[name]
                                                         : scene.objects[name]);
@@ -138,6 +137,16 @@ absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOpti
 }
 
 }  // namespace
+
+bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by) {
+  if (by == SurfaceGrouping::kFace) return true;
+  std::map<uint32_t, int> faces_per_name;
+  for (const Face& face : scene.faces) {
+    const uint32_t name = by == SurfaceGrouping::kGroup ? face.group : face.object;
+    if (!face.obstruction && ++faces_per_name[name] > 1) return false;
+  }
+  return true;
+}
 
 absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene,
                                                   const ViewFactorJobOptions& options) {

@@ -37,6 +37,10 @@ struct ViewFactorReport {
   std::optional<EnclosureAdjustment> enclosure;  // set when options.enclosure
 };
 
+// Whether every surface of `scene` (by `by`) that is not an obstruction is one face: what
+// adaptive integration needs, and what kAuto chooses it by.
+bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by);
+
 // Computes the view factors of `scene` between its surfaces (options.by) and writes them.
 // INVALID_ARGUMENT for a bad scene or options (file:line), errors naming the output file.
 absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene, const ViewFactorJobOptions& options);

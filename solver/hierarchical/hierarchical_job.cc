@@ -91,7 +91,8 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   const PatchAttributes leaf_attributes = ComputePatchAttributes(scene, a.leaf_mesh);
   const EnergyBalance balance =
       ComputeEnergyBalance({&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity,
-                           SampledRays(options.form_factors));
+                           {SampledRays(options.form_factors),
+                            LightSamplesPerRow(options.form_factors)});
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareFromMesh(std::move(scene), display);
   if (!job.ok()) return job.status();

@@ -17,6 +17,8 @@ inline constexpr int kMaxEmitterSteps = 8;
 struct MeshOptions {
   int64_t target_patches = 0;  // aim for this many patches in the scene (closest count wins)
   double max_edge = 0;         // or: no patch edge longer than this (scene units)
+  bool group_faces = true;     // SubdivideAndGroup: when the faces reach target_patches, the
+                               // unknowns are groups of patches (face_grouping.h)
   // Neither set: every face becomes one patch (quads and triangles) or a fan.
 };
 

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "absl/strings/str_format.h"
+
 namespace radflux {
 namespace {
 
@@ -18,14 +20,14 @@ struct BalancePass {
 };
 
 // Row i (a patch with a row): its power along the row, the row-less patches' power along
-// its columns, and the row's sampling variance.
+// its columns, and the row's sampling variance (its cosine rays' and its light samples').
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
-            int sampled_rays, BalancePass& pass, EnergyBalance& out) {
+            const RowSampling& sampling, BalancePass& pass, EnergyBalance& out) {
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
   for (int band = 0; band < kBands; ++band) {
     const double outgoing = p.area[i] * b[i][band];
-    double row_sum = 0, mean_w = 0, mean_w2 = 0;
+    double row_sum = 0, mean_w = 0, mean_w2 = 0, emitter_w = 0;
     for (size_t e = 0; e < cols.size(); ++e) {
       const uint32_t j = cols[e];
       const double f = vals[e];
@@ -36,17 +38,20 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
         pass.arriving[i][band] += gathered;
         pass.column_out[j][band] += gathered;
       }
-      if (sampled_rays > 0 && !Emits(p, j)) {
-        const double w = p.reflectance[j][band] * b[i][band] - p.reflectance[i][band] * b[j][band];
+      const double w = p.reflectance[j][band] * b[i][band] - p.reflectance[i][band] * b[j][band];
+      if (!Emits(p, j)) {
         mean_w += f * w;
         mean_w2 += f * w * w;
+      } else {
+        emitter_w += f * w;
       }
     }
     out.escaped[band] += outgoing * (1 - row_sum);
-    if (sampled_rays > 0) {
-      pass.variance[band] +=
-          p.area[i] * p.area[i] / sampled_rays * std::max(0.0, mean_w2 - mean_w * mean_w);
-    }
+    const double area2 = p.area[i] * p.area[i];
+    if (sampling.rays > 0)
+      pass.variance[band] += area2 / sampling.rays * std::max(0.0, mean_w2 - mean_w * mean_w);
+    if (sampling.light_samples > 0)
+      pass.variance[band] += area2 * emitter_w * emitter_w / sampling.light_samples;
   }
 }
 
@@ -79,16 +84,39 @@ bool EnergyBalance::Ok() const {
   return true;
 }
 
+std::string EnergyBalance::Why() const {
+  double imbalance = 0;
+  for (int b = 0; b < kBands; ++b) {
+    if (escaped[b] < -kEnergyBalanceFloor * emitted[b]) {
+      return "escaped is negative: rows or emitter columns carry more than the power that "
+             "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
+    }
+    imbalance += emitted[b] - absorbed[b] - escaped[b];
+  }
+  return imbalance > 0
+             ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
+               "not reciprocal, e.g. emitter columns against the emitters' own rows, or a "
+               "solve that has not converged)"
+             : "absorbed + escaped exceed emitted: rows that carry more than they should "
+               "(row sums above 1, rows that are not reciprocal, coplanar faces that overlap)";
+}
+
+std::string EnergyBalance::OffMessage() const {
+  if (Ok()) return "";
+  return absl::StrFormat("energy balance off by %.2f%% of the emitted power (tolerance %.2f%%): %s",
+                         100 * RelativeImbalance(), 100 * Tolerance(), Why());
+}
+
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
-                                                  int sampled_rays) {
+                                                  const RowSampling& sampling) {
   const PatchAttributes& p = *system.patches;
   EnergyBalance out;
   BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}), Rgb{}};
   const absl::Status read =
       ForEachRows(system.form_factors, system.row_store, [&](const RowsView& rows) {
         for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
-          if (HasRow(p, i)) AddRow(p, radiosity, rows, i, sampled_rays, pass, out);
+          if (HasRow(p, i)) AddRow(p, radiosity, rows, i, sampling, pass, out);
         }
       });
   if (!read.ok()) return read;
@@ -104,9 +132,9 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
 }
 
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system, const std::vector<Rgb>& radiosity,
-                                   int sampled_rays) {
+                                   const RowSampling& sampling) {
   assert(system.form_factors != nullptr);
-  return *StreamEnergyBalance(system, radiosity, sampled_rays);
+  return *StreamEnergyBalance(system, radiosity, sampling);
 }
 
 }  // namespace radflux

@@ -5,6 +5,7 @@
 // columns instead (A_j F_ji B_i reaches j, by reciprocity), so its power is accounted too.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -28,10 +29,12 @@ struct EnergyBalance {
   // Standard deviation of emitted - absorbed - escaped that the rows' Monte Carlo noise
   // alone gives (0 for rows that are not sampled), per band, W. At the solution the
   // imbalance is sum_ij A_i F_ij (rho_j B_i - rho_i B_j), which is zero for reciprocal rows;
-  // each sampled row is read as a multinomial draw of k rays over its columns (misses and
-  // analytic emitter columns carry no noise), var_i = A_i^2 / k (sum_j F_ij w_j^2 -
-  // (sum_j F_ij w_j)^2), w_j = rho_j B_i - rho_i B_j. Stratified rows are less noisy than
-  // that, so the bound is conservative.
+  // each sampled row's non-emitter columns are read as a multinomial draw of k rays (misses
+  // carry no noise), var_i = A_i^2 / k (sum_j F_ij w_j^2 - (sum_j F_ij w_j)^2), w_j =
+  // rho_j B_i - rho_i B_j; its light-sampled emitter columns as an estimate of
+  // sum_j F_ij w_j with a relative standard deviation of 1 / sqrt(light samples), var_i =
+  // A_i^2 (sum_j F_ij w_j)^2 / samples (exact where a sample sees its emitter whole; larger
+  // where shadows cut it). Stratified rows are less noisy than the multinomial reading.
   Rgb noise{};
   // |emitted - absorbed - escaped| / emitted, max over emitting bands.
   double RelativeImbalance() const;
@@ -40,16 +43,26 @@ struct EnergyBalance {
   double Tolerance() const;
   // Every emitting band within its own threshold.
   bool Ok() const;
+  // Which term of a balance that is not ok is out, and the likely why (one clause).
+  std::string Why() const;
+  // One line for a balance that is not ok: "energy balance off: absorbed + escaped exceed
+  // emitted by 4.3% (tolerance 0.5%): <Why()>"; empty when it is ok.
+  std::string OffMessage() const;
+};
+
+// How the rows were sampled, for EnergyBalance::noise: both 0 for rows that are not.
+struct RowSampling {
+  int rays = 0;           // k of Monte Carlo rows (their non-emitter entries are hits / k)
+  int light_samples = 0;  // light samples behind a row's emitter columns (at least)
 };
 
 // The balance of `radiosity`, reading the rows once in order (streamed when the system's
-// rows are in a row store: then its read error). `sampled_rays` is k for Monte Carlo rows
-// (their non-emitter entries are hits / k), 0 when the rows are not sampled.
+// rows are in a row store: then its read error).
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
-                                                  int sampled_rays = 0);
+                                                  const RowSampling& sampling = {});
 // The same for rows in memory (system.form_factors), which cannot fail.
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system, const std::vector<Rgb>& radiosity,
-                                   int sampled_rays = 0);
+                                   const RowSampling& sampling = {});
 
 }  // namespace radflux

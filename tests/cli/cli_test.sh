@@ -69,6 +69,21 @@ printf '%s' "$out" | grep -q "radflux solve: not converged: residual .* after 2 
 grep -q '"converged": false' "$tmp/n.json" || fail "unconverged solve: report not written"
 [ "$(wc -l <"$tmp/n.csv")" -gt 270 ] || fail "unconverged solve: patch values not written"
 
+# A converged solve whose energy balance is off (two coplanar floors that overlap make light
+# from nothing) exits 4 with one line saying by how much and why, and writes its outputs;
+# the same cube without the overlay closes its balance and exits 0.
+overlap="$source_dir/tests/data/overlapping_floor.obj"
+out=$("$radflux" solve "$overlap" --quiet --report "$tmp/o.json" 2>&1 >/dev/null)
+code=$?
+[ "$code" -eq 4 ] || fail "solve with overlapping floors exited $code, not 4"
+[ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "balance off: not one line: $out"
+printf '%s' "$out" | grep -q "radflux solve: energy balance off by [0-9.]*% of the emitted power (tolerance [0-9.]*%): absorbed + escaped exceed emitted" ||
+  fail "balance off: '$out'"
+grep -q '"ok": false' "$tmp/o.json" || fail "balance off: report not written"
+grep -v overlay "$overlap" | sed 's/^f 9 10 11 12$//' >"$tmp/closed.obj"
+cp "$source_dir/tests/data/overlapping_floor.mtl" "$tmp/"
+"$radflux" solve "$tmp/closed.obj" --quiet || fail "the cube without the overlay exited $?"
+
 # Bad input: non-zero exit and exactly one line naming the problem.
 expect_error() {
   local what=$1 pattern=$2
@@ -98,6 +113,13 @@ expect_error "link epsilon" "link-epsilon must be" solve "$cornell" --solver hie
 expect_error "cg cannot stream" "memory-limit" solve "$cornell" --memory-limit 1M --solver cg
 expect_error "spill dir is a file" "cannot create a spill file in" solve "$cornell" --patches 300 -q \
   --memory-limit 1K --spill-dir "$tmp/c.csv"
+# viewfactors: a flag that would do nothing is refused, by name (issue 23).
+expect_error "viewfactors solver flag" "--solver is for radflux solve only" viewfactors "$cornell" \
+  -o "$tmp/vf2.csv" --solver cg
+expect_error "viewfactors adaptive flag on patches" "--far-ratio applies to adaptive" viewfactors \
+  "$cornell" -o "$tmp/vf2.csv" --far-ratio 4
+expect_error "viewfactors patch flag on adaptive" "--samples applies to --integration patches" \
+  viewfactors "$cornell" --by face -o "$tmp/vf2.csv" --samples 16
 # grep reads the whole help (no -q): an early exit would SIGPIPE radflux once the help
 # outgrows one pipe write, and pipefail would report that.
 "$radflux" solve --help | grep -- "--hemicube-res" >/dev/null || fail "--help lists options"
@@ -113,7 +135,7 @@ expect_missing_sibling_for() {
 expect_missing_sibling_for radflux-local solve "$cornell"
 expect_missing_sibling_for radflux-service --server 127.0.0.1:1 list
 
-checks=34
+checks=37
 # The service verbs run in radflux-service next to radflux (client/service_dispatch.h): the same
 # command line reaches them, connection flags before or after the verb.
 if [ -x "$(dirname "$radflux")/radflux-service" ]; then

@@ -39,6 +39,22 @@ grep -q "radflux result: job $SHORT not converged: residual" "$DIR/short.err"
 [ "$(wc -l <"$DIR/short.csv")" -gt 150 ]
 "$CLI" list --server "$ADDR" | grep -q "$SHORT.*JOB_STATE_SUCCEEDED NOT_CONVERGED.*not converged"
 "$CLI" list --server "$ADDR" | grep "$JOB" | grep -qv "NOT_CONVERGED"
+# A job whose energy balance is off (two coplanar floors that overlap) has its result, but
+# watch, result and list say so, and watch and result exit 4.
+OVERLAP="$(dirname "$0")/../data/overlapping_floor.obj"
+code=0
+"$CLI" submit "$OVERLAP" --watch --server "$ADDR" >"$DIR/off.out" 2>"$DIR/off.err" || code=$?
+[ "$code" -eq 4 ] || { echo "submit --watch of a job whose balance is off exited $code"; exit 1; }
+grep -q "radflux watch: job job-[0-9a-f]* energy balance off by .* absorbed + escaped exceed" \
+  "$DIR/off.err"
+OFF=$(tail -n 1 "$DIR/off.out")
+code=0
+"$CLI" --server "$ADDR" result "$OFF" --report "$DIR/off.json" 2>"$DIR/off.err" || code=$?
+[ "$code" -eq 4 ] || { echo "result of a job whose balance is off exited $code"; exit 1; }
+grep -q "radflux result: job $OFF energy balance off by" "$DIR/off.err"
+grep -q '"ok": false' "$DIR/off.json"
+"$CLI" list --server "$ADDR" | grep -q "$OFF.*JOB_STATE_SUCCEEDED ENERGY_BALANCE_OFF.*energy balance off"
+"$CLI" list --server "$ADDR" | grep "$JOB" | grep -qv "ENERGY_BALANCE_OFF"
 # Options the service cannot carry are refused, not silently dropped.
 if "$CLI" submit "$SCENE" --solver hierarchical --server "$ADDR" 2>"$DIR/err"; then
   echo "submit --solver hierarchical succeeded"; exit 1

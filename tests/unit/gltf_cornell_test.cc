@@ -187,7 +187,7 @@ TEST(GltfCornellBox, SameTrianglesAsObjAndAsGltfGiveBitIdenticalRadiosity) {
     // the tolerance that follows from its 64-ray rows' noise (at 400 patches the imbalance
     // runs 0.3-1.5% over seeds, with analytic or light-sampled lamp columns alike).
     const EnergyBalance balance =
-        ComputeEnergyBalance(result.System(), result.solve.radiosity, 64);
+        ComputeEnergyBalance(result.System(), result.solve.radiosity, {64, 64});
     EXPECT_TRUE(balance.Ok()) << name << " imbalance " << balance.RelativeImbalance()
                               << " tolerance " << balance.Tolerance();
   }

@@ -37,8 +37,8 @@ double EmitterToReceiver() {
 // adds rho^2 F_er F_re ~ 1e-5 relative) within 1e-3, and the energy balance closes: 1e-3
 // for analytic, 1e-2 for monte_carlo, whose emitter row (k = 1024 rays, F_er ~ 0.6) carries
 // a statistical error of order sqrt(F (1 - F) / k) = 1.5e-2 into "escaped". hemicube meets
-// the same bounds: its emitter columns are light-sampled like monte_carlo's, so no cell of a
-// receiver's hemicube has to hit the 0.01 emitter.
+// the same bounds: its emitter columns are exact point form factors from the centroid (with
+// shadow rays), so no cell of a receiver's hemicube has to hit the 0.01 emitter.
 TEST(HardLight, TinyBrightEmitterMatchesEtimesF) {
   RowFixture fixture(LoadHardScene("tiny_emitter.obj"), MeshOptions{0, 1.0 / 16});
   const double rho = 0.5, e = std::numbers::pi * 1e6, area_e = 1e-4;

@@ -142,7 +142,8 @@ TEST(HardSolve, SmallLampClosedRoomEverySolverAtRhoNearOne) {
         EXPECT_EQ(r->error_estimate_method, rho * max_row_sum < 1 ? "bound" : "rate") << what;
         EXPECT_LE(err, r->error_estimate * allowed + 1e-12) << what;
         EXPECT_LT(err, 1e-6 / (1 - rho) * 10) << what;
-        const EnergyBalance balance = ComputeEnergyBalance(system, r->radiosity, k);
+        const EnergyBalance balance =
+            ComputeEnergyBalance(system, r->radiosity, {k, LightSamplesPerRow(MonteCarlo(k))});
         EXPECT_TRUE(balance.Ok()) << what << " imbalance " << balance.RelativeImbalance()
                                   << " tolerance " << balance.Tolerance();
       }
@@ -205,7 +206,7 @@ TEST(HardSolve, LampWithoutReflectanceBalances) {
     const RadiositySystem system{&f, &fixture.attributes};
     const absl::StatusOr<SolveResult> r = Solve(system, Tight(SolverMethod::kGaussSeidel, 1e-9));
     ASSERT_TRUE(r.ok()) << r.status();
-    const EnergyBalance b = ComputeEnergyBalance(system, r->radiosity, SampledRays(o));
+    const EnergyBalance b = ComputeEnergyBalance(system, r->radiosity, {SampledRays(o), LightSamplesPerRow(o)});
     std::printf(
         "Kd = 0 lamp, %s rows: emitted %.4f absorbed %.4f escaped %.4f, imbalance %.2e "
         "(tolerance %.2e)\n",

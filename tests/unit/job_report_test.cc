@@ -21,7 +21,7 @@ TEST(JobReport, HierarchicalReportsItsLinksAndNoBalance) {
   options.hierarchical.enabled = true;
   options.hierarchical.link_epsilon = 1e-4;
   options.hierarchical.min_area_fraction = 1e-3;
-  const JobResult result = RunOnSquares(options);
+  JobResult result = RunOnSquares(options);
   ASSERT_TRUE(result.hierarchical.has_value());
   const HierarchicalStats& stats = *result.hierarchical;
   const nlohmann::json report = MakeJobReport(result, options, "squares");
@@ -45,7 +45,7 @@ TEST(JobReport, AdaptiveReportsEveryPass) {
   options.mesh.target_patches = 16;
   options.adaptive.passes = 2;
   options.adaptive.threshold = 0.05;
-  const JobResult result = RunOnSquares(options);
+  JobResult result = RunOnSquares(options);
   const nlohmann::json report = MakeJobReport(result, options, "squares");
   const nlohmann::json& passes = report.at("adaptive");
   ASSERT_EQ(passes.size(), 3u);  // the first solve and two refinement passes
@@ -63,7 +63,8 @@ TEST(JobReport, AdaptiveReportsEveryPass) {
 TEST(JobReport, PlainJobHasNeitherBlock) {
   JobOptions options;
   options.mesh.target_patches = 16;
-  const nlohmann::json report = MakeJobReport(RunOnSquares(options), options, "squares");
+  JobResult result = RunOnSquares(options);
+  const nlohmann::json report = MakeJobReport(result, options, "squares");
   EXPECT_FALSE(report.contains("hierarchical"));
   EXPECT_FALSE(report.contains("adaptive"));
   EXPECT_FALSE(report.at("options").contains("link_epsilon"));

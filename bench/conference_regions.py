@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""Mean radiance of image regions of radflux's conference-room picture against Cycles (issue 21).
+
+Usage: conference_regions.py RADFLUX.pfm CYCLES_SEED1.npy [CYCLES_SEED2.npy ...]
+
+Both pictures are 160x120 from the same camera (issue 21: --camera-pos 1550,400,-300
+--camera-look-at 0,200,-200 --camera-up 0,1,0 --fov-deg 60 --size 160x120; Cycles by
+../shared/tools/cycles_reference.py). For each region of the issue's table and band-mean
+radiance: Cycles (the mean of the seeds), radflux, and radflux's relative difference; with two
+or more seeds, the seeds' own spread (max relative difference of one seed from their mean).
+"""
+import sys
+
+import numpy as np
+
+# name: (first row, last row + 1, first column, last column + 1) of the 160x120 picture
+REGIONS = {
+    "ceiling band (rows 0-29)": (0, 30, 0, 160),
+    "floor band (rows 90-119)": (90, 120, 0, 160),
+    "back wall (rows 40-79, columns 60-99)": (40, 80, 60, 100),
+    "left wall (rows 40-79, columns 0-19)": (40, 80, 0, 20),
+    "whole image": (0, 120, 0, 160),
+}
+
+
+def read_pfm(path):
+    """Colour PFM as float HxWx3, row 0 = top (PFM stores bottom row first)."""
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"PF":
+            raise SystemExit(f"{path}: not a colour PFM")
+        w, h = (int(v) for v in f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(h, w, 3)[::-1].astype(np.float64)
+
+
+def region_mean(image, box):
+    r0, r1, c0, c1 = box
+    return float(image[r0:r1, c0:c1, :].mean())
+
+
+def main():
+    if len(sys.argv) < 3:
+        raise SystemExit(__doc__)
+    radflux = read_pfm(sys.argv[1])
+    seeds = [np.load(p).astype(np.float64) for p in sys.argv[2:]]
+    for s in seeds:
+        if s.shape != radflux.shape:
+            raise SystemExit(f"shapes differ: radflux {radflux.shape}, cycles {s.shape}")
+    print(f"{'region':40s} {'cycles':>10s} {'radflux':>10s} {'diff':>8s} {'seeds':>7s}")
+    for name, box in REGIONS.items():
+        per_seed = [region_mean(s, box) for s in seeds]
+        ref = sum(per_seed) / len(per_seed)
+        spread = max(abs(v - ref) / ref for v in per_seed) if len(seeds) > 1 else float("nan")
+        ours = region_mean(radflux, box)
+        print(f"{name:40s} {ref:10.4f} {ours:10.4f} {100 * (ours / ref - 1):+7.2f}% "
+              f"{100 * spread:6.2f}%")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The conference room (issue 21) against Cycles: clean the scene, render the Cycles reference
+# (two seeds; slow: ~12 min a seed at 2,048 samples on a loaded 2-core machine; skipped when
+# present), solve with radflux at its defaults and at each extra --patches given, and print the
+# issue's region means for each.
+#
+#   bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+out=${1:?usage: conference_vs_cycles.sh OUT_DIR [PATCHES ...]}
+shift
+mkdir -p "$out"
+radflux=${RADFLUX:-$root/build/ci/client/radflux}
+cam=(--camera-pos 1550,400,-300 --camera-look-at 0,200,-200 --camera-up 0,1,0 --fov-deg 60
+     --size 160x120)
+[ -f "$out/conf.obj" ] || python3 "$here/clean_real_scene.py" \
+  "$root/../shared/scenes/conference/conference.obj" "$out/conf" --emit mesh16_SG --ke 20 --max-kd 0.98
+for seed in 1 2; do
+  [ -f "$out/conf_ref_seed$seed.npy" ] || blender -b --factory-startup -noaudio \
+    --python "$root/../shared/tools/cycles_reference.py" -- "$out/conf.obj" "$out/conf_ref_seed$seed" \
+    --pos 1550,400,-300 --look 0,200,-200 --up 0,1,0 --fov 60 --size 160x120 --samples 2048 \
+    --seed $seed --max-refl 0.98 --threads 2 > "$out/render_seed$seed.log" 2>&1
+done
+for patches in default "$@"; do
+  flags=()
+  [ "$patches" = default ] || flags=(--patches "$patches")
+  /usr/bin/time -f "patches $patches: wall %e s, max RSS %M KB" "$radflux" solve "$out/conf.obj" -q \
+    "${flags[@]}" "${cam[@]}" --report "$out/r_$patches.json" --render "$out/conf_$patches.pfm"
+  /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$patches.pfm" \
+    "$out/conf_ref_seed1.npy" "$out/conf_ref_seed2.npy"
+done

@@ -1,0 +1,213 @@
+// Face grouping (solver/mesh/face_grouping.h): small faces become shared unknowns, and that
+// changes no closed-form result beyond the Monte Carlo error of the rows.
+#include "solver/mesh/face_grouping.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "solver/pipeline.h"
+#include "tests/unit/howell_closed_forms.h"
+#include "tests/unit/test_scenes.h"
+
+namespace radflux {
+namespace {
+
+using testing::SceneFromObj;
+
+// The parallelogram corner + [0,1] u + [0,1] v as m x m cells of two triangles each (OBJ
+// faces, counter-clockwise seen from the side u x v points to).
+std::string TessellatedQuad(const std::string& object, const std::string& material,
+                            const Vec3& corner, const Vec3& u, const Vec3& v, int m, int& next) {
+  std::string s = "o " + object + "\nusemtl " + material + "\n";
+  auto vertex = [&](int i, int j) {
+    const Vec3 p = corner + u * (double(i) / m) + v * (double(j) / m);
+    s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  };
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1);
+      const int a = next;
+      s += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 2) +
+           "\nf " + std::to_string(a) + " " + std::to_string(a + 2) + " " + std::to_string(a + 3) +
+           "\n";
+      next += 4;
+    }
+  }
+  return s;
+}
+
+// Two coaxial unit squares one apart, facing each other, 2 * 30^2 triangles each.
+Scene TessellatedPlates() {
+  int next = 1;
+  return SceneFromObj(TessellatedQuad("bottom", "white", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 30, next) +
+                      TessellatedQuad("top", "white", {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 30, next));
+}
+
+// A closed unit cube seen from inside: its top a lamp (10 x 10 cells), the rest white
+// (20 x 20 cells each); rho = 0.5 everywhere.
+Scene TessellatedBox() {
+  int next = 1;
+  std::string obj;
+  obj += TessellatedQuad("top", "lamp", {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 10, next);
+  obj += TessellatedQuad("bottom", "white", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 20, next);
+  obj += TessellatedQuad("x0", "white", {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 20, next);
+  obj += TessellatedQuad("x1", "white", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 20, next);
+  obj += TessellatedQuad("y0", "white", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 20, next);
+  obj += TessellatedQuad("y1", "white", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, 20, next);
+  return SceneFromObj(obj);
+}
+
+
+const std::string& ObjectOf(const Scene& scene, const PatchMesh& mesh, uint32_t p) {
+  return scene.objects[scene.faces[mesh.patches[p].face].object];
+}
+
+TEST(FaceGrouping, EveryPatchInExactlyOneUnknownOfOneObjectAndMaterial) {
+  const Scene scene = TessellatedBox();
+  MeshOptions options;
+  options.target_patches = 300;
+  ASSERT_TRUE(GroupsFaces(scene, options));
+  const GroupedMesh grouped = *SubdivideAndGroup(scene, options);
+  const PatchClusters& c = grouped.clusters;
+  // 200 lamp patches (never grouped) + 100 groups of the 2000 white faces' patches.
+  ASSERT_EQ(c.size(), 300u);
+  ASSERT_EQ(c.of_patch.size(), grouped.mesh.size());
+  std::vector<int> seen(grouped.mesh.size(), 0);
+  double total_area = 0;
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    ASSERT_FALSE(c.Members(u).empty());
+    const uint32_t material = scene.faces[grouped.mesh.patches[c.Members(u)[0]].face].material;
+    double area = 0;
+    for (uint32_t p : c.Members(u)) {
+      ++seen[p];
+      EXPECT_EQ(c.of_patch[p], u);
+      EXPECT_EQ(scene.faces[grouped.mesh.patches[p].face].material, material);
+      EXPECT_EQ(ObjectOf(scene, grouped.mesh, p), ObjectOf(scene, grouped.mesh, c.Members(u)[0]));
+      area += grouped.mesh.patches[p].area;
+    }
+    if (scene.materials[material].IsEmitter()) {
+      EXPECT_EQ(c.Members(u).size(), 1u);
+    }
+    EXPECT_NEAR(c.area[u], area, 1e-12);
+    total_area += c.area[u];
+  }
+  for (int s : seen) EXPECT_EQ(s, 1);
+  EXPECT_NEAR(total_area, 6.0, 1e-9);
+  // Push-down: each patch shows its unknown's value.
+  std::vector<Rgb> b(c.size());
+  for (uint32_t u = 0; u < c.size(); ++u) b[u] = {double(u), 2.0 * u, 3.0 * u};
+  const std::vector<Rgb> down = PushDownToPatches(c, b);
+  ASSERT_EQ(down.size(), grouped.mesh.size());
+  for (uint32_t p = 0; p < down.size(); ++p) EXPECT_EQ(down[p], b[c.of_patch[p]]);
+}
+
+TEST(FaceGrouping, FewerFacesThanTargetKeepTheUngroupedMesh) {
+  const Scene scene = TessellatedPlates();  // 3600 faces
+  MeshOptions options;
+  options.target_patches = 4000;
+  EXPECT_FALSE(GroupsFaces(scene, options));
+  const GroupedMesh grouped = *SubdivideAndGroup(scene, options);
+  const PatchMesh plain = *SubdivideScene(scene, options);
+  EXPECT_TRUE(grouped.clusters.empty());
+  ASSERT_EQ(grouped.mesh.size(), plain.size());
+  for (uint32_t p = 0; p < plain.size(); ++p) {
+    EXPECT_EQ(grouped.mesh.patches[p].v, plain.patches[p].v);
+    EXPECT_EQ(grouped.mesh.patches[p].area, plain.patches[p].area);
+  }
+}
+
+TEST(FaceGrouping, PointsFollowMemberAreas) {
+  const Scene scene = TessellatedPlates();
+  const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{});
+  // Unknown 0: patches 0 and 2 (equal halves of a cell: areas 1:1); unknown 1: the rest.
+  std::vector<uint32_t> of_patch(mesh.size(), 1);
+  of_patch[0] = of_patch[2] = 0;
+  const PatchClusters c = ClustersFromAssignment(mesh, of_patch, 2);
+  const UnknownPointSampler sampler(mesh, &c, 0);
+  EXPECT_EQ(sampler.Member(0.25).first, 0u);
+  EXPECT_NEAR(sampler.Member(0.25).second, 0.5, 1e-4);  // OBJ text: 6 decimals
+  EXPECT_EQ(sampler.Member(0.75).first, 1u);
+  EXPECT_NEAR(sampler.Member(0.75).second, 0.5, 1e-4);
+  const SurfacePoint at = sampler({0.75, 0.5});
+  EXPECT_EQ(at.n, mesh.patches[2].normal);
+}
+
+// Coaxial squares, each 1800 faces, as 20 unknowns: the area-weighted form factor from the
+// bottom plate's unknowns to the top plate's is C-11's 0.19982 within the rows' Monte Carlo
+// error (10 rows of 4096 rays: sigma = sqrt(F (1 - F) / 40960) = 0.002).
+TEST(FaceGrouping, GroupedPlatesKeepTheParallelSquaresFormFactor) {
+  const Scene scene = TessellatedPlates();
+  MeshOptions options;
+  options.target_patches = 20;
+  const GroupedMesh grouped = *SubdivideAndGroup(scene, options);
+  const PatchClusters& c = grouped.clusters;
+  ASSERT_EQ(c.size(), 20u);
+  const PatchAttributes attributes = ComputeClusterAttributes(scene, grouped.mesh, c);
+  const auto caster = *EmbreeRayCaster::Create(grouped.mesh);
+  const RowContext context = MakeRowContext(grouped.mesh, attributes, *caster, &c);
+  FormFactorOptions ff;
+  ff.rays = 4096;
+  const CsrMatrix f = BuildFormFactors(context, ff)->matrix;
+  std::vector<std::string> object(c.size());
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    std::set<std::string> objects;
+    for (uint32_t p : c.Members(u)) objects.insert(ObjectOf(scene, grouped.mesh, p));
+    ASSERT_EQ(objects.size(), 1u) << "unknown " << u << " spans both plates";
+    object[u] = *objects.begin();
+  }
+  double area = 0, sum = 0;
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    if (object[u] != "bottom") continue;
+    area += c.area[u];
+    for (size_t k = 0; k < f.RowCols(u).size(); ++k) {
+      if (object[f.RowCols(u)[k]] == "top") sum += c.area[u] * f.RowValues(u)[k];
+    }
+  }
+  EXPECT_NEAR(area, 1.0, 1e-9);
+  EXPECT_NEAR(sum / area, testing::ParallelRectangles(1, 1, 1), 0.01);
+}
+
+// The closed box solved with 300 unknowns for 4200 faces: with rho uniform, a closed room's
+// total power is exact, sum A B = sum A E / (1 - rho) (reciprocal rows summing to 1), so it
+// holds within the rows' Monte Carlo error (1024 rays a row) and what grouping drops (rays
+// from a group onto itself: none here, every group is flat); the balance of the solved
+// system holds; every patch shows its group's B.
+TEST(FaceGrouping, GroupedClosedBoxKeepsTheTotalPowerAndTheBalance) {
+  JobOptions options;
+  options.mesh.target_patches = 300;
+  options.form_factors.rays = 1024;
+  options.form_factors.samples = 16;
+  options.solver.tolerance = 1e-6;
+  absl::StatusOr<JobResult> result = RunJob(TessellatedBox(), options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PreparedJob& job = *result->job;
+  ASSERT_EQ(job.Unknowns(), 300u);
+  ASSERT_EQ(result->solve.radiosity.size(), job.mesh.size());
+  for (uint32_t u = 0; u < job.clusters.size(); ++u) {
+    const Rgb& first = result->solve.radiosity[job.clusters.Members(u)[0]];
+    for (uint32_t p : job.clusters.Members(u)) EXPECT_EQ(result->solve.radiosity[p], first);
+  }
+  double power = 0, emitted = 0;
+  for (uint32_t p = 0; p < job.mesh.size(); ++p) {
+    power += job.mesh.patches[p].area * result->solve.radiosity[p][0];
+  }
+  for (uint32_t u = 0; u < job.Unknowns(); ++u) {
+    emitted += job.attributes.area[u] * job.attributes.emission[u][0];
+  }
+  EXPECT_NEAR(emitted, std::numbers::pi, 1e-9);  // the lamp: 1 x 1, Ke 1
+  // The normal cone keeps groups flat: no group spans two walls of the box.
+  for (uint32_t u = 0; u < job.clusters.size(); ++u) {
+    const Vec3& n = job.mesh.patches[job.clusters.Members(u)[0]].normal;
+    for (uint32_t p : job.clusters.Members(u)) EXPECT_GT(Dot(job.mesh.patches[p].normal, n), 0.99);
+  }
+  EXPECT_NEAR(power / (emitted / (1 - 0.5)), 1.0, 0.01);
+  ASSERT_TRUE(result->solved_balance.has_value());
+  ASSERT_TRUE(result->solved_balance->ok());
+  EXPECT_TRUE((*result->solved_balance)->Ok()) << (*result->solved_balance)->RelativeImbalance();
+}
+
+}  // namespace
+}  // namespace radflux
