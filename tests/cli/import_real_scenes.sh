@@ -20,6 +20,8 @@ holodeck="$source_dir/../shared/scenes/holodeck/holodeck.obj"
 grep '^import: ' "$tmp/err" >"$tmp/lines"
 h="$holodeck"
 cat >"$tmp/expected" <<LINES
+import: 161 faces took their reflectance from textures (map_Kd) (first at $h:616)
+import: 3 faces took their emission from textures (map_Ke) (first at $h:9680)
 import: 1 materials with reflectance >= 1 clamped to 0.98 (first at material 'door')
 import: 4 faces with a repeated vertex simplified (first at $h:7693)
 import: 4 zero-area faces dropped (first at $h:7719)
@@ -32,7 +34,8 @@ python3 - "$tmp/h.json" <<'PY' || fail "report's import list"
 import json, sys
 report = json.load(open(sys.argv[1]))
 counts = {f["kind"]: f["count"] for f in report["import"]}
-assert counts == {"reflectance_clamped": 1, "repeated_vertices_removed": 4, "zero_area_dropped": 4,
+assert counts == {"reflectance_from_textures": 161, "emission_from_textures": 3,
+                  "reflectance_clamped": 1, "repeated_vertices_removed": 4, "zero_area_dropped": 4,
                   "non_planar_split": 44, "non_convex_triangulated": 79, "coplanar_overlap": 39}, counts
 assert report["energy_balance"]["ok"], report["energy_balance"]
 PY
