@@ -13,6 +13,8 @@ import sys
 
 import numpy as np
 
+from cornell_vs_cycles import read_pfm
+
 # name: (first row, last row + 1, first column, last column + 1) of the 160x120 picture
 REGIONS = {
     "ceiling band (rows 0-29)": (0, 30, 0, 160),
@@ -21,17 +23,6 @@ REGIONS = {
     "left wall (rows 40-79, columns 0-19)": (40, 80, 0, 20),
     "whole image": (0, 120, 0, 160),
 }
-
-
-def read_pfm(path):
-    """Colour PFM as float HxWx3, row 0 = top (PFM stores bottom row first)."""
-    with open(path, "rb") as f:
-        if f.readline().strip() != b"PF":
-            raise SystemExit(f"{path}: not a colour PFM")
-        w, h = (int(v) for v in f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    return data.reshape(h, w, 3)[::-1].astype(np.float64)
 
 
 def region_mean(image, box):
