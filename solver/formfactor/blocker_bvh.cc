@@ -53,67 +53,63 @@ uint32_t BlockerBvh::Build(uint32_t begin, uint32_t end) {
   return index;
 }
 
-bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
+template <class MeetsBox, class RightFirst, class Blocks>
+bool BlockerBvh::AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box,
+                            const RightFirst& right_first, const Blocks& blocks) const {
   if (nodes_.empty()) return false;
-  const SurfaceShape& si = shapes_[i];
-  const SurfaceShape& sj = shapes_[j];
-  const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const uint32_t index = stack[--top];
     const Node& node = nodes_[index];
-    if (!shaft.MayMeetBox(node.center, node.half)) continue;
+    if (!meets_box(node)) continue;
     if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = index + 1;
+      const bool right = right_first(node);  // the child popped first is pushed last
+      stack[top++] = right ? index + 1 : node.first;
+      stack[top++] = right ? node.first : index + 1;
       continue;
     }
     for (uint32_t k = node.first; k < node.first + node.count; ++k) {
       const uint32_t b = order_[k];
-      if (b != i && b != j && shaft.MayHold(shapes_[b])) return true;
+      if (b != i && b != j && blocks(shapes_[b])) return true;
     }
   }
   return false;
 }
 
+bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
+  const SurfaceShape& si = shapes_[i];
+  const SurfaceShape& sj = shapes_[j];
+  const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
+  return AnyBlocker(
+      i, j, [&](const Node& node) { return shaft.MayMeetBox(node.center, node.half); },
+      [](const Node&) { return false; },
+      [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); });
+}
+
 bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
-  if (nodes_.empty()) return false;
   const Vec3 d = b - a;
   const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};  // +-inf along an axis the segment does not move
-  uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t index = stack[--top];
-    const Node& node = nodes_[index];
-    // Slab test of the segment a + t d, t in [0, 1], against the box (widened a little).
+  // Slab test of the segment a + t d, t in [0, 1], against the box (widened a little).
+  const auto meets_box = [&](const Node& node) {
     double t0 = 0, t1 = 1;
     for (int c = 0; c < 3; ++c) {
       const double lo = node.center[c] - node.half[c] - pad_, hi = node.center[c] + node.half[c] + pad_;
       if (d[c] == 0) {
-        if (a[c] < lo || a[c] > hi) t0 = 2;
+        if (a[c] < lo || a[c] > hi) return false;
         continue;
       }
       const double ta = (lo - a[c]) * inv[c], tb = (hi - a[c]) * inv[c];
       t0 = std::max(t0, std::min(ta, tb));
       t1 = std::min(t1, std::max(ta, tb));
     }
-    if (t0 > t1) continue;
-    if (node.count == 0) {
-      // The child nearer a along the split axis first: a blocked segment stops sooner.
-      const bool right_first = d[node.axis] < 0;
-      stack[top++] = right_first ? index + 1 : node.first;
-      stack[top++] = right_first ? node.first : index + 1;
-      continue;
-    }
-    for (uint32_t k = node.first; k < node.first + node.count; ++k) {
-      const uint32_t s = order_[k];
-      if (s != i && s != j && SegmentHitsSurface(a, b, shapes_[s])) return true;
-    }
-  }
-  return false;
+    return t0 <= t1;
+  };
+  // The child nearer a along the split axis first: a blocked segment stops sooner.
+  return AnyBlocker(
+      i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; },
+      [&](const SurfaceShape& blocker) { return SegmentHitsSurface(a, b, blocker); });
 }
 
 }  // namespace radflux

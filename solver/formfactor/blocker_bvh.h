@@ -43,6 +43,11 @@ class BlockerBvh {
     uint8_t axis = 0;        // inner: the split axis (left child: the lower centroids)
   };
   uint32_t Build(uint32_t begin, uint32_t end);
+  // Walks the nodes whose box `meets_box(node)` accepts, the children in the order
+  // `right_first(node)` says, until `blocks(b)` holds for a blocker b other than i and j.
+  template <class MeetsBox, class RightFirst, class Blocks>
+  bool AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box, const RightFirst& right_first,
+                  const Blocks& blocks) const;
 
   const std::vector<SurfaceShape>& shapes_;
   std::vector<uint32_t> order_;  // blocker indices, grouped by leaf
