@@ -19,13 +19,20 @@ std::string Sha256(const std::string& data) {
 
 }  // namespace
 
-void PackRowBlock(const StoredRowBlock& rows, v1::BlockResult& result) {
+v1::BlockResult PackRowBlock(const v1::BlockLease& lease, const StoredRowBlock& rows) {
+  v1::BlockResult result;
+  result.set_lease_id(lease.lease_id());
+  result.set_job_id(lease.job_id());
+  result.set_block_index(lease.block_index());
+  result.set_first_row(lease.first_row());
+  result.set_row_count(lease.row_count());
   const std::string raw = EncodeRowBlock(rows);
   std::string packed(ZSTD_compressBound(raw.size()), '\0');
   const size_t size = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 1);
   packed.resize(ZSTD_isError(size) ? 0 : size);
   result.set_rows_zstd(std::move(packed));
   result.set_sha256(Sha256(raw));
+  return result;
 }
 
 uint64_t MaxRowBlockBytes(uint32_t rows, uint32_t patch_count) {

@@ -11,8 +11,9 @@
 
 namespace radflux {
 
-// Fills result.rows_zstd and result.sha256 from `rows`.
-void PackRowBlock(const StoredRowBlock& rows, v1::BlockResult& result);
+// The result answering `lease` (its lease, job, block and rows) with `rows` packed:
+// rows_zstd and sha256 of the encoded block.
+v1::BlockResult PackRowBlock(const v1::BlockLease& lease, const StoredRowBlock& rows);
 
 // A hard cap on the uncompressed bytes of one row block from the wire (256 MiB).
 inline constexpr uint64_t kMaxRowBlockBytes = uint64_t{256} << 20;

@@ -176,13 +176,7 @@ v1::BlockResult BuildBlock(const v1::BlockLease& lease, const PreparedWork& work
   rows.block = BuildRowBlock(*work.builder, work.job->rows, work.cutoff, lease.first_row(),
                              lease.row_count(), *row, rows.stats);
   if (delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
-  v1::BlockResult result;
-  result.set_lease_id(lease.lease_id());
-  result.set_job_id(lease.job_id());
-  result.set_block_index(lease.block_index());
-  result.set_first_row(lease.first_row());
-  result.set_row_count(lease.row_count());
-  PackRowBlock(rows, result);
+  v1::BlockResult result = PackRowBlock(lease, rows);
   result.set_build_seconds(std::chrono::duration<double>(Clock::now() - start).count());
   if (result.ByteSizeLong() > kMaxResultBytes) {
     result.clear_rows_zstd();

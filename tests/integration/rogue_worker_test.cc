@@ -65,13 +65,7 @@ v1::BlockResult Forge(const v1::BlockLease& lease, Lie lie) {
     rows.block.row_begin[1] = 3;
     rows.block.row_begin[2] = 1;
   }
-  v1::BlockResult result;
-  result.set_lease_id(lease.lease_id());
-  result.set_job_id(lease.job_id());
-  result.set_block_index(lease.block_index());
-  result.set_first_row(lease.first_row());
-  result.set_row_count(lease.row_count());
-  PackRowBlock(rows, result);
+  v1::BlockResult result = PackRowBlock(lease, rows);
   if (lie == Lie::kZstdBomb) {
     // A zstd frame declaring 2 GiB of content, made of 16384 RLE blocks of 128 KiB each
     // (4 bytes apiece): 64 KiB on the wire.
