@@ -15,7 +15,8 @@
 
 namespace radflux {
 
-// Whether the open segment from a to b crosses the convex polygon of k.
+// Whether the open segment from a to b crosses the convex polygon of k; the same answer
+// for (b, a).
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
 
 // blocked(a, b): whether something crosses the open segment from a to b.
