@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
   app.add_option("--verify-fraction", flags.verify_fraction,
                  "the fraction of each worker row block's rows the server recomputes and "
                  "compares bit for bit (at least one row per block; 0 = none; rows summing "
-                 "above 1 are always recomputed)")
+                 "above their limit, 1 or 0.999 / rho, are always recomputed)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--lease-seconds", flags.lease_seconds,
                  "a row block leased to a worker is leased again after this many seconds")

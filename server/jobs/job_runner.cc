@@ -134,7 +134,9 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
     RowBlockStats stats;
     return BuildRowBlock(*builder, prepared.rows, options.cutoff, first, count, row, stats);
   };
-  farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size, rebuild},
+  const auto max_row_sum = [&](uint32_t row) { return prepared.rows.MaxRowSum(row); };
+  farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size, rebuild,
+                    max_row_sum},
             missing, store_block);
   ParallelFor(threads, 1, threads, [&](int64_t, int64_t) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];

@@ -39,8 +39,9 @@ absl::Status CheckEntries(const RowBlock& block, uint32_t row, uint64_t begin, u
 
 }  // namespace
 
-absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(const RowBlock& block, uint32_t first_row,
-                                                    uint32_t row_count, uint32_t patch_count) {
+absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(
+    const RowBlock& block, uint32_t first_row, uint32_t row_count, uint32_t patch_count,
+    const std::function<double(uint32_t row)>& max_row_sum) {
   if (block.row_begin.empty() || block.first_row != first_row || block.RowCount() != row_count) {
     return absl::InvalidArgumentError(absl::StrCat(
         "wrong rows (", block.row_begin.empty() ? 0 : block.RowCount(), " rows from ",
@@ -65,7 +66,8 @@ absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(const RowBlock& block, uint3
     }
     double sum = 0;
     if (absl::Status s = CheckEntries(block, row, begin, end, patch_count, &sum); !s.ok()) return s;
-    if (sum > 1 + kRowSumTolerance) high_sum.push_back(row);
+    const double limit = max_row_sum ? max_row_sum(row) : 1.0;
+    if (sum > limit + kRowSumTolerance) high_sum.push_back(row);
   }
   return high_sum;
 }

@@ -26,10 +26,11 @@ using RowRebuilder = std::function<RowBlock(uint32_t first, uint32_t count)>;
 // rows (`first_row`, `row_count`), offsets from 0 that never go backwards nor beyond the
 // entries and end at the entry count, columns strictly increasing and < `patch_count` in
 // every row, and every value finite and >= 0. On success, the rows whose sum exceeds
-// 1 + kRowSumTolerance (absolute row numbers): they must be recomputed before the block is
-// trusted.
-absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(const RowBlock& block, uint32_t first_row,
-                                                    uint32_t row_count, uint32_t patch_count);
+// max_row_sum(row) (1 when not given) + kRowSumTolerance (absolute row numbers): they must
+// be recomputed before the block is trusted.
+absl::StatusOr<std::vector<uint32_t>> CheckRowBlock(
+    const RowBlock& block, uint32_t first_row, uint32_t row_count, uint32_t patch_count,
+    const std::function<double(uint32_t row)>& max_row_sum = {});
 
 // The rows of a block of `count` rows from `first` to recompute: `fraction` of them rounded,
 // at least one when fraction > 0, none when it is 0; distinct, ascending, drawn with `rng`.

@@ -186,7 +186,7 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
   if (!unpacked.ok()) return unpacked.status();
   const RowBlock& block = unpacked->block;
   absl::StatusOr<std::vector<uint32_t>> high_sum =
-      CheckRowBlock(block, issued.first_row, issued.row_count, patch_count);
+      CheckRowBlock(block, issued.first_row, issued.row_count, patch_count, job.spec.max_row_sum);
   if (!high_sum.ok()) return high_sum.status();
   if (job.spec.rebuild) {
     std::vector<uint32_t> sample;

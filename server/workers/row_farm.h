@@ -5,14 +5,14 @@
 // result of a block is stored, a late duplicate is discarded. Workers are not trusted: a
 // result is checked (lease, job, block, rows, SHA-256, a decoded size bounded by the lease,
 // then every offset, column and value: row_check.h) and a random sample of its rows, plus
-// every row whose sum is above 1, is recomputed here and must match bit for bit. A block
-// that fails is dropped and leased again, its worker banned from the job (logged, and
-// counted in the job's FarmReport); a result that does not even decode also drops the
-// worker's connection. Stragglers cost seconds, not the lease: a worker not heard from
-// (Heard: any message, heartbeats every second) for kWorkerSilence has its blocks leased
-// again, and once no block is pending the server's threads build the blocks still out
-// with workers for kBackupAfter as backups (MapReduce's backup tasks): the first result of
-// a block is kept, the other dropped. Thread-safe.
+// every row whose sum is above its limit (FarmJob::max_row_sum), is recomputed here and
+// must match bit for bit. A block that fails is dropped and leased again, its worker
+// banned from the job (logged, and counted in the job's FarmReport); a result that does not
+// even decode also drops the worker's connection. Stragglers cost seconds, not the lease:
+// a worker not heard from (Heard: any message, heartbeats every second) for kWorkerSilence
+// has its blocks leased again, and once no block is pending the server's threads build the
+// blocks still out with workers for kBackupAfter as backups (MapReduce's backup tasks): the
+// first result of a block is kept, the other dropped. Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -44,6 +44,9 @@ struct FarmJob {
   uint32_t patch_count = 0;
   uint32_t block_size = 0;
   RowRebuilder rebuild;  // the server's own rows, to verify workers' (empty: verify none)
+  // The sum each row may honestly reach (RowContext::MaxRowSum); rows above it are always
+  // recomputed (empty: 1).
+  std::function<double(uint32_t row)> max_row_sum;
 };
 
 // What the row farm saw of one job's workers, for the job's report and logs.

@@ -61,11 +61,14 @@ class MonteCarloBuilder final : public RowBuilder {
     const uint64_t light_rays = lights_.AddEmitterColumns(
         i, options_.samples * (kLightSamplesPerPoint / per_point), per_point, options_.seed, row);
     // The two parts are independent estimates: where emitters fill much of the hemisphere
-    // their noise can add up to more than 1, which no row may (rho F B must converge for
-    // every rho < 1); such a row is scaled back to 1 (a closed room's rows sum to 1 exactly).
+    // their noise can add up to more than 1. Only a row that would then return more light
+    // than kMaxRowGain is scaled back (rho F B must converge for every rho < 1): scaling
+    // every row above 1 cut the upper half of a closed room's rows' noise (they sum to 1 in
+    // expectation) and made B 1.1% low in a closed cube at k = 64 (3% at k = 16).
     double sum = 0;
     for (uint32_t j : row.Touched()) sum += row.Value(j);
-    if (sum > 1) row.Scale(1 / sum);
+    const double limit = context_.MaxRowSum(i);
+    if (sum > limit) row.Scale(limit / sum);
     return stream.size() + light_rays;
   }
 

@@ -24,6 +24,10 @@ namespace radflux {
 // What the row builders need to know about the scene besides its geometry. Rows and
 // columns are unknowns: the mesh's patches, or the groups of them in `clusters` (rays still
 // hit patches: UnknownOf maps them). Only monte_carlo builds rows of grouped unknowns.
+// The most light a row may return through its patch's reflectance, rho * (row sum): sampled
+// rows above it are scaled back to it (MaxRowSum).
+inline constexpr double kMaxRowGain = 0.999;
+
 struct RowContext {
   const PatchMesh* mesh = nullptr;
   const RayCaster* caster = nullptr;
@@ -32,6 +36,7 @@ struct RowContext {
   std::vector<uint8_t> emitter;    // 1 where the unknown emits
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;
                                    // empty: every emitter counts as 1)
+  std::vector<double> reflectance;  // rho, max over bands, per unknown (empty: 1 for all)
   double ray_epsilon = 0;          // ray origin offset along the normal, scene units
 
   // The number of unknowns: rows and columns.
@@ -45,6 +50,9 @@ struct RowContext {
     return clusters == nullptr || clusters->first[u + 1] - clusters->first[u] == 1;
   }
   uint32_t FirstPatch(uint32_t u) const { return clusters ? clusters->Members(u)[0] : u; }
+  // The largest row sum unknown u's row may keep so that rho_u * sum <= kMaxRowGain (the
+  // iterations then converge for every rho < 1): 1 where rho >= kMaxRowGain, more below.
+  double MaxRowSum(uint32_t u) const;
   // Unknown u's area, scene units^2.
   double Area(uint32_t u) const { return clusters ? clusters->area[u] : mesh->patches[u].area; }
 };

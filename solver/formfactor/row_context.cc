@@ -1,5 +1,7 @@
 #include "solver/formfactor/row_context.h"
 
+#include <algorithm>
+
 namespace radflux {
 
 RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
@@ -13,12 +15,19 @@ RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attribut
   context.needs_row.resize(n);
   context.emitter.resize(n);
   context.emission.resize(n);
+  context.reflectance.resize(n);
   for (size_t p = 0; p < n; ++p) {
-    context.needs_row[p] = MaxComponent(attributes.reflectance[p]) > 0;
+    context.reflectance[p] = MaxComponent(attributes.reflectance[p]);
+    context.needs_row[p] = context.reflectance[p] > 0;
     context.emitter[p] = MaxComponent(attributes.emission[p]) > 0;
     for (int b = 0; b < kBands; ++b) context.emission[p] += attributes.emission[p][b];
   }
   return context;
+}
+
+double RowContext::MaxRowSum(uint32_t u) const {
+  const double rho = u < reflectance.size() ? reflectance[u] : 1.0;
+  return std::max(1.0, kMaxRowGain / rho);
 }
 
 }  // namespace radflux

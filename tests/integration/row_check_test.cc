@@ -35,6 +35,26 @@ TEST(RowCheck, WellFormedBlockPassesAndRowsAboveOneAreNamed) {
   EXPECT_EQ(*checked, std::vector<uint32_t>{4});
 }
 
+// A row may honestly sum up to its own limit (RowContext::MaxRowSum: 1 / rho below rho =
+// 0.999, so that sampled rows of closed rooms keep their noise unbiased): only rows above
+// that limit are recomputed.
+TEST(RowCheck, RowsAreNamedAboveTheirOwnLimit) {
+  RowBlock block;
+  block.first_row = 4;
+  block.row_begin = {0, 2, 3};
+  block.col = {0, 5, 63};
+  block.value = {0.6f, 0.6f, 0.5f};  // row 4 sums to 1.2
+  const auto limit = [](double rho) {
+    return [rho](uint32_t) { return 0.999 / rho; };
+  };
+  const absl::StatusOr<std::vector<uint32_t>> within = CheckRowBlock(block, 4, 2, 64, limit(0.8));
+  ASSERT_TRUE(within.ok()) << within.status();
+  EXPECT_TRUE(within->empty());  // limit 1.249
+  const absl::StatusOr<std::vector<uint32_t>> above = CheckRowBlock(block, 4, 2, 64, limit(0.9));
+  ASSERT_TRUE(above.ok()) << above.status();
+  EXPECT_EQ(*above, std::vector<uint32_t>{4});  // limit 1.11
+}
+
 TEST(RowCheck, EmptyRowBlockRoundTripsThroughItsEncoding) {
   StoredRowBlock empty;
   empty.block.first_row = 7;
