@@ -3,7 +3,8 @@
 # `radflux viewfactors`: a unit sphere (sph) gets N x ceil(N/2) faces and a cylinder (cyl,
 # radius 1, length 2) N; their areas approach the closed forms (4 pi each) as N grows, the
 # sphere's from below by less than (pi/N)^2 relative, the cylinder's exactly by the factor
-# sin(pi/N)/(pi/N) (mgf_primitives.h). A count outside [3, 1024] is one line, exit 2.
+# sin(pi/N)/(pi/N) (mgf_primitives.h), tests/data/curved_lamps.mgf. A count outside
+# [3, 1024] is one line, exit 2.
 set -uo pipefail
 radflux=$1
 tmp=$(mktemp -d)
@@ -11,28 +12,11 @@ trap 'rm -rf "$tmp"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-cat >"$tmp/shapes.mgf" <<'MGF'
-m lamp =
- sides 1
- rd .5
- ed 10
-v c =
- p 0 0 0
-o ball
-sph c 1
-o
-v a =
- p 5 0 0
-v b =
- p 5 0 2
-o tube
-cyl a 1 b
-o
-MGF
+shapes="$(dirname "$0")/../data/curved_lamps.mgf"
 for n in 8 13 64 256; do
-  "$radflux" solve "$tmp/shapes.mgf" --curve-segments "$n" --patches 1 -q \
+  "$radflux" solve "$shapes" --curve-segments "$n" --patches 1 -q \
     --report "$tmp/r$n.json" --patch-values "$tmp/p$n.csv" || fail "solve --curve-segments $n exited $?"
-  "$radflux" viewfactors "$tmp/shapes.mgf" --curve-segments "$n" --format view3d -q \
+  "$radflux" viewfactors "$shapes" --curve-segments "$n" --format view3d -q \
     -o "$tmp/v$n.vs3" || fail "viewfactors --curve-segments $n exited $?"
 done
 python3 - "$tmp" <<'PY' || fail "faces or areas"
@@ -59,7 +43,7 @@ for n in (8, 13, 64, 256):
           f"(error {sphere_error:.3g} < {(math.pi / n) ** 2:.3g}), cylinder {area['tube']:.9g}")
 PY
 
-"$radflux" solve "$tmp/shapes.mgf" --curve-segments 2 -q 2>"$tmp/err"
+"$radflux" solve "$shapes" --curve-segments 2 -q 2>"$tmp/err"
 code=$?
 [ "$code" -eq 2 ] && [ "$(cat "$tmp/err")" = "radflux solve: --curve-segments must be in [3, 1024], not 2" ] ||
   fail "--curve-segments 2: exit $code, $(cat "$tmp/err")"

@@ -67,16 +67,8 @@ lamp = [r for r in rows if r["object"] == "lamp"]
 assert lamp and all(abs(float(r["r"]) - 2 * math.pi) < 1e-6 for r in lamp), lamp
 PY
 
-cat >"$S/ball.mgf" <<'MGF'
-m lamp =
- sides 1
- rd .5
- ed 10
-v c =
- p 0 0 0
-sph c 1
-MGF
-submit "$S/ball.mgf" --curve-segments 10 --report "$DIR/ball.json" >/dev/null
-python3 -c 'import json,sys; f = json.load(open(sys.argv[1]))["mesh"]["faces"]; assert f == 50, f' \
+# A sphere of 10 x 5 faces and a cylinder of 10 (16 x 8 and 16 by default).
+submit "$(dirname "$0")/../data/curved_lamps.mgf" --curve-segments 10 --report "$DIR/ball.json" >/dev/null
+python3 -c 'import json,sys; f = json.load(open(sys.argv[1]))["mesh"]["faces"]; assert f == 60, f' \
   "$DIR/ball.json"
 echo "submit import flags ok"
