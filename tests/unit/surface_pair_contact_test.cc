@@ -5,11 +5,15 @@
 // only partly in front of it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <span>
 #include <vector>
 
 #include "howell_closed_forms.h"
 #include "solver/formfactor/surface_rows.h"
+#include "solver/scene/coplanar_overlaps.h"
+#include "solver/scene/load_scene.h"
 
 namespace radflux {
 namespace {
@@ -118,6 +122,42 @@ TEST(SurfacePairContact, PanelHidesTheCeilingThatIsPartlyBehind) {
     EXPECT_EQ(f[0][1], 0.0);
     EXPECT_EQ(f[1][0], 0.0);
     EXPECT_GT(f[0][2], 0.95);  // the panel fills i's view
+  }
+}
+
+// RenderPark's office2 by face (issue 23's report: rows summing to 1.78, twin faces seeing each
+// other with F 0.54): each of its 429 back-face twins sees nothing of its face and each of its
+// 16 coplanar overlaps nothing of the other, both ways. Row sums: the twins' excess is gone;
+// what is left above 1 is the sampled visibility of cluttered near pairs (about 64 blockers
+// in a pair's shaft on average here), at most 1.26 today, and `radflux viewfactors` says so
+// (exit 4, RowSumCheck). The bound below catches the twins' 1.78 coming back.
+TEST(SurfacePairContact, Office2TwinsAndCoplanarFacesSeeNothing) {
+  absl::StatusOr<Scene> scene =
+      LoadScene(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/office2/office2.mgf", ImportOptions{});
+  ASSERT_TRUE(scene.ok()) << scene.status();  // ../shared must be beside the repository
+  std::vector<SurfaceShape> shapes;
+  for (const Face& face : scene->faces) shapes.push_back(MakeSurfaceShape(FacePolygon(*scene, face)));
+  std::vector<std::pair<size_t, size_t>> zero_pairs;  // twins, then coplanar overlaps
+  std::map<std::vector<uint32_t>, size_t> by_vertices;
+  for (size_t f = 0; f < scene->faces.size(); ++f) {
+    std::vector<uint32_t> reversed(scene->faces[f].vertices.rbegin(), scene->faces[f].vertices.rend());
+    if (auto it = by_vertices.find(reversed); it != by_vertices.end()) zero_pairs.push_back({it->second, f});
+    by_vertices[scene->faces[f].vertices] = f;
+  }
+  ASSERT_EQ(zero_pairs.size(), 429u);
+  for (const FaceOverlap& o : FindCoplanarOverlaps(*scene)) zero_pairs.push_back({o.a, o.b});
+  ASSERT_EQ(zero_pairs.size(), 429u + 16u);
+  const std::vector<std::vector<double>> f = Rows(shapes, true);
+  double worst = 0;
+  for (const auto& row : f) {
+    double sum = 0;
+    for (double v : row) sum += v;
+    worst = std::max(worst, sum);
+  }
+  EXPECT_LT(worst, 1.3);
+  for (const auto& [a, b] : zero_pairs) {
+    EXPECT_EQ(f[a][b], 0.0) << "faces " << a << " " << b;
+    EXPECT_EQ(f[b][a], 0.0) << "faces " << b << " " << a;
   }
 }
 
