@@ -1,4 +1,4 @@
-// OBJ textures (solver/scene/obj_textures.h, texture_image.h): a face's reflectance is Kd
+// OBJ textures (solver/scene/face_textures.h, texture_image.h): a face's reflectance is Kd
 // times the mean of its map_Kd texture over the face's footprint (sRGB decoded), a face
 // whose map_d alpha averages below 0.5 is dropped, a missing texture is one log line and Kd stays.
 #include <gtest/gtest.h>
