@@ -18,6 +18,8 @@ constexpr uint64_t kLightPointStream = 21;
 constexpr uint64_t kLightChoiceStream = 22;
 constexpr uint64_t kLightDirectionStream = 23;
 constexpr uint64_t kRejectionStream = 24;
+// Cells' sample patterns apart from the rows' (which are seeded from (seed, unknown)).
+constexpr uint64_t kCellSeed = 0xce11d1ec7ull;
 
 // From this unoccluded form factor on, a light sample's direction is drawn exactly in
 // proportion to the receiver's cosine within the emitter (cosine-weighted directions until
@@ -66,14 +68,12 @@ int NearFieldFactor(double radius, double distance) {
   return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
 }
 
-// NearFieldFactor of unknown i: a patch's size about its centroid against the nearest
-// emitter's distance from there; a group's (the members' vertices about the area-weighted
-// centroid, seen along the area-weighted normal), at one distance query per row.
-int UnknownNearFieldFactor(const RowContext& context, uint32_t i, const LightTree& tree) {
-  const PatchMesh& mesh = *context.mesh;
-  const std::span<const uint32_t> members =
-      context.SinglePatch(i) ? std::span<const uint32_t>() : context.clusters->Members(i);
-  const uint32_t first = context.FirstPatch(i);
+// NearFieldFactor of a set of patches (`members`; empty: the single patch `first`): a patch's
+// size about its centroid against the nearest emitter's distance from there; a set's (the
+// members' vertices about the area-weighted centroid, seen along the area-weighted normal),
+// at one distance query per set.
+int SetNearFieldFactor(const PatchMesh& mesh, uint32_t first, std::span<const uint32_t> members,
+                       const LightTree& tree) {
   Vec3 centroid = mesh.patches[first].centroid, normal = mesh.patches[first].normal;
   if (!members.empty()) {
     Vec3 weighted, summed;
@@ -139,7 +139,47 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
-  points *= UnknownNearFieldFactor(context_, i, tree_);
+  const std::span<const uint32_t> cells = context_.CellsOf(i);
+  if (cells.size() > 1) {  // the area-weighted mean of the cells' columns
+    uint64_t rays = 0;
+    CellColumns* cache = context_.cell_columns;
+    for (uint32_t c : cells) {
+      std::vector<CellSample>* samples = cache != nullptr ? &cache->of_cell[c] : nullptr;
+      if (samples != nullptr) samples->clear();
+      rays += AddCellEmitterColumns(c, points, seed, context_.cells->area[c] / context_.Area(i),
+                                    row, samples);
+      if (cache != nullptr) cache->filled[c] = 1;
+    }
+    return rays;
+  }
+  const std::span<const uint32_t> members =
+      context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
+  points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, tree_);
+  return AddSamples(UnknownPointSampler(*context_.mesh, context_.clusters, i), i, points, per_point,
+                    seed, i, 1.0, row, nullptr);
+}
+
+int LightSampler::CellSamplesPerPoint(uint32_t c) const {
+  const size_t cells = context_.CellsOf(context_.UnknownOf(context_.cells->Members(c)[0])).size();
+  return static_cast<int>((kLightSamplesPerPoint + cells - 1) / std::max<size_t>(cells, 1));
+}
+
+uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int points, uint64_t seed, double weight,
+                                             RowAccumulator& row,
+                                             std::vector<CellSample>* samples) const {
+  if (tree_.empty() || points < 1) return 0;
+  const std::span<const uint32_t> members = context_.cells->Members(c);
+  const uint32_t receiver = context_.UnknownOf(members[0]);
+  points *= SetNearFieldFactor(*context_.mesh, members[0],
+                               members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
+  return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points,
+                    CellSamplesPerPoint(c), seed ^ kCellSeed, c, weight, row, samples);
+}
+
+uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
+                                  int points, int per_point, uint64_t seed, uint64_t index,
+                                  double weight, RowAccumulator& row,
+                                  std::vector<CellSample>* samples) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -149,19 +189,20 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   directions.resize(count);
   rays.clear();
   pending.clear();
-  MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
-  MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
-  const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, i);
+  MultiJitteredSamples(PatternSeed(seed, index, kLightPointStream), on_patch);
+  MultiJitteredSamples(PatternSeed(seed, index, kLightDirectionStream), directions);
   for (size_t p = 0; p < on_patch.size(); ++p) {
     const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
     const SurfacePoint at = sample_point(on_patch[p]);
-    SamplePoint(at.x, at.n, i, seed, i, first,
+    SamplePoint(at.x, at.n, receiver, seed, index, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
   }
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
     if (!rays[r].Occluded()) {
-      row.Add(pending[r].emitter, pending[r].form_factor / static_cast<double>(count));
+      const double value = pending[r].form_factor / static_cast<double>(count);
+      row.Add(pending[r].emitter, value * weight);
+      if (samples != nullptr) samples->push_back({pending[r].emitter, value});
     }
   }
   return rays.size();
