@@ -120,11 +120,6 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   if (!caster.ok()) return caster.status();
   job->caster = *std::move(caster);
   job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
-  if (job->rows.cells != nullptr) {
-    job->cell_columns.of_cell.resize(job->cells.size());
-    job->cell_columns.filled.assign(job->cells.size(), 0);
-    job->rows.cell_columns = &job->cell_columns;
-  }
   job->embree_seconds = SecondsSince(start);
   return job;
 }
@@ -198,8 +193,6 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
   result.direct_rays = pushed.rays;
   result.direct_lifted = pushed.lifted;
   result.timings.direct = pushed.seconds;
-  result.job->rows.cell_columns = nullptr;  // read once: free them
-  result.job->cell_columns = {};
   return absl::OkStatus();
 }
 

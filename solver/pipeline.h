@@ -64,9 +64,8 @@ inline MeshOptions JobMeshOptions(const JobOptions& options) {
 struct PreparedJob {
   Scene scene;
   PatchMesh mesh;
-  PatchClusters clusters;    // empty: one unknown per patch
-  PatchClusters cells;       // grouped: the direct-light cells (face_grouping.h); else empty
-  CellColumns cell_columns;  // the cells' light samples, as the rows (built here) drew them
+  PatchClusters clusters;  // empty: one unknown per patch
+  PatchClusters cells;     // grouped: the direct-light cells (face_grouping.h); else empty
   MeshStats mesh_stats;
   PatchAttributes attributes;  // per unknown
   std::unique_ptr<EmbreeRayCaster> caster;

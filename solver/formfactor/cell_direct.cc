@@ -10,13 +10,11 @@
 namespace radflux {
 namespace {
 
-// D_c per cell (zero for cells not sampled: `sampled` 0) from the samples the rows left in
-// context.cell_columns, or drawn again where they left none; returns the shadow rays cast.
+// D_c per cell (zero for cells not sampled: `sampled` 0); returns the shadow rays cast.
 uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& sampled,
                          const std::vector<Rgb>& b, const FormFactorOptions& options,
                          std::vector<Rgb>& direct) {
   const LightSampler lights(context);
-  const CellColumns* cache = context.cell_columns;
   const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
   std::vector<std::unique_ptr<RowAccumulator>> rows(
       static_cast<size_t>(std::max(threads, DefaultThreadCount())));
@@ -24,23 +22,17 @@ uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& 
   direct.assign(sampled.size(), Rgb{});
   ParallelFor(static_cast<int64_t>(sampled.size()), 64, threads, [&](int64_t begin, int64_t end) {
     const size_t t = static_cast<size_t>(ThreadIndex());
-    thread_local std::vector<CellSample> drawn;
+    if (rows[t] == nullptr) rows[t] = std::make_unique<RowAccumulator>(context.Unknowns());
+    RowAccumulator& row = *rows[t];
     for (int64_t c = begin; c < end; ++c) {
       if (!sampled[c]) continue;
-      const std::vector<CellSample>* samples = &drawn;
-      if (cache != nullptr && cache->filled[c]) {
-        samples = &cache->of_cell[c];
-      } else {
-        if (rows[t] == nullptr) rows[t] = std::make_unique<RowAccumulator>(context.Unknowns());
-        drawn.clear();
-        rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c), options.samples,
-                                                options.seed, 1.0, *rows[t], &drawn);
-        rows[t]->Clear();
-      }
+      rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c), LightSamplesPerRow(options),
+                                              options.seed, row);
       Rgb& d = direct[c];
-      for (const CellSample& s : *samples) {
-        for (int k = 0; k < kBands; ++k) d[k] += s.form_factor * b[s.emitter][k];
+      for (uint32_t j : row.Touched()) {
+        for (int k = 0; k < kBands; ++k) d[k] += row.Value(j) * b[j][k];
       }
+      row.Clear();
     }
   });
   uint64_t total = 0;

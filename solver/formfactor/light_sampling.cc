@@ -147,47 +147,30 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
-  const std::span<const uint32_t> cells = context_.CellsOf(i);
-  if (cells.size() > 1) {  // the area-weighted mean of the cells' columns
-    uint64_t rays = 0;
-    CellColumns* cache = context_.cell_columns;
-    for (uint32_t c : cells) {
-      std::vector<CellSample>* samples = cache != nullptr ? &cache->of_cell[c] : nullptr;
-      if (samples != nullptr) samples->clear();
-      rays += AddCellEmitterColumns(c, points, seed, context_.cells->area[c] / context_.Area(i),
-                                    row, samples);
-      if (cache != nullptr) cache->filled[c] = 1;
-    }
-    return rays;
-  }
   const std::span<const uint32_t> members =
       context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
   points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, tree_);
   return AddSamples(UnknownPointSampler(*context_.mesh, context_.clusters, i), i, points, per_point,
-                    seed, i, 1.0, row, nullptr);
+                    seed, i, row);
 }
 
-int LightSampler::CellSamplesPerPoint(uint32_t c) const {
-  const size_t cells = context_.CellsOf(context_.UnknownOf(context_.cells->Members(c)[0])).size();
-  return static_cast<int>((kLightSamplesPerPoint + cells - 1) / std::max<size_t>(cells, 1));
-}
-
-uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int points, uint64_t seed, double weight,
-                                             RowAccumulator& row,
-                                             std::vector<CellSample>* samples) const {
-  if (tree_.empty() || points < 1) return 0;
+uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed,
+                                             RowAccumulator& row) const {
+  if (tree_.empty() || budget < 1) return 0;
   const std::span<const uint32_t> members = context_.cells->Members(c);
   const uint32_t receiver = context_.UnknownOf(members[0]);
-  points *= SetNearFieldFactor(*context_.mesh, members[0],
-                               members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
-  return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points,
-                    CellSamplesPerPoint(c), seed ^ kCellSeed, c, weight, row, samples);
+  const int cells = static_cast<int>(context_.CellsOf(receiver).size());
+  const int points =
+      (budget + cells - 1) / std::max(cells, 1) *
+      SetNearFieldFactor(*context_.mesh, members[0],
+                         members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
+  return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, 1,
+                    seed ^ kCellSeed, c, row);
 }
 
 uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
                                   int points, int per_point, uint64_t seed, uint64_t index,
-                                  double weight, RowAccumulator& row,
-                                  std::vector<CellSample>* samples) const {
+                                  RowAccumulator& row) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -208,9 +191,7 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
     if (!rays[r].Occluded()) {
-      const double value = pending[r].form_factor / static_cast<double>(count);
-      row.Add(pending[r].emitter, value * weight);
-      if (samples != nullptr) samples->push_back({pending[r].emitter, value});
+      row.Add(pending[r].emitter, pending[r].form_factor / static_cast<double>(count));
     }
   }
   return rays.size();

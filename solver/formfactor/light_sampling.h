@@ -1,9 +1,10 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
-// patch a few samples share each point, on a group each takes its own), one emitter j chosen with probability P(j | x) (by the
-// LightTree, or among at most 16 emitters by their exact unoccluded contributions), a direction in
-// the solid angle Omega_j that j subtends at x with pdf (uniform, 1 / Omega_j, warped towards the
-// receiver's cosine: SampleEmitterSolidAngle), and one shadow ray. The sample adds
+// patch a few samples share each point, on a group each takes its own), one emitter j chosen with
+// probability P(j | x) (by the LightTree, or among at most 16 emitters by their exact unoccluded
+// contributions), a direction in the solid angle Omega_j that j subtends at x with pdf (uniform, 1
+// / Omega_j, warped towards the receiver's cosine: SampleEmitterSolidAngle), and one shadow ray.
+// The sample adds
 //     cos(theta_x) V / (pi pdf P(j | x) budget)
 // to F_ij. Its expectation over x, j and the direction is
 //     (1 / A_i) integral_{A_i} (1 / pi) integral_{Omega_j} cos(theta_x) V dw dA = F_ij
@@ -36,28 +37,18 @@ class LightSampler {
   // Adds the estimate of F_ij for the emitter patches j (j != i) to `row` from `points`
   // stratified points on i with `per_point` light samples each, seeded from (seed, i);
   // a receiver near an emitter against its size takes up to 16 times the points (about
-  // (size / distance)^2). An unknown of more than one direct-light cell (context.cells) takes
-  // the area-weighted mean of its cells' estimates instead (AddCellEmitterColumns; per_point
-  // is then CellSamplesPerPoint's), leaving each cell's samples in context.cell_columns. Returns
-  // the shadow rays cast (at most 16 * points * per_point, whatever the number of emitter patches).
+  // (size / distance)^2). Returns the shadow rays cast (at most 16 * points * per_point,
+  // whatever the number of emitter patches).
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                              RowAccumulator& row) const;
 
-  // A group row's emitter columns are the area-weighted mean of its k cells' (k > 1), each
-  // cell taking the row's points (times its own near-field factor) with
-  // ceil(kLightSamplesPerPoint / k) samples each: a group row casts at least as many shadow
-  // rays as a patch's, with its points stratified over its cells (where its direct light
-  // varies), and each cell has its own estimate for the push-down (cell_direct.h).
-
-  // Adds weight times the estimate of F_cj, cell c's (context.cells) area-averaged form factor
-  // to each emitter unknown j, to `row` from `points` stratified points over the cell's
-  // patches by area (times the cell's near-field factor), seeded from (seed, c) apart from
-  // the rows' own patterns. The same (c, points, seed) give the same estimate, in the rows of
-  // the cell's group and after the solve (cell_direct.h). With `samples`, also appends each
-  // unoccluded sample's own (unweighted) estimate there. Returns the shadow rays cast.
-  uint64_t AddCellEmitterColumns(uint32_t c, int points, uint64_t seed, double weight,
-                                 RowAccumulator& row,
-                                 std::vector<CellSample>* samples = nullptr) const;
+  // Adds the estimate of F_cj, cell c's (context.cells) area-averaged form factor to each
+  // emitter unknown j, to `row`: cell c of a group of k cells takes ceil(budget / k) light
+  // samples (times its own near-field factor), each at its own stratified point over the
+  // cell's patches by area, seeded from (seed, c) apart from the rows' patterns. So the
+  // cells of a group share one row's budget of light samples, spread over the group's cells
+  // (cell_direct.h). Returns the shadow rays cast.
+  uint64_t AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed, RowAccumulator& row) const;
 
   // One light sample waiting for its shadow ray: the emitter patch it chose and its
   // estimate of that emitter's form factor F_j(x) from the receiver point, if the ray is
@@ -79,13 +70,9 @@ class LightSampler {
   class PointChooser;
 
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
-  // `receiver` (never its own emitter), patterns seeded from (seed, index), each estimate
-  // times `weight` into `row`, and unweighted into `samples` when given.
+  // `receiver` (never its own emitter), patterns seeded from (seed, index).
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
-                      int per_point, uint64_t seed, uint64_t index, double weight,
-                      RowAccumulator& row, std::vector<CellSample>* samples) const;
-  // The light samples per point of cell c: ceil(kLightSamplesPerPoint / k), see above.
-  int CellSamplesPerPoint(uint32_t c) const;
+                      int per_point, uint64_t seed, uint64_t index, RowAccumulator& row) const;
 
   const RowContext& context_;
   LightTree tree_;

@@ -22,22 +22,6 @@
 
 namespace radflux {
 
-// The light samples behind a direct-light cell's emitter columns (light_sampling.h), as its
-// group's row drew them: each sample's estimate of F_cj for emitter unknown j, already divided
-// by the cell's sample count (the cell's F_cj is the sum of its samples for j).
-struct CellSample {
-  uint32_t emitter = 0;
-  double form_factor = 0;
-};
-// The rows leave each cell's samples here for the push-down after the solve (cell_direct.h),
-// which reuses them instead of drawing them again; a cell's slot is written by its group's row
-// only. A push-down that finds a cell not filled (rows built elsewhere) draws the same
-// samples again (same seeds).
-struct CellColumns {
-  std::vector<std::vector<CellSample>> of_cell;
-  std::vector<uint8_t> filled;  // per cell, 1 once of_cell[c] holds its samples
-};
-
 // What the row builders need to know about the scene besides its geometry. Rows and
 // columns are unknowns: the mesh's patches, or the groups of them in `clusters` (rays still
 // hit patches: UnknownOf maps them). Only monte_carlo builds rows of grouped unknowns.
@@ -45,13 +29,11 @@ struct RowContext {
   const PatchMesh* mesh = nullptr;
   const RayCaster* caster = nullptr;
   const PatchClusters* clusters = nullptr;  // null: unknown u is patch u
-  // Grouped: the direct-light cells (face_grouping.h), each inside one unknown; a group of
-  // more than one cell takes its rows' emitter columns from its cells (light_sampling.h).
+  // Grouped: the direct-light cells (face_grouping.h), each inside one unknown, which get
+  // their own direct light after the solve (cell_direct.h).
   const PatchClusters* cells = nullptr;
   std::vector<uint32_t> cell_first, cell_order;  // cells of unknown u, in cell order:
                                                  // cell_order[cell_first[u], cell_first[u + 1])
-  CellColumns* cell_columns = nullptr;  // with cells: where the rows leave the cells' samples
-                                        // (sized one slot a cell), or null
   std::vector<uint8_t> needs_row;  // per unknown, 1 where rho > 0 in some band: only those get rows
   std::vector<uint8_t> emitter;    // 1 where the unknown emits
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;

@@ -123,6 +123,43 @@ TEST(FaceGrouping, EveryPatchInExactlyOneUnknownOfOneObjectAndMaterial) {
   const std::vector<Rgb> down = PushDownToPatches(c, b);
   ASSERT_EQ(down.size(), grouped.mesh.size());
   for (uint32_t p = 0; p < down.size(); ++p) EXPECT_EQ(down[p], b[c.of_patch[p]]);
+  // The direct-light cells refine the groups: every cell's patches lie in one group, each
+  // emitter is a cell of its own, and there are 16 times the non-emitting groups.
+  const PatchClusters& cells = grouped.cells;
+  ASSERT_EQ(cells.size(), 200u + 16u * 100u);
+  ASSERT_EQ(cells.of_patch.size(), grouped.mesh.size());
+  for (uint32_t k = 0; k < cells.size(); ++k) {
+    const uint32_t group = c.of_patch[cells.Members(k)[0]];
+    for (uint32_t p : cells.Members(k)) EXPECT_EQ(c.of_patch[p], group) << "cell " << k;
+    if (c.Members(group).size() == 1) {
+      EXPECT_EQ(cells.Members(k).size(), 1u);
+    }
+  }
+}
+
+// 40 tents (two faces at right angles, one material, one object) in a row 40 long: a node of
+// them is bent, yet splitting it by normals would give groups as long as the row. Split in
+// space first, every one of the 20 groups is local (a few tents long).
+TEST(FaceGrouping, BentObjectsAcrossTheSceneGetLocalGroups) {
+  int next = 1;
+  std::string obj;
+  for (int t = 0; t < 40; ++t) {
+    const double x = t;
+    obj += TessellatedQuad("tents", "white", {x, 0, 0}, {0.5, 0, 0.5}, {0, 1, 0}, 4, next);
+    obj += TessellatedQuad("tents", "white", {x + 0.5, 0, 0.5}, {0.5, 0, -0.5}, {0, 1, 0}, 4, next);
+  }
+  const Scene scene = SceneFromObj(obj);
+  const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{});
+  const PatchClusters c = GroupPatches(scene, mesh, 20);
+  ASSERT_EQ(c.size(), 20u);
+  for (uint32_t u = 0; u < c.size(); ++u) {
+    double lo = 1e300, hi = -1e300;
+    for (uint32_t p : c.Members(u)) {
+      lo = std::min(lo, mesh.patches[p].centroid.x);
+      hi = std::max(hi, mesh.patches[p].centroid.x);
+    }
+    EXPECT_LT(hi - lo, 4.0) << "group " << u;
+  }
 }
 
 TEST(FaceGrouping, FewerFacesThanTargetKeepTheUngroupedMesh) {
