@@ -28,7 +28,8 @@ namespace {
 constexpr const char* kSolverOnlyFlags[] = {
     "--solver",  "--tolerance",       "--max-iterations",  "--link-epsilon", "--clusters",
     "--min-element-area", "--adaptive-passes", "--adaptive-threshold", "--emit"};
-constexpr const char* kImportFlags[] = {"--max-reflectance", "--strict", "--two-sided"};
+constexpr const char* kImportFlags[] = {"--max-reflectance", "--strict", "--two-sided",
+                                        "--curve-segments"};
 constexpr const char* kPatchFlags[] = {"--patches", "--max-edge", "--form-factors", "--rays",
                                        "--hemicube-res", "--samples", "--cutoff", "--seed"};
 constexpr const char* kAdaptiveFlags[] = {"--vf-tolerance", "--far-ratio", "--middle-ratio",

@@ -163,7 +163,7 @@ nlohmann::json SpillJson(const RowStore& store, const JobOptions& options) {
 nlohmann::json ImportJson(const ImportLog& log) {
   nlohmann::json fixups = nlohmann::json::array();
   for (const ImportFixup& f : log.fixups()) {
-    fixups.push_back({{"kind", f.kind}, {"message", f.message}, {"count", f.count}, {"first", f.first}});
+    fixups.push_back({{"kind", f.kind}, {"message", f.Text()}, {"count", f.count}, {"first", f.first}});
   }
   return fixups;
 }

@@ -4,10 +4,11 @@
 //   # comment (also after a line's fields); blank lines are skipped
 //   PRINCIPAL TOKEN [admin] [running_jobs=N] [patches=N] [cpu_seconds=S]
 //
-// PRINCIPAL: 1-64 of [A-Za-z0-9_.@-]; TOKEN: the bearer token (no whitespace), or "-" for a
-// principal that authenticates by TLS client certificate only (its certificate's CN is the
-// PRINCIPAL name; any principal of the file may be reached that way). Limits left out take
-// the server's defaults (radfluxd --principal-running-jobs, ...; 0 = no limit).
+// PRINCIPAL: 1-64 of [A-Za-z0-9_.@-]; TOKEN: the bearer token (no whitespace, not starting
+// with '#'), or "-" for a principal that authenticates by TLS client certificate only (its
+// certificate's CN is the PRINCIPAL name; any principal of the file may be reached that
+// way). Limits left out take the server's defaults (radfluxd --principal-running-jobs, ...;
+// 0 = no limit).
 #pragma once
 
 #include <string>

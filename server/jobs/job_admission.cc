@@ -89,8 +89,9 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
   ref.set_materials(loaded->materials.size());
   // already_stored tells the caller of its own uploads only: whether another principal
   // uploaded the same bytes stays unsaid.
-  ref.set_already_stored(store_.SceneOwnedBy(sha, caller.name));
-  if (!store_.HasScene(sha)) {
+  const bool stored = store_.HasScene(sha);
+  ref.set_already_stored(stored && store_.SceneOwnedBy(sha, caller.name));
+  if (!stored) {
     if (absl::Status s = store_.PutScene(sha, scene); !s.ok()) return s;
     spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), scene.name, ref.faces());
   }

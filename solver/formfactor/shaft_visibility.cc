@@ -10,10 +10,13 @@
 namespace radflux {
 namespace {
 
-// Sample points per side of a cell: 2 for a pair far apart for its size, up to kMaxSide for
-// a near one (kSideDensity * diameter / distance), and at most kMaxSamplePoints in all.
-constexpr int kMinSide = 2, kMaxSide = 4;
-constexpr double kSideDensity = 2;
+// Sample points per side of a cell: kSideDensity * diameter / distance (the surface's size as
+// seen from the other), rounded up, from 1 (a surface far away for its size: its centroid
+// alone) to kMaxSide, and at most kMaxSamplePoints in all. Measured against View3D (issue 23's
+// benches): density 6 keeps the city's median row L1 at 0.6% (2 or a minimum of 2 points a
+// side: 0.8%) and the grid room's at 0.7%, with about a third fewer segments there.
+constexpr int kMinSide = 1, kMaxSide = 4;
+constexpr double kSideDensity = 6;
 constexpr size_t kMaxSamplePoints = 64;
 
 struct SamplePoints {
