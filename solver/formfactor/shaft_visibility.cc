@@ -61,8 +61,10 @@ void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out)
   std::vector<Vec3> clipped;
   if (!whole) clipped = ClipPolygonToHalfSpace(s.polygon, other.centroid, other.normal);
   const std::vector<Vec3>& part = whole || clipped.size() < 3 ? s.polygon : clipped;
+  // Clamped as a double: centroids that (nearly) coincide give an unbounded ratio.
   const double distance = Length(other.centroid - s.centroid);
-  int side = std::clamp(static_cast<int>(std::ceil(kSideDensity * s.diameter / distance)), kMinSide, kMaxSide);
+  const double ratio = distance > 0 ? std::ceil(kSideDensity * s.diameter / distance) : kMaxSide;
+  int side = static_cast<int>(std::clamp<double>(ratio, kMinSide, kMaxSide));
   const size_t cells = part.size() == 4 ? 1 : part.size() - 2;
   while (side > 1 && cells * side * side > kMaxSamplePoints) --side;
   if (part.size() == 4) {

@@ -119,6 +119,18 @@ TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
   EXPECT_EQ(segments, 1u);
 }
 
+// Two squares crossing through their common centroid (a fuzzer's find: the points-a-side ratio
+// diameter / distance is unbounded there): the nearest kind of pair, 4 x 4 points a side on
+// the halves in front of each other, 256 segments, nothing hidden.
+TEST(ShaftCull, CrossingSurfacesWithOneCentroidTakeTheMostPoints) {
+  const SurfaceShape a = Square({-0.5, -0.5, 0}, {1, 0, 0}, {0, 1, 0});  // faces +z
+  const SurfaceShape b = Square({0, -0.5, -0.5}, {0, 1, 0}, {0, 0, 1});  // faces +x
+  ASSERT_EQ(Length(a.centroid - b.centroid), 0.0);
+  uint64_t segments = 0;
+  EXPECT_EQ(VisibleFraction(a, b, [](const Vec3&, const Vec3&) { return false; }, segments), 1.0);
+  EXPECT_EQ(segments, 256u);
+}
+
 // The unit cube room, n x n squares per wall facing in.
 std::vector<SurfaceShape> CubeRoom(int n) {
   std::vector<SurfaceShape> shapes;
