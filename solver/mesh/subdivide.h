@@ -23,7 +23,9 @@ struct MeshOptions {
 };
 
 // Subdivides every face: triangles into n^2 triangles, quads into a nu x nv grid,
-// larger convex polygons into a fan of subdivided triangles around their centroid.
+// larger convex polygons into a fan of subdivided triangles around their centroid. Where a
+// closed solid rests on a face (contact_footprints.h), the face's patches are cut along the
+// solid's outline and the part under it is left out (contact_clip.h).
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options);
 
 struct MeshStats {
