@@ -28,32 +28,61 @@ struct FaceGeometry {
   Box box;
 };
 
+bool Overlap(const Box& a, const Box& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
 // The faces' bounding boxes in a uniform grid of about one face per cell (at most 64 cells
-// per axis): ForBox visits the faces whose boxes share a cell with a query box.
+// per axis); a face over more than kMaxCells cells is kept in a list of big faces instead, so
+// that the grid holds O(faces) entries whatever the faces' shapes.
 class FaceGrid {
  public:
-  FaceGrid(const std::vector<FaceGeometry>& faces, const Box& scene) : lo_(scene.lo) {
+  FaceGrid(const std::vector<FaceGeometry>& faces, const Box& scene)
+      : faces_(faces), lo_(scene.lo), seen_(faces.size(), 0) {
     const Vec3 extent = scene.hi - scene.lo;
-    n_ = std::clamp(static_cast<int64_t>(std::cbrt(double(faces.size()))), int64_t{1}, int64_t{64});
+    n_ = std::clamp(static_cast<int64_t>(2 * std::cbrt(double(faces.size()))), int64_t{1}, int64_t{256});
     cell_ = std::max({extent.x, extent.y, extent.z, 1e-300}) / double(n_);
     for (uint32_t f = 0; f < faces.size(); ++f) {
-      ForCells(faces[f].box, [&](int64_t key) { cells_[key].push_back(f); });
+      if (CellCount(faces[f].box) > kMaxCells) {
+        big_.push_back(f);
+      } else {
+        ForCells(faces[f].box, [&](int64_t key) { cells_[key].push_back(f); });
+      }
     }
   }
 
-  // Calls visit(face) for each face sharing a cell with `box`, possibly more than once.
+  // Calls visit(face) once for each face whose box overlaps `box` (one query at a time).
   template <typename Visit>
-  void ForBox(const Box& box, Visit&& visit) const {
+  void ForBox(const Box& box, Visit&& visit) {
+    ++stamp_;
+    auto once = [&](uint32_t f) {
+      if (seen_[f] == stamp_ || !Overlap(faces_[f].box, box)) return;
+      seen_[f] = stamp_;
+      visit(f);
+    };
+    for (uint32_t f : big_) once(f);
+    if (CellCount(box) > double(faces_.size())) {  // cheaper to try every face
+      for (uint32_t f = 0; f < faces_.size(); ++f) once(f);
+      return;
+    }
     ForCells(box, [&](int64_t key) {
       const auto it = cells_.find(key);
       if (it == cells_.end()) return;
-      for (uint32_t f : it->second) visit(f);
+      for (uint32_t f : it->second) once(f);
     });
   }
 
  private:
+  static constexpr double kMaxCells = 512;
+
   int64_t Index(double v, double lo) const {
     return std::clamp(static_cast<int64_t>(std::floor((v - lo) / cell_)), int64_t{0}, n_ - 1);
+  }
+  double CellCount(const Box& b) const {
+    return double(Index(b.hi.x, lo_.x) - Index(b.lo.x, lo_.x) + 1) *
+           double(Index(b.hi.y, lo_.y) - Index(b.lo.y, lo_.y) + 1) *
+           double(Index(b.hi.z, lo_.z) - Index(b.lo.z, lo_.z) + 1);
   }
   template <typename Body>
   void ForCells(const Box& b, Body&& body) const {
@@ -66,10 +95,14 @@ class FaceGrid {
     }
   }
 
+  const std::vector<FaceGeometry>& faces_;
   Vec3 lo_;
   int64_t n_ = 1;
   double cell_ = 1;
   std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
+  std::vector<uint32_t> big_;
+  std::vector<uint32_t> seen_;  // per face: the last query that visited it
+  uint32_t stamp_ = 0;
 };
 
 // An edge of a standing face in a receiver's plane, oriented so that the face's normal
@@ -84,6 +117,18 @@ double PlaneDistance(const FaceGeometry& receiver, const Vec3& p) {
 }
 
 // The edges of `stander` lying in `receiver`'s plane, when `stander` stands on its front.
+// Whether segment a-b lies on the line of one of the receiver's edges (a face meeting the
+// receiver along its border, e.g. its neighbour in a tessellated surface, is not standing
+// on it).
+bool AlongBorder(const FaceGeometry& receiver, const Vec3& a, const Vec3& b, double tol) {
+  const std::vector<Vec3>& r = receiver.polygon;
+  for (size_t i = 0; i < r.size(); ++i) {
+    const Vec3 dir = Normalize(r[(i + 1) % r.size()] - r[i]);
+    if (Length(Cross(a - r[i], dir)) <= tol && Length(Cross(b - r[i], dir)) <= tol) return true;
+  }
+  return false;
+}
+
 void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, uint32_t face,
                      double tol, std::vector<ContactEdge>& out) {
   if (std::abs(Dot(receiver.normal, stander.normal)) > 1 - 1e-9) return;
@@ -94,7 +139,8 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
   for (size_t i = 0; i < p.size(); ++i) {
     const Vec3& a = p[i];
     const Vec3& b = p[(i + 1) % p.size()];
-    if (std::abs(PlaneDistance(receiver, a)) > tol || std::abs(PlaneDistance(receiver, b)) > tol) {
+    if (std::abs(PlaneDistance(receiver, a)) > tol || std::abs(PlaneDistance(receiver, b)) > tol ||
+        AlongBorder(receiver, a, b, tol)) {
       continue;
     }
     const bool normal_left = Dot(Cross(receiver.normal, b - a), stander.normal) > 0;
@@ -131,7 +177,7 @@ std::vector<std::vector<ContactEdge>> ChainLoops(const std::vector<ContactEdge>&
 }
 
 // Whether a face of `object` facing away from `receiver` and above it covers `point`.
-bool HasLid(const Scene& scene, const std::vector<FaceGeometry>& faces, const FaceGrid& grid,
+bool HasLid(const Scene& scene, const std::vector<FaceGeometry>& faces, FaceGrid& grid,
             const FaceGeometry& receiver, uint32_t object, const Vec3& point, double reach,
             double tol) {
   Box column;
@@ -173,14 +219,12 @@ std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene) {
   }
   const double diagonal = Length(scene_box.hi - scene_box.lo);
   const double tol = 1e-5 * diagonal;
-  const FaceGrid grid(faces, scene_box);
+  FaceGrid grid(faces, scene_box);
   std::vector<std::vector<ContactEdge>> edges(faces.size());
   std::vector<uint32_t> near;
   for (uint32_t s = 0; s < faces.size(); ++s) {
     near.clear();
     grid.ForBox(faces[s].box.Padded(tol), [&](uint32_t r) { near.push_back(r); });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
     for (uint32_t r : near) {
       if (r != s) AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
     }

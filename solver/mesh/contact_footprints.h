@@ -18,6 +18,8 @@ using Footprint = std::vector<Vec3>;
 // Footprints per scene face (one list per face, most empty). A footprint is a closed loop of
 // other faces' edges lying in the receiver's plane (within 1e-5 of the scene's bounding-box
 // diagonal), where:
+// - no edge of the loop lies along the receiver's border (a neighbouring face of a
+//   tessellated surface meets it there; it does not stand on it);
 // - every face of the loop stands on the receiver's front side, is not parallel to it, and
 //   has its normal pointing out of the loop (the loop is the foot of a solid, not a room's
 //   walls around an inner floor, whose normals point in);

@@ -249,7 +249,12 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
-  const std::vector<std::vector<Footprint>> footprints = FindContactFootprints(scene);
+  const bool contacts = options.follow_contacts &&
+                        (options.target_patches <= 0 ||
+                         static_cast<int64_t>(scene.faces.size()) < options.target_patches);
+  const std::vector<std::vector<Footprint>> footprints =
+      contacts ? FindContactFootprints(scene)
+               : std::vector<std::vector<Footprint>>(scene.faces.size());
   const double h = ContactAwareEdgeLength(scene, extents, footprints, options,
                                           ChooseEdgeLength(extents, options));
   PatchMesh mesh;
