@@ -1,6 +1,7 @@
 // How a verb ends: one line on stderr naming the verb and the problem, and an exit code
 // (2 for bad input the user can fix, 3 for a solve that stopped short of its tolerance,
-// 4 for a solve whose energy balance is off, 1 for everything else).
+// 4 for a solve whose energy balance is off or view factors whose rows sum above 1, 1 for
+// everything else).
 #pragma once
 
 #include <cstdio>
@@ -17,6 +18,9 @@ inline constexpr int kExitNotConverged = 3;
 // off: emitted != absorbed + escaped beyond the rows' noise. Its outputs are written, but
 // the rows or the scene are suspect (overlapping faces, rows that are not reciprocal).
 inline constexpr int kExitEnergyImbalance = 4;
+// Exit code of `radflux viewfactors` when some row sums to more than 1 beyond its error
+// allowance (the same "outputs written, but suspect" code as an energy imbalance).
+inline constexpr int kExitRowSumOver = kExitEnergyImbalance;
 
 // Prints the one line saying a solve stopped short (`radflux VERB: not converged: ...`
 // with the residual reached) and returns kExitNotConverged.

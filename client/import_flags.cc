@@ -7,6 +7,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "solver/scene/mgf_loader.h"
 
 namespace radflux::cli {
 namespace {
@@ -47,6 +48,11 @@ void AddImportFlags(CLI::App& app, ImportFlags& f) {
   app.add_option("--emit", f.emit,
                  "MATERIAL=R,G,B: make a material an emitter of radiance L_e (repeatable)")
       ->group(kGroup);
+  app.add_option("--curve-segments", f.curve_segments,
+                 "segments around a full circle of MGF sph, cyl, cone, ring and torus (a sphere "
+                 "gets N x ceil(N/2) faces, a cylinder N)")
+      ->capture_default_str()
+      ->group(kGroup);
 }
 
 absl::StatusOr<ImportOptions> ToImportOptions(const ImportFlags& f) {
@@ -55,6 +61,12 @@ absl::StatusOr<ImportOptions> ToImportOptions(const ImportFlags& f) {
     return absl::InvalidArgumentError("--max-reflectance must be in (0, 1)");
   }
   options.max_reflectance = f.max_reflectance;
+  const int most = MgfLimits{}.max_curve_segments;
+  if (f.curve_segments < 3 || f.curve_segments > most) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--curve-segments must be in [3, ", most, "], not ", f.curve_segments));
+  }
+  options.curve_segments = f.curve_segments;
   options.strict = f.strict;
   options.two_sided = f.two_sided;
   for (const std::string& value : f.emit) {

@@ -28,7 +28,8 @@ namespace {
 constexpr const char* kSolverOnlyFlags[] = {
     "--solver",  "--tolerance",       "--max-iterations",  "--link-epsilon", "--clusters",
     "--min-element-area", "--adaptive-passes", "--adaptive-threshold", "--emit"};
-constexpr const char* kImportFlags[] = {"--max-reflectance", "--strict", "--two-sided"};
+constexpr const char* kImportFlags[] = {"--max-reflectance", "--strict", "--two-sided",
+                                        "--curve-segments"};
 constexpr const char* kPatchFlags[] = {"--patches", "--max-edge", "--form-factors", "--rays",
                                        "--hemicube-res", "--samples", "--cutoff", "--seed"};
 constexpr const char* kAdaptiveFlags[] = {"--vf-tolerance", "--far-ratio", "--middle-ratio",
@@ -144,7 +145,18 @@ void PrintReport(const ViewFactorReport& r) {
   if (!e.converged) std::fprintf(stderr, "enclosure: not converged in %d sweeps\n", e.sweeps);
 }
 
-absl::Status RunViewFactors(const ViewFactorArgs& args) {
+// 0, or kExitRowSumOver with one line naming the rows whose sum exceeds 1 beyond the allowance.
+int CheckRowSums(const RowSumCheck& c) {
+  if (c.rows_over == 0) return 0;
+  std::fprintf(stderr,
+               "radflux viewfactors: %zu row(s) sum above 1 + %.3g (worst: %s, sum %.4f): view "
+               "factors overestimated, a blocker missed or a cluttered pair's visibility "
+               "(outputs written)\n",
+               c.rows_over, c.allowance, c.worst_name.c_str(), c.worst_sum);
+  return kExitRowSumOver;
+}
+
+absl::StatusOr<ViewFactorReport> RunViewFactors(const ViewFactorArgs& args) {
   ViewFactorJobOptions options;
   absl::StatusOr<JobOptions> job = ToJobOptions(args.job);
   if (!job.ok()) return job.status();
@@ -172,10 +184,7 @@ absl::Status RunViewFactors(const ViewFactorArgs& args) {
                               : ViewFactorIntegration::kPatches;
   }
   if (absl::Status s = CheckFlagsApply(args, options.integration); !s.ok()) return s;
-  absl::StatusOr<ViewFactorReport> report = RunViewFactorJob(*std::move(scene), options);
-  if (!report.ok()) return report.status();
-  PrintReport(*report);
-  return absl::OkStatus();
+  return RunViewFactorJob(*std::move(scene), options);
 }
 
 }  // namespace
@@ -233,7 +242,13 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
         args->given.push_back("--" + option->get_lnames()[0]);
       }
     }
-    exit_code = ReportStatus("viewfactors", RunViewFactors(*args));
+    absl::StatusOr<ViewFactorReport> report = RunViewFactors(*args);
+    if (!report.ok()) {
+      exit_code = ReportStatus("viewfactors", report.status());
+      return;
+    }
+    PrintReport(*report);
+    exit_code = CheckRowSums(report->row_sums);
   });
 }
 

@@ -1,5 +1,7 @@
 // radfluxd: the radflux gRPC server.
 //   radfluxd --listen HOST:PORT --data-dir DIR [--jobs N] [--threads N] [--token T]
+//            [--tokens-file F] [--principal-running-jobs N] [--principal-patches N]
+//            [--principal-cpu-seconds S]
 //            [--tls-cert F --tls-key F [--tls-client-ca F]] [--max-patches N]
 //            [--max-memory BYTES] [--worker-token T | --allow-workers-without-token]
 //            [--lease-seconds S] [--verify-fraction F]
@@ -22,7 +24,9 @@
 #include <iostream>
 #include <thread>
 
+#include "server/api/principals.h"
 #include "server/api/radiosity_service.h"
+#include "server/api/tokens_file.h"
 #include "server/jobs/job_manager.h"
 #include "server/jobs/work_queue.h"
 #include "server/store/job_store.h"
@@ -59,6 +63,8 @@ struct Flags {
   int jobs = 1;
   int threads = 0;
   std::string token;
+  std::string tokens_file;             // principals (server/api/tokens_file.h)
+  radflux::PrincipalLimits principal;  // the limits of a principal that sets none
   std::string tls_cert, tls_key;
   std::string tls_client_ca;  // mutual TLS: clients must present a certificate of this CA
   radflux::ManagerOptions manager;
@@ -71,7 +77,32 @@ struct Flags {
   radflux::WorkerNodeOptions node;
 };
 
+// The principals of --token and --tokens-file, or an error line; the worker token must be
+// none of their tokens (a client could otherwise serve as a worker, or a worker as a client).
+absl::StatusOr<radflux::Principals> LoadPrincipals(const Flags& flags) {
+  std::vector<radflux::TokenEntry> entries;
+  if (!flags.tokens_file.empty()) {
+    absl::StatusOr<std::vector<radflux::TokenEntry>> read =
+        radflux::ReadTokensFile(flags.tokens_file, flags.principal);
+    if (!read.ok()) return read.status();
+    entries = *std::move(read);
+  }
+  absl::StatusOr<radflux::Principals> principals =
+      radflux::Principals::Make(flags.token, std::move(entries), flags.principal);
+  if (principals.ok() && !flags.worker_token.empty() &&
+      principals->IsClientToken(flags.worker_token)) {
+    return absl::InvalidArgumentError(
+        "--worker-token must differ from every client token (--token, --tokens-file)");
+  }
+  return principals;
+}
+
 int Serve(const Flags& flags) {
+  absl::StatusOr<radflux::Principals> principals = LoadPrincipals(flags);
+  if (!principals.ok()) {
+    std::cerr << "radfluxd: " << principals.status().message() << "\n";
+    return 2;
+  }
   absl::StatusOr<std::unique_ptr<radflux::JobStore>> store =
       radflux::JobStore::Open(flags.data_dir);
   if (!store.ok()) {
@@ -81,9 +112,10 @@ int Serve(const Flags& flags) {
   radflux::RowFarm farm(flags.lease_seconds, flags.verify_fraction);
   radflux::ManagerOptions manager_options = flags.manager;
   manager_options.farm = &farm;
+  manager_options.limits_of = [&](const std::string& owner) { return principals->LimitsOf(owner); };
   radflux::JobManager manager(**store, manager_options);
   radflux::WorkQueue work(kWorkThreads);
-  radflux::RadiosityService service(manager, work, flags.token);
+  radflux::RadiosityService service(manager, work, *principals);
   radflux::WorkerService worker_service(farm, manager, flags.worker_token,
                                         flags.allow_workers_without_token);
   const std::shared_ptr<grpc::ServerCredentials> credentials =
@@ -117,9 +149,10 @@ int Serve(const Flags& flags) {
                     : flags.tls_client_ca.empty() ? "on"
                                                   : "on, client certificates required";
   spdlog::info("radfluxd " RADFLUX_VERSION
-               " serving on {}:{} (data {}, {} job(s) at once, tls {}, token {})",
+               " serving on {}:{} (data {}, {} job(s) at once, tls {}, principals {})",
                host, port, flags.data_dir, flags.manager.jobs, tls,
-               flags.token.empty() ? "off" : "on");
+               principals->open() ? "off (everyone is 'default', an admin)"
+                                  : std::to_string(principals->size()));
 
   std::thread signals([&] {
     const int signal = WaitForShutdownSignal();
@@ -173,7 +206,27 @@ int main(int argc, char** argv) {
   app.add_option("--threads", flags.manager.threads,
                  "OpenMP threads shared by running jobs (0 = all cores)")
       ->check(CLI::Range(0, 4096));
-  app.add_option("--token", flags.token, "require this bearer token on every call");
+  app.add_option("--token", flags.token,
+                 "require a bearer token on every call; this one is the principal 'default', an "
+                 "admin (sees every job), which also owns jobs stored before principals existed");
+  app.add_option("--tokens-file", flags.tokens_file,
+                 "principals: one 'PRINCIPAL TOKEN [admin] [running_jobs=N] [patches=N] "
+                 "[cpu_seconds=S]' a line (# comments; TOKEN '-': TLS client certificate only, "
+                 "its CN naming the principal); each sees only its own jobs and scenes, an "
+                 "admin all");
+  app.add_option("--principal-running-jobs", flags.principal.running_jobs,
+                 "a principal's jobs queued or running at once, unless its line says "
+                 "running_jobs=N (0 = no limit; the default)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--principal-patches", flags.principal.patches,
+                 "the patches of one job of a principal, unless its line says patches=N (0 = "
+                 "--max-patches alone; the default)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--principal-cpu-seconds", flags.principal.cpu_seconds,
+                 "the CPU seconds (threads x running time) one job of a principal may take, "
+                 "unless its line says cpu_seconds=S; a job reaching it fails (0 = no limit; "
+                 "the default)")
+      ->check(CLI::NonNegativeNumber);
   auto* cert = app.add_option("--tls-cert", flags.tls_cert,
                               "PEM server certificate (enables TLS); worker: the client "
                               "certificate it presents to a server with --tls-client-ca");

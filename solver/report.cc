@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "absl/strings/str_format.h"
+
 #include "solver/core/parallel.h"
 
 namespace radflux {
@@ -83,8 +85,11 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
                         {"relative_imbalance", e.RelativeImbalance()},
                         {"tolerance", e.Tolerance()},
                         {"tolerance_rule",
-                         "max(0.005, noise / emitted); noise: the imbalance the rows' Monte Carlo "
-                         "noise gives (multinomial rows of k rays, an upper estimate)"},
+                         absl::StrFormat(
+                             "max(%g, %g noise / emitted); noise: the standard deviation of the "
+                             "imbalance the rows' Monte Carlo noise gives (multinomial rows of k "
+                             "rays; light samples measured against the emitters' own rows)",
+                             kEnergyBalanceFloor, kEnergyBalanceSigmas)},
                         {"ok", e.Ok()}};
   if (!e.Ok()) out["why"] = e.Why();
   return out;
@@ -153,7 +158,7 @@ nlohmann::json SpillJson(const RowStore& store, const JobOptions& options) {
 nlohmann::json ImportJson(const ImportLog& log) {
   nlohmann::json fixups = nlohmann::json::array();
   for (const ImportFixup& f : log.fixups()) {
-    fixups.push_back({{"kind", f.kind}, {"message", f.message}, {"count", f.count}, {"first", f.first}});
+    fixups.push_back({{"kind", f.kind}, {"message", f.Text()}, {"count", f.count}, {"first", f.first}});
   }
   return fixups;
 }

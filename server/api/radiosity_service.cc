@@ -3,7 +3,6 @@
 #include <functional>
 
 #include "absl/strings/str_cat.h"
-#include "server/api/auth.h"
 #include "server/api/rpc_guard.h"
 #include "server/jobs/watch_reactor.h"
 #include "wire/proto_convert.h"
@@ -24,8 +23,9 @@ class ErrorWriteReactor final : public grpc::ServerWriteReactor<T> {
 // (off the reactor thread).
 class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
  public:
-  UploadReactor(JobManager& manager, WorkQueue& work, v1::SceneRef* response)
-      : manager_(manager), work_(work), response_(response) {
+  UploadReactor(JobManager& manager, WorkQueue& work, const Principal& caller,
+                v1::SceneRef* response)
+      : manager_(manager), work_(work), caller_(caller), response_(response) {
     StartRead(&chunk_);
   }
 
@@ -81,7 +81,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
       absl::StatusOr<v1::SceneRef> ref = GuardCall("UploadScene", [&] {
         absl::StatusOr<StoredScene> scene = SplitScenePayload(header_, data_);
         if (!scene.ok()) return absl::StatusOr<v1::SceneRef>(scene.status());
-        return manager_.AddScene(header_, *std::move(scene));
+        return manager_.AddScene(header_, *std::move(scene), caller_);
       });
       if (ref.ok()) *response_ = *ref;
       Finish(ToGrpcStatus(ref.status()));
@@ -91,6 +91,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
 
   JobManager& manager_;
   WorkQueue& work_;
+  const Principal& caller_;
   v1::SceneRef* response_;
   v1::SceneChunk chunk_;
   v1::SceneHeader header_;
@@ -155,8 +156,9 @@ class ChunkStreamReactor final : public grpc::ServerWriteReactor<T> {
 
 // A stored scene as the chunks GetScene streams (see ToSceneChunks).
 absl::StatusOr<std::vector<v1::SceneChunk>> SceneChunks(JobManager& manager,
-                                                        const std::string& sha256) {
-  absl::StatusOr<StoredScene> scene = manager.GetScene(sha256);
+                                                        const std::string& sha256,
+                                                        const Principal& caller) {
+  absl::StatusOr<StoredScene> scene = manager.GetScene(sha256, caller);
   if (!scene.ok()) return scene.status();
   return ToSceneChunks(*scene, sha256);
 }
@@ -181,17 +183,19 @@ grpc::Status CheckWatchRequest(const v1::WatchJobRequest& request) {
   return grpc::Status::OK;
 }
 
-// A unary call: the token check on the reactor thread, `work` on the work queue.
+// A unary call: the caller identified on the reactor thread, `work(caller)` on the work
+// queue.
 template <typename Work>
-grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const std::string& token,
-                                   WorkQueue& queue, Work work) {
+grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context,
+                                   const Principals& principals, WorkQueue& queue, Work work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  if (grpc::Status auth = CheckBearerToken(*context, token); !auth.ok()) {
+  const Principal* caller = nullptr;
+  if (grpc::Status auth = principals.Identify(*context, &caller); !auth.ok()) {
     reactor->Finish(auth);
     return reactor;
   }
-  queue.Post([reactor, work = std::move(work)] {
-    reactor->Finish(ToGrpcStatus(GuardCall("a unary call", work)));
+  queue.Post([reactor, caller, work = std::move(work)] {
+    reactor->Finish(ToGrpcStatus(GuardCall("a unary call", [&] { return work(*caller); })));
   });
   return reactor;
 }
@@ -200,7 +204,8 @@ grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const s
 
 grpc::ServerReadReactor<v1::SceneChunk>* RadiosityService::UploadScene(
     grpc::CallbackServerContext* context, v1::SceneRef* response) {
-  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+  const Principal* caller = nullptr;
+  if (grpc::Status auth = principals_.Identify(*context, &caller); !auth.ok()) {
     class Refuse final : public grpc::ServerReadReactor<v1::SceneChunk> {
      public:
       explicit Refuse(const grpc::Status& s) { Finish(s); }
@@ -208,14 +213,14 @@ grpc::ServerReadReactor<v1::SceneChunk>* RadiosityService::UploadScene(
     };
     return new Refuse(auth);
   }
-  return new UploadReactor(manager_, work_, response);
+  return new UploadReactor(manager_, work_, *caller, response);
 }
 
 grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContext* context,
                                                       const v1::SubmitJobRequest* request,
                                                       v1::Job* response) {
-  return RunUnary(context, token_, work_, [this, request, response] {
-    absl::StatusOr<v1::Job> job = manager_.Submit(*request);
+  return RunUnary(context, principals_, work_, [this, request, response](const Principal& caller) {
+    absl::StatusOr<v1::Job> job = manager_.Submit(*request, caller);
     if (job.ok()) *response = *job;
     return job.status();
   });
@@ -224,7 +229,10 @@ grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContex
 grpc::ServerWriteReactor<grpc::ByteBuffer>* RadiosityService::WatchJob(
     grpc::CallbackServerContext* context, const grpc::ByteBuffer* raw_request) {
   using Error = ErrorWriteReactor<grpc::ByteBuffer>;
-  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) return new Error(auth);
+  const Principal* caller = nullptr;
+  if (grpc::Status auth = principals_.Identify(*context, &caller); !auth.ok()) {
+    return new Error(auth);
+  }
   v1::WatchJobRequest request;
   grpc::ByteBuffer bytes(*raw_request);  // shares the slices; Deserialize consumes it
   if (!grpc::SerializationTraits<v1::WatchJobRequest>::Deserialize(&bytes, &request).ok()) {
@@ -232,27 +240,28 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* RadiosityService::WatchJob(
   }
   if (grpc::Status valid = CheckWatchRequest(request); !valid.ok()) return new Error(valid);
   absl::StatusOr<std::shared_ptr<JobHub>> hub =
-      GuardCall("WatchJob", [&] { return manager_.Hub(request.job_id()); });
+      GuardCall("WatchJob", [&] { return manager_.Hub(request.job_id(), *caller); });
   if (!hub.ok()) return new Error(ToGrpcStatus(hub.status()));
   return new WatchReactor(*std::move(hub), request);
 }
 
 grpc::ServerWriteReactor<v1::ResultChunk>* RadiosityService::GetResult(
     grpc::CallbackServerContext* context, const v1::GetResultRequest* request) {
-  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+  const Principal* caller = nullptr;
+  if (grpc::Status auth = principals_.Identify(*context, &caller); !auth.ok()) {
     return new ErrorWriteReactor<v1::ResultChunk>(auth);
   }
   return new ChunkStreamReactor<v1::ResultChunk>(
-      work_, [this, job_id = request->job_id(), report_only = request->report_only()] {
-        return manager_.Result(job_id, report_only);
+      work_, [this, caller, job_id = request->job_id(), report_only = request->report_only()] {
+        return manager_.Result(job_id, *caller, report_only);
       });
 }
 
 grpc::ServerUnaryReactor* RadiosityService::GetJob(grpc::CallbackServerContext* context,
                                                    const v1::GetJobRequest* request,
                                                    v1::Job* response) {
-  return RunUnary(context, token_, work_, [this, request, response] {
-    absl::StatusOr<v1::Job> job = manager_.Get(request->job_id());
+  return RunUnary(context, principals_, work_, [this, request, response](const Principal& caller) {
+    absl::StatusOr<v1::Job> job = manager_.Get(request->job_id(), caller);
     if (job.ok()) *response = *job;
     return job.status();
   });
@@ -260,18 +269,19 @@ grpc::ServerUnaryReactor* RadiosityService::GetJob(grpc::CallbackServerContext* 
 
 grpc::ServerWriteReactor<v1::SceneChunk>* RadiosityService::GetScene(
     grpc::CallbackServerContext* context, const v1::GetSceneRequest* request) {
-  if (grpc::Status auth = CheckBearerToken(*context, token_); !auth.ok()) {
+  const Principal* caller = nullptr;
+  if (grpc::Status auth = principals_.Identify(*context, &caller); !auth.ok()) {
     return new ErrorWriteReactor<v1::SceneChunk>(auth);
   }
   return new ChunkStreamReactor<v1::SceneChunk>(
-      work_, [this, sha = request->sha256()] { return SceneChunks(manager_, sha); });
+      work_, [this, caller, sha = request->sha256()] { return SceneChunks(manager_, sha, *caller); });
 }
 
 grpc::ServerUnaryReactor* RadiosityService::CancelJob(grpc::CallbackServerContext* context,
                                                       const v1::CancelJobRequest* request,
                                                       v1::Job* response) {
-  return RunUnary(context, token_, work_, [this, request, response] {
-    absl::StatusOr<v1::Job> job = manager_.Cancel(request->job_id());
+  return RunUnary(context, principals_, work_, [this, request, response](const Principal& caller) {
+    absl::StatusOr<v1::Job> job = manager_.Cancel(request->job_id(), caller);
     if (job.ok()) *response = *job;
     return job.status();
   });
@@ -280,8 +290,8 @@ grpc::ServerUnaryReactor* RadiosityService::CancelJob(grpc::CallbackServerContex
 grpc::ServerUnaryReactor* RadiosityService::ListJobs(grpc::CallbackServerContext* context,
                                                      const v1::ListJobsRequest* request,
                                                      v1::ListJobsResponse* response) {
-  return RunUnary(context, token_, work_, [this, request, response] {
-    absl::StatusOr<v1::ListJobsResponse> list = manager_.List(*request);
+  return RunUnary(context, principals_, work_, [this, request, response](const Principal& caller) {
+    absl::StatusOr<v1::ListJobsResponse> list = manager_.List(*request, caller);
     if (list.ok()) *response = *list;
     return list.status();
   });

@@ -1,6 +1,6 @@
 // RadiosityService: the radflux.v1.Radiosity gRPC service (callback API). A thin shell:
-// it checks the bearer token, moves blocking work onto a WorkQueue, and calls the
-// JobManager; conversions live in proto_convert.
+// it maps each call to its principal (Principals::Identify), moves blocking work onto a
+// WorkQueue, and calls the JobManager for that principal; conversions live in proto_convert.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
+#include "server/api/principals.h"
 #include "server/jobs/job_manager.h"
 #include "server/jobs/work_queue.h"
 
@@ -17,9 +18,9 @@ namespace radflux {
 class RadiosityService final
     : public v1::Radiosity::WithRawCallbackMethod_WatchJob<v1::Radiosity::CallbackService> {
  public:
-  // `token` empty = no authentication.
-  RadiosityService(JobManager& manager, WorkQueue& work, std::string token)
-      : manager_(manager), work_(work), token_(std::move(token)) {}
+  // `principals` (outliving the service) says who each call comes from.
+  RadiosityService(JobManager& manager, WorkQueue& work, const Principals& principals)
+      : manager_(manager), work_(work), principals_(principals) {}
 
   grpc::ServerReadReactor<v1::SceneChunk>* UploadScene(grpc::CallbackServerContext* context,
                                                        v1::SceneRef* response) override;
@@ -45,7 +46,7 @@ class RadiosityService final
  private:
   JobManager& manager_;
   WorkQueue& work_;
-  const std::string token_;
+  const Principals& principals_;
 };
 
 }  // namespace radflux

@@ -1,10 +1,12 @@
 // CpuMs and MsBetween: CPU and wall time of the server's threads, for the debug log's cost
-// lines (what a job and its watchers cost; bench/watcher_cost.sh reads them).
+// lines (what a job and its watchers cost; bench/watcher_cost.sh reads them); NowUnixMs for
+// the times a job records.
 #pragma once
 
 #include <time.h>
 
 #include <chrono>
+#include <cstdint>
 
 namespace radflux {
 
@@ -20,6 +22,13 @@ inline double CpuMs(clockid_t clock) {
 inline double MsBetween(std::chrono::steady_clock::time_point a,
                         std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Milliseconds since the Unix epoch (wall clock).
+inline int64_t NowUnixMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace radflux

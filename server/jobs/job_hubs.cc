@@ -43,13 +43,15 @@ void JobManager::RetireHubLocked(const std::string& job_id) {
   }
 }
 
-absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_id) {
+absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_id,
+                                                        const Principal& caller) {
+  // The store says whose the job is (and what to rebuild a history from).
+  absl::StatusOr<v1::Job> job = VisibleJob(job_id, caller);
+  if (!job.ok()) return job.status();
   {
     std::lock_guard lock(mu_);
     if (auto it = hubs_.find(job_id); it != hubs_.end()) return it->second;
   }
-  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
-  if (!job.ok()) return job.status();
   absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job_id);
   if (!base.ok()) return base.status();
   std::lock_guard lock(mu_);
@@ -58,8 +60,9 @@ absl::StatusOr<std::shared_ptr<JobHub>> JobManager::Hub(const std::string& job_i
 }
 
 absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::string& job_id,
+                                                                const Principal& caller,
                                                                 bool report_only) {
-  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
+  absl::StatusOr<v1::Job> job = VisibleJob(job_id, caller);
   if (!job.ok()) return job.status();
   if (job->state() != v1::JOB_STATE_SUCCEEDED) {
     return absl::FailedPreconditionError(

@@ -1,6 +1,5 @@
 #include "server/jobs/job_manager.h"
 
-#include <openssl/rand.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -9,9 +8,9 @@
 #include <cmath>
 #include <future>
 
-#include <google/protobuf/util/message_differencer.h>
-
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "server/jobs/cpu_budget.h"
 #include "server/jobs/cpu_time.h"
 #include "server/jobs/job_runner.h"
 #include "server/jobs/row_budget.h"
@@ -24,24 +23,6 @@
 
 namespace radflux {
 namespace {
-
-int64_t NowMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::string NewJobId() {
-  unsigned char bytes[8];
-  RAND_bytes(bytes, sizeof(bytes));
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string id = "job-";
-  for (unsigned char b : bytes) {
-    id.push_back(kHex[b >> 4]);
-    id.push_back(kHex[b & 15]);
-  }
-  return id;
-}
 
 // Results up to this size stay in memory after their job succeeds (JobManager::Result).
 constexpr size_t kRecentResultBytes = 64u << 20;
@@ -91,6 +72,7 @@ absl::Status JobManager::CheckResultsAtStart() {
 absl::Status JobManager::RequeueAtStart(const v1::Job& job) {
   absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job.job_id());
   if (!base.ok()) return base.status();
+  TrackDiskNeed(job);
   std::lock_guard lock(mu_);
   queue_.push_back(job.job_id());
   RebuildHubLocked(job, *base);
@@ -109,139 +91,6 @@ void JobManager::Shutdown() {
   workers_.clear();
 }
 
-namespace {
-
-// `earlier`, the job of request.request_id(), when the request is the one that made it;
-// FAILED_PRECONDITION when the same id comes with another scene or other options.
-absl::StatusOr<v1::Job> SameRequest(const v1::Job& earlier, const v1::SubmitJobRequest& request) {
-  if (earlier.scene_sha256() == request.scene_sha256() &&
-      google::protobuf::util::MessageDifferencer::Equals(earlier.options(), request.options())) {
-    return earlier;
-  }
-  return absl::FailedPreconditionError(absl::StrCat(
-      "request_id \"", request.request_id(), "\" was used for another request (job ",
-      earlier.job_id(), ": scene ", earlier.scene_sha256().substr(0, 12),
-      earlier.scene_sha256() == request.scene_sha256() ? " with other options" : "",
-      "); a new request needs a new request_id"));
-}
-
-}  // namespace
-
-absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request) {
-  // A job is made durable before any client hears of it (it may be one whose first submit
-  // is still making it durable).
-  const auto durable = [this](absl::StatusOr<v1::Job> job) -> absl::StatusOr<v1::Job> {
-    if (absl::Status s = store_.SyncCommits(); job.ok() && !s.ok()) return s;
-    return job;
-  };
-  if (request.request_id().size() > kMaxRequestIdBytes) {
-    return absl::InvalidArgumentError(absl::StrCat("request_id of ", request.request_id().size(),
-                                                   " bytes: at most ", kMaxRequestIdBytes));
-  }
-  if (!request.request_id().empty()) {
-    absl::StatusOr<v1::Job> earlier = store_.GetJobByRequestId(request.request_id());
-    if (earlier.ok()) return durable(SameRequest(*earlier, request));
-  }
-  const auto check_start = std::chrono::steady_clock::now();
-  if (absl::Status s = store_.EnsureSpaceReserve(); !s.ok()) return s;
-  if (absl::Status s = CheckLimits(request); !s.ok()) return s;
-  const auto create_start = std::chrono::steady_clock::now();
-  {
-    std::lock_guard lock(mu_);
-    if (stopping_) return absl::UnavailableError("server is shutting down");
-    if (queue_.size() >= options_.max_queued) {
-      return absl::ResourceExhaustedError(
-          absl::StrCat("job queue is full (", options_.max_queued, " jobs waiting)"));
-    }
-  }
-  v1::Job job;
-  job.set_job_id(NewJobId());
-  job.set_scene_sha256(request.scene_sha256());
-  *job.mutable_options() = request.options();
-  job.set_state(v1::JOB_STATE_QUEUED);
-  job.set_created_unix_ms(NowMs());
-  job.set_request_id(request.request_id());
-  // Committed without its fsync, queued, and then made durable: the job starts (its first
-  // steps need no durable row) while the fsync runs, and the client hears of it only after.
-  absl::StatusOr<v1::Job> created = store_.CreateJob(job, /*sync=*/false);
-  if (!created.ok()) return durable(created);
-  if (created->job_id() != job.job_id()) return durable(SameRequest(*created, request));  // a retry
-  const auto sync_start = std::chrono::steady_clock::now();
-  {
-    std::lock_guard lock(mu_);
-    queue_.push_back(job.job_id());
-    v1::JobEvent event;
-    event.set_state(v1::JOB_STATE_QUEUED);
-    HubLocked(job.job_id())->Publish(event);
-  }
-  cv_.notify_one();
-  spdlog::info("job {}: QUEUED (scene {})", job.job_id(), job.scene_sha256().substr(0, 12));
-  if (absl::Status s = store_.SyncCommits(); !s.ok()) {
-    spdlog::error("job {}: {}", job.job_id(), std::string(s.message()));
-    return s;
-  }
-  spdlog::debug("job {}: ms limits checked {:.1f}, job stored {:.1f}, made durable {:.1f}",
-                job.job_id(), MsBetween(check_start, create_start),
-                MsBetween(create_start, sync_start),
-                MsBetween(sync_start, std::chrono::steady_clock::now()));
-  return job;
-}
-
-absl::StatusOr<v1::Job> JobManager::Cancel(const std::string& job_id) {
-  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
-  if (!job.ok() || IsTerminal(job->state())) return job;
-  {
-    std::lock_guard lock(mu_);
-    if (auto it = running_.find(job_id); it != running_.end()) {
-      it->second->cancel_requested = true;
-      it->second->cancelled = true;
-      it->second->stop = true;
-      spdlog::info("job {}: cancel requested", job_id);
-      return *job;
-    }
-    auto queued = std::find(queue_.begin(), queue_.end(), job_id);
-    if (queued == queue_.end()) return *job;  // finishing right now
-    queue_.erase(queued);
-  }
-  store_.RemoveWorkFiles(job_id);
-  (void)Transition(*job, v1::JOB_STATE_CANCELLED, job->phase(), "cancelled while queued");
-  return *job;
-}
-
-absl::StatusOr<v1::Job> JobManager::Get(const std::string& job_id) {
-  absl::StatusOr<v1::Job> job = store_.GetJob(job_id);
-  // Synced after the read: whatever it saw is durable before the client hears of it.
-  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
-  return job;
-}
-
-absl::StatusOr<StoredScene> JobManager::GetScene(const std::string& sha256) {
-  return store_.GetScene(sha256);
-}
-
-absl::StatusOr<v1::ListJobsResponse> JobManager::List(const v1::ListJobsRequest& request) {
-  JobFilter filter;
-  for (int s : request.states()) filter.states.push_back(static_cast<v1::JobState>(s));
-  filter.scene_sha256 = request.scene_sha256();
-  filter.limit = request.page_size() <= 0 ? 100 : std::min(request.page_size(), 1000);
-  if (!request.page_token().empty()) {
-    char* end = nullptr;
-    const long offset = std::strtol(request.page_token().c_str(), &end, 10);
-    if (*end != '\0' || offset < 0) return absl::InvalidArgumentError("bad page_token");
-    filter.offset = static_cast<int>(offset);
-  }
-  absl::StatusOr<std::vector<v1::Job>> jobs = store_.ListJobs(filter);
-  if (!jobs.ok()) return jobs.status();
-  // Synced after the read: whatever it saw is durable before the client hears of it.
-  if (absl::Status s = store_.SyncCommits(); !s.ok()) return s;
-  v1::ListJobsResponse response;
-  for (v1::Job& job : *jobs) *response.add_jobs() = std::move(job);
-  if (response.jobs_size() == filter.limit) {
-    response.set_next_page_token(std::to_string(filter.offset + filter.limit));
-  }
-  return response;
-}
-
 absl::Status JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase phase,
                                     const std::string& message,
                                     std::future<absl::Status>* result_synced) {
@@ -249,7 +98,7 @@ absl::Status JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase 
   job.set_state(state);
   job.set_phase(phase);
   job.set_message(message);
-  if (IsTerminal(state)) job.set_finished_unix_ms(NowMs());
+  if (IsTerminal(state)) job.set_finished_unix_ms(NowUnixMs());
   const auto update_start = std::chrono::steady_clock::now();
   absl::Status stored = store_.UpdateJob(job, /*sync=*/result_synced == nullptr);
   if (stored.ok() && result_synced != nullptr) stored = store_.SyncCommits();
@@ -283,6 +132,7 @@ absl::Status JobManager::Transition(v1::Job& job, v1::JobState state, v1::Phase 
     hub->Close();
     std::lock_guard lock(mu_);
     RetireHubLocked(job.job_id());
+    disk_needs_.erase(job.job_id());
   }
   if (result_durable) {  // after the event: the mark is for the next start only
     if (absl::Status s = store_.MarkResultDurable(job.job_id()); !s.ok()) {
@@ -349,6 +199,7 @@ void JobManager::RunOne(const std::string& job_id) {
   };
   context.on_phase = [&](v1::Phase phase, int64_t patches) {
     if (patches > 0) job.set_patches(patches);
+    TrackDiskNeed(job);
     if (absl::Status s = Transition(job, v1::JOB_STATE_RUNNING, phase, ""); !s.ok()) {
       context.fail(s);
     }
@@ -359,7 +210,17 @@ void JobManager::RunOne(const std::string& job_id) {
       std::async(std::launch::async, [&] { return store_.PrepareResult(job_id); });
   const double thread_cpu = CpuMs(CLOCK_THREAD_CPUTIME_ID);
   const double process_cpu = CpuMs(CLOCK_PROCESS_CPUTIME_ID);
-  absl::StatusOr<EncodedResult> result = RunStoredJob(job, context);
+  absl::StatusOr<EncodedResult> result;
+  {
+    const double cpu_seconds = options_.limits_of ? options_.limits_of(job.owner()).cpu_seconds : 0;
+    const CpuBudget budget(cpu_seconds, context.threads, [&] {
+      context.fail(absl::ResourceExhaustedError(absl::StrFormat(
+          "job reached the cpu_seconds limit of principal '%s': %g CPU seconds (%d threads x "
+          "its running time)",
+          job.owner(), cpu_seconds, context.threads)));
+    });
+    result = RunStoredJob(job, context);
+  }
   // What the job cost the server's CPU while it ran: its own thread (with --threads 1 all
   // of its rows and solve), and every thread of the process (OpenMP and helper threads,
   // gRPC, watchers' writes, other calls), and the process's clock when the job started;

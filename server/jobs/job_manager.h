@@ -8,6 +8,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "absl/status/statusor.h"
 #include "radflux/v1/radiosity.pb.h"
 #include "server/jobs/job_hub.h"
+#include "server/jobs/principal.h"
 #include "server/jobs/recent_map.h"
 #include "server/jobs/scene_cache.h"
 #include "server/store/job_store.h"
@@ -43,6 +45,8 @@ struct ManagerOptions {
                                        // newest; the last iteration's always), 0 = every one
   RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
   int block_delay_ms = 0;              // testing: sleep after each row block built on the server
+  // The limits of a job's owner when it runs (its cpu_seconds; null: no limits).
+  std::function<PrincipalLimits(const std::string& owner)> limits_of;
 };
 
 // The longest request_id a submit may carry.
@@ -63,26 +67,37 @@ class JobManager {
 
   const ManagerOptions& options() const { return options_; }
 
-  // Parses and stores an uploaded scene, OBJ + MTL or Mesh (INVALID_ARGUMENT with the
-  // loader's message; DATA_LOSS when it does not hash to header.sha256()).
-  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene);
-  // Validates and queues a job (RESOURCE_EXHAUSTED "disk full ..." while the data directory
-  // cannot hold the store's space reserve), or returns the job of an earlier submit with the same
+  // Every call below is made for a `caller` (Principal): jobs and scenes are its own, and
+  // another principal's job or scene is NOT_FOUND exactly as a job or scene that does not
+  // exist (ids do not leak); an admin sees all.
+
+  // Parses and stores an uploaded scene, OBJ + MTL or Mesh, as one of the caller's
+  // (INVALID_ARGUMENT with the loader's message; DATA_LOSS when it does not hash to
+  // header.sha256()). already_stored: the caller had uploaded it before.
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene,
+                                        const Principal& caller);
+  // Validates and queues a job of the caller (RESOURCE_EXHAUSTED "disk full ..." while the
+  // data directory cannot hold the store's space reserve; RESOURCE_EXHAUSTED naming the limit
+  // and the principal when it has its running_jobs queued or running, or the job meshes more
+  // than its patches), or returns the job of an earlier submit of the caller with the same
   // request id and the same scene and options; the same id with another request is
-  // FAILED_PRECONDITION, an id longer than kMaxRequestIdBytes INVALID_ARGUMENT).
+  // FAILED_PRECONDITION, an id longer than kMaxRequestIdBytes INVALID_ARGUMENT.
   // Everything that can be refused is refused here, before any work.
-  absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request);
+  absl::StatusOr<v1::Job> Submit(const v1::SubmitJobRequest& request, const Principal& caller);
   // Cancels a queued or running job (a finished job is returned unchanged).
-  absl::StatusOr<v1::Job> Cancel(const std::string& job_id);
-  absl::StatusOr<v1::Job> Get(const std::string& job_id);
+  absl::StatusOr<v1::Job> Cancel(const std::string& job_id, const Principal& caller);
+  absl::StatusOr<v1::Job> Get(const std::string& job_id, const Principal& caller);
   // The texts of a stored scene (NOT_FOUND when no scene has that address).
-  absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
-  absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request);
+  absl::StatusOr<StoredScene> GetScene(const std::string& sha256, const Principal& caller);
+  // The caller's jobs (an admin's: everyone's), newest first.
+  absl::StatusOr<v1::ListJobsResponse> List(const v1::ListJobsRequest& request,
+                                            const Principal& caller);
   // The event hub of a job (live, or a closed one-event history for a finished job).
-  absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id);
+  absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id, const Principal& caller);
   // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that); with
   // `report_only`, only the header and the report (GetResultRequest.report_only).
   absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id,
+                                                      const Principal& caller,
                                                       bool report_only = false);
 
  private:
@@ -92,9 +107,25 @@ class JobManager {
     bool cancel_requested = false;       // guarded by mu_
   };
 
-  absl::Status CheckLimits(const v1::SubmitJobRequest& request);
-  // RESOURCE_EXHAUSTED when the job's disk estimate exceeds the data directory's free space.
-  absl::Status CheckDiskRoom(uint64_t patches, const JobOptions& options);
+  // The job if the caller may see it, else NOT_FOUND as for no such job.
+  absl::StatusOr<v1::Job> VisibleJob(const std::string& job_id, const Principal& caller);
+  // The scene and options checks of a submit (server and caller limits, memory, disk);
+  // the job's disk need in bytes.
+  absl::StatusOr<uint64_t> CheckLimits(const v1::SubmitJobRequest& request,
+                                       const Principal& caller);
+  // NOT_FOUND (as for no such scene) unless the caller uploaded the scene or is an admin.
+  absl::Status CheckSceneVisible(const std::string& sha256, const Principal& caller);
+  // RESOURCE_EXHAUSTED when the caller has its running_jobs limit of jobs unfinished.
+  absl::Status CheckRunningJobs(const Principal& caller);
+  // The job's disk need, or RESOURCE_EXHAUSTED when it exceeds the data directory's free
+  // space less what the unfinished jobs may still write (ReservedDiskBytes).
+  absl::StatusOr<uint64_t> CheckDiskRoom(uint64_t patches, const JobOptions& options);
+  // What the jobs of disk_needs_ may still write: each one's need less the bytes its
+  // directory holds already.
+  uint64_t ReservedDiskBytes();
+  // Records an unfinished job's disk need once its patch count is known (a job requeued at
+  // start that had meshed, or one meshing now); Submit records its own.
+  void TrackDiskNeed(const v1::Job& job);
   void WorkerLoop();
   void RunOne(const std::string& job_id);
   // Stores the job's new state/phase, publishes it and logs one line. With `result_synced`
@@ -130,12 +161,14 @@ class JobManager {
   // and decompressing its file.
   RecentMap<std::string> recent_results_{2};
   const ManagerOptions options_;
+  std::mutex admit_mu_;  // a submit's running_jobs check and its insert, one submit at a time
   std::mutex mu_;
   std::condition_variable cv_;
   std::deque<std::string> queue_;
   std::map<std::string, std::shared_ptr<Running>> running_;
   std::map<std::string, std::shared_ptr<JobHub>> hubs_;
   std::deque<std::string> finished_hubs_;  // closed hubs in hubs_, oldest first
+  std::map<std::string, uint64_t> disk_needs_;  // unfinished jobs' disk estimates, bytes
   bool stopping_ = false;
   std::vector<std::thread> workers_;
 };

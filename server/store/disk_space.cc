@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
@@ -28,6 +29,20 @@ absl::StatusOr<uint64_t> FreeDiskBytes(const std::string& dir) {
     return absl::InternalError(absl::StrCat("cannot statvfs ", dir, ": ", std::strerror(errno)));
   }
   return static_cast<uint64_t>(fs.f_bavail) * fs.f_frsize;
+}
+
+uint64_t DirectoryBytes(const std::string& dir) {
+  uint64_t bytes = 0;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    std::error_code size_error;
+    if (it->is_regular_file(size_error)) {
+      const uintmax_t size = it->file_size(size_error);
+      if (!size_error) bytes += size;
+    }
+  }
+  return bytes;
 }
 
 bool IsDiskFull(const absl::Status& status) {

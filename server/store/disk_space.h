@@ -22,6 +22,10 @@ absl::Status DiskWriteError(std::string_view what, const std::string& path, int 
 // Bytes an unprivileged writer may still use on the filesystem of `dir` (statvfs).
 absl::StatusOr<uint64_t> FreeDiskBytes(const std::string& dir);
 
+// Bytes of the files under `dir`, recursively (0 for a directory that is not there; what
+// cannot be read counts nothing).
+uint64_t DirectoryBytes(const std::string& dir);
+
 // True when `status` is a full disk (RESOURCE_EXHAUSTED from DiskWriteError or SQLite).
 bool IsDiskFull(const absl::Status& status);
 

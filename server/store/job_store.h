@@ -6,13 +6,16 @@
 // PutResult(prepared = true) and MarkResultDurable, which survive kill -9 but not an OS crash
 // (until SyncCommits, resp. SyncResult). A write that fails says what and where
 // (disk_space.h: RESOURCE_EXHAUSTED "disk full writing ..." on a full disk) and leaves no
-// partial file; a space reserve (disk_space.h) keeps room to record a job's end. Thread-safe.
+// partial file; a space reserve (disk_space.h) keeps room to record a job's end. Jobs and
+// scenes belong to principals (owner); the schema and its migrations are store_schema.h,
+// the scene files scene_store.cc, a job's files job_files.cc. Thread-safe.
 #pragma once
 
 #include <atomic>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,7 @@ inline constexpr int kHistorySequenceBits = 32;
 struct JobFilter {
   std::vector<v1::JobState> states;  // empty = all
   std::string scene_sha256;          // empty = all
+  std::string owner;                 // empty = every principal's
   int offset = 0;
   int limit = 100;
 };
@@ -54,12 +58,25 @@ class JobStore {
   absl::Status PutScene(const std::string& sha256, const StoredScene& scene);
   // NOT_FOUND when no scene has that address.
   absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
+  // Records that principal `owner` uploaded the scene (idempotent).
+  absl::Status AddSceneOwner(const std::string& sha256, const std::string& owner);
+  // Whether principal `owner` uploaded the scene (scenes stored before owners existed are
+  // the default principal's).
+  bool SceneOwnedBy(const std::string& sha256, const std::string& owner);
 
-  // Inserts a new job. When job.request_id() is set and a job with that request id
-  // exists, returns the existing job instead (and inserts nothing). With `sync` false the
-  // insert is committed without its fsync (it survives kill -9), to be made durable by
-  // SyncCommits, so that the caller can start the job meanwhile.
-  absl::StatusOr<v1::Job> CreateJob(const v1::Job& job, bool sync = true);
+  // The job principal `owner` created with `request_id` when it came with the same
+  // request (`request_hash`, SubmitRequestHash); nullopt when there is none (or the id is
+  // empty); FAILED_PRECONDITION naming the id and that job when it came with another.
+  absl::StatusOr<std::optional<v1::Job>> FindRequest(const std::string& owner,
+                                                     const std::string& request_id,
+                                                     const std::string& request_hash);
+  // Inserts a new job, owned by job.owner(). When job.request_id() is set and that owner
+  // has a job with that request id, returns FindRequest's answer instead (the existing job
+  // or FAILED_PRECONDITION) and inserts nothing. With `sync` false the insert is committed
+  // without its fsync (it survives kill -9), to be made durable by SyncCommits, so that the
+  // caller can start the job meanwhile.
+  absl::StatusOr<v1::Job> CreateJob(const v1::Job& job, const std::string& request_hash,
+                                    bool sync = true);
   // Makes every CreateJob(sync = false) and UpdateJob(sync = false) that returned before
   // this call durable: one fsync of the database's write-ahead log, which is where SQLite's
   // synchronous=FULL commit puts its own fsync, done here without the store's lock so that
@@ -70,9 +87,10 @@ class JobStore {
   // with `sync` false, once SyncCommits returns. A terminal state that finds the disk full
   // is written with the space reserve given back.
   absl::Status UpdateJob(const v1::Job& job, bool sync = true);
+  // The job (with its owner) or NOT_FOUND.
   absl::StatusOr<v1::Job> GetJob(const std::string& job_id);
-  // The job created with this client request id; NOT_FOUND when none.
-  absl::StatusOr<v1::Job> GetJobByRequestId(const std::string& request_id);
+  // How many of principal `owner`'s jobs are QUEUED or RUNNING.
+  absl::StatusOr<int64_t> CountUnfinishedJobs(const std::string& owner);
   absl::StatusOr<std::vector<v1::Job>> ListJobs(const JobFilter& filter);
   // Jobs QUEUED or RUNNING, oldest first: what a restarted server must finish.
   absl::StatusOr<std::vector<v1::Job>> UnfinishedJobs();
@@ -133,7 +151,9 @@ class JobStore {
   // A bundle stored under `base` (+ .files.rfb: paths and sizes, + .bundle.rfb: the bytes).
   static absl::StatusOr<StoredScene> GetBundle(const std::string& base, const std::string& name);
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
-  absl::Status Exec(const std::string& sql);
+  absl::StatusOr<std::optional<v1::Job>> FindRequestLocked(const std::string& owner,
+                                                           const std::string& request_id,
+                                                           const std::string& request_hash);
   absl::Status UpdateJobLocked(const v1::Job& job, bool sync);
   absl::StatusOr<std::vector<v1::Job>> QueryJobs(const std::string& sql,
                                                  const std::vector<std::string>& args);

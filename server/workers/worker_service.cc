@@ -16,6 +16,13 @@ namespace {
 constexpr std::chrono::milliseconds kLeasePoll{200};  // how often the writer checks the stream
 constexpr int kMaxWorkerThreads = 4096;
 
+// Workers (holders of the worker token) fetch the scene of any job whose rows they build:
+// an admin's view of the scenes, and nothing else of the client API.
+const Principal& WorkersPrincipal() {
+  static const Principal workers{"workers", /*admin=*/true, {}};
+  return workers;
+}
+
 }  // namespace
 
 grpc::Status WorkerService::Authenticate(const grpc::ServerContext& context) const {
@@ -92,7 +99,7 @@ grpc::Status WorkerService::FetchScene(grpc::ServerContext* context,
                                        const v1::FetchSceneRequest* request,
                                        grpc::ServerWriter<v1::SceneChunk>* writer) {
   if (grpc::Status auth = Authenticate(*context); !auth.ok()) return auth;
-  absl::StatusOr<StoredScene> scene = manager_.GetScene(request->sha256());
+  absl::StatusOr<StoredScene> scene = manager_.GetScene(request->sha256(), WorkersPrincipal());
   if (!scene.ok()) return ToGrpcStatus(scene.status());
   for (const v1::SceneChunk& chunk : ToSceneChunks(*scene, request->sha256())) {
     if (!writer->Write(chunk)) return grpc::Status::CANCELLED;

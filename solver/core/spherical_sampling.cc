@@ -91,17 +91,8 @@ Point2 InvertSphericalTriangleSample(const std::array<Vec3, 3>& v, const Vec3& p
 
 namespace {
 
-// Urena et al.'s set-up of a rectangle seen from p: p's frame (x along ex, y along ey, z
-// away from the rectangle), the rectangle's extent [x0, x1] x [y0, y1] at depth z0 < 0, and
-// the constants of the u.x map.
-struct RectangleFrame {
-  Vec3 x, y, z;
-  double x0, y0, x1, y1, z0;
-  double b0, b1, k, solid_angle;
-};
-
-RectangleFrame MakeRectangleFrame(const SphericalRectangle& rect, const Vec3& p) {
-  RectangleFrame f;
+SphericalRectangleFrame MakeRectangleFrame(const SphericalRectangle& rect, const Vec3& p) {
+  SphericalRectangleFrame f;
   const double ex_length = Length(rect.ex), ey_length = Length(rect.ey);
   f.x = rect.ex / ex_length;
   f.y = rect.ey / ey_length;
@@ -140,18 +131,23 @@ double SphericalRectangleSolidAngle(const SphericalRectangle& rect, const Vec3& 
   return SphericalTriangleArea(a, b, c) + SphericalTriangleArea(a, c, d);
 }
 
-Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Point2 u,
-                              double* pdf) {
+SphericalRectangleSampler::SphericalRectangleSampler(const SphericalRectangle& rect, const Vec3& p)
+    : rect_(rect), p_(p), solid_angle_(SphericalRectangleSolidAngle(rect, p)) {
+  if (solid_angle_ >= kTinySolidAngle) frame_ = MakeRectangleFrame(rect, p);
+}
+
+Vec3 SphericalRectangleSampler::operator()(Point2 u, double* pdf) const {
+  const SphericalRectangle& rect = rect_;
+  const Vec3& p = p_;
   const Vec3 area_point = rect.s + rect.ex * u.x + rect.ey * u.y;
-  const double solid_angle = SphericalRectangleSolidAngle(rect, p);
   if (pdf) *pdf = 0;
-  if (!(solid_angle > 0)) return area_point;
-  if (solid_angle < kTinySolidAngle) {
+  if (!(solid_angle_ > 0)) return area_point;
+  if (solid_angle_ < kTinySolidAngle) {
     const Vec3 n = Cross(rect.ex, rect.ey);
     if (pdf) *pdf = AreaToSolidAnglePdf(p, area_point, Normalize(n), Length(n));
     return area_point;
   }
-  const RectangleFrame f = MakeRectangleFrame(rect, p);
+  const SphericalRectangleFrame& f = frame_;
   if (pdf) *pdf = 1 / f.solid_angle;
   // u.x picks the x where the sub-rectangle [x0, x] has solid angle u.x * S...
   const double au = u.x * f.solid_angle + f.k;
@@ -167,6 +163,11 @@ Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Poi
   return p + f.x * xu + f.y * yv + f.z * f.z0;
 }
 
+Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Point2 u,
+                              double* pdf) {
+  return SphericalRectangleSampler(rect, p)(u, pdf);
+}
+
 Point2 InvertSphericalRectangleSample(const SphericalRectangle& rect, const Vec3& p,
                                       const Vec3& q) {
   const double solid_angle = SphericalRectangleSolidAngle(rect, p);
@@ -174,7 +175,7 @@ Point2 InvertSphericalRectangleSample(const SphericalRectangle& rect, const Vec3
   const double a = Dot(local, rect.ex) / Dot(rect.ex, rect.ex);
   const double b = Dot(local, rect.ey) / Dot(rect.ey, rect.ey);
   if (solid_angle < kTinySolidAngle) return {std::clamp(a, 0.0, 1.0), std::clamp(b, 0.0, 1.0)};
-  const RectangleFrame f = MakeRectangleFrame(rect, p);
+  const SphericalRectangleFrame f = MakeRectangleFrame(rect, p);
   // u.x: the solid angle of the sub-rectangle [0, a] x [0, 1] over the whole one's.
   const SphericalRectangle sub{rect.s, rect.ex * std::clamp(a, 0.0, 1.0), rect.ey};
   const double u0 = SphericalRectangleSolidAngle(sub, p) / f.solid_angle;

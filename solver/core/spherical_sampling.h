@@ -37,6 +37,29 @@ double SphericalRectangleSolidAngle(const SphericalRectangle& rect, const Vec3& 
 // 0 when the rectangle subtends no solid angle (then the point is s + u.x ex + u.y ey).
 Vec3 SampleSphericalRectangle(const SphericalRectangle& rect, const Vec3& p, Point2 u,
                               double* pdf = nullptr);
+// Urena et al.'s set-up of a rectangle seen from p: p's frame (x along ex, y along ey, z
+// away from the rectangle), the rectangle's extent [x0, x1] x [y0, y1] at depth z0 < 0, and
+// the constants of the u.x map.
+struct SphericalRectangleFrame {
+  Vec3 x, y, z;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z0 = 0;
+  double b0 = 0, b1 = 0, k = 0, solid_angle = 0;
+};
+
+// SampleSphericalRectangle for many u at one rectangle and point: the set-up (solid angle,
+// frame) is done once, and each sample is SampleSphericalRectangle's, bit for bit.
+class SphericalRectangleSampler {
+ public:
+  SphericalRectangleSampler(const SphericalRectangle& rect, const Vec3& p);
+  Vec3 operator()(Point2 u, double* pdf = nullptr) const;
+
+ private:
+  SphericalRectangle rect_;
+  Vec3 p_;
+  double solid_angle_;
+  SphericalRectangleFrame frame_;
+};
+
 // The u that SampleSphericalRectangle maps to point q on `rect`.
 Point2 InvertSphericalRectangleSample(const SphericalRectangle& rect, const Vec3& p, const Vec3& q);
 

@@ -109,7 +109,9 @@ bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32
   // The child nearer a along the split axis first: a blocked segment stops sooner.
   return AnyBlocker(
       i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; },
-      [&](const SurfaceShape& blocker) { return SegmentHitsSurface(a, b, blocker); });
+      [&](const SurfaceShape& blocker) {
+        return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker);
+      });
 }
 
 }  // namespace radflux

@@ -28,8 +28,9 @@ class BlockerBvh {
   // (ShaftMayHold(shapes[i], shapes[j], shapes[k]) for some k).
   bool AnyInShaft(uint32_t i, uint32_t j) const;
 
-  // Whether the open segment from a to b crosses a blocker other than i and j
-  // (SegmentHitsSurface, shaft_visibility.h).
+  // Whether the open segment from a to b crosses a blocker other than i and j that may block
+  // the pair (SegmentHitsSurface, shaft_visibility.h, and MayBlockPair, shaft_cull.h: i's
+  // back-face twin, or a face in i's or j's plane, never blocks the segments between them).
   bool SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const;
 
   // Number of blockers held.

@@ -56,8 +56,12 @@ bool EmitterHit(const EmitterShape& shape, const Vec3& x, const Vec3& w, Vec3& p
   return true;
 }
 
+double EmitterImportance(const EmitterShape& shape, double form_factor) {
+  return shape.power / shape.area * std::numbers::pi * form_factor;
+}
+
 double EmitterImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n) {
-  return shape.power / shape.area * std::numbers::pi * EmitterFormFactor(shape, x, n);
+  return EmitterImportance(shape, EmitterFormFactor(shape, x, n));
 }
 
 namespace {
@@ -75,53 +79,64 @@ double Warp(const std::array<double, 4>& w, Point2& u) {
 
 }  // namespace
 
-EmitterSample SampleEmitterSolidAngle(const EmitterShape& shape, const Vec3& x, const Vec3& n,
-                                      Point2 u) {
+EmitterPointSampler::EmitterPointSampler(const EmitterShape& shape, const Vec3& x, const Vec3& n)
+    : shape_(shape), x_(x) {
   const std::array<Vec3, 4>& c = shape.corner;
-  EmitterSample sample;
+  for (uint32_t k = 0; k < 4; ++k) weight_[k] = CosineWeight(x, n, c[k]);
   if (shape.rectangle) {
+    rectangle_.emplace(SphericalRectangle{c[0], c[1] - c[0], c[3] - c[0]}, x);
+  } else if (shape.corners == 4) {
+    const Vec3 a = Normalize(c[0] - x), b = Normalize(c[1] - x);
+    const Vec3 d = Normalize(c[2] - x), e = Normalize(c[3] - x);
+    const double first = SphericalTriangleArea(a, b, d), second = SphericalTriangleArea(a, d, e);
+    share_ = first + second > 0 ? first / (first + second) : -1;
+  }
+}
+
+EmitterSample EmitterPointSampler::operator()(Point2 u) const {
+  const std::array<Vec3, 4>& c = shape_.corner;
+  const std::array<double, 4>& cw = weight_;
+  EmitterSample sample;
+  if (rectangle_) {
     // u.x runs from c[0] to c[1], u.y from c[0] to c[3].
-    const double warp = Warp({CosineWeight(x, n, c[0]), CosineWeight(x, n, c[1]),
-                              CosineWeight(x, n, c[3]), CosineWeight(x, n, c[2])},
-                             u);
-    sample.point = SampleSphericalRectangle({c[0], c[1] - c[0], c[3] - c[0]}, x, u, &sample.pdf);
+    const double warp = Warp({cw[0], cw[1], cw[3], cw[2]}, u);
+    sample.point = (*rectangle_)(u, &sample.pdf);
     sample.pdf *= warp;
     return sample;
   }
   // A triangle, or a quad as the triangles (0, 1, 2) and (0, 2, 3), one chosen by its share of
   // the solid angle with u.x (then rescaled to [0, 1)): uniform over the whole solid angle.
-  std::array<Vec3, 3> triangle = {c[0], c[1], c[2]};
+  std::array<uint32_t, 3> t = {0, 1, 2};
   double pdf_scale = 1;
-  if (shape.corners == 4) {
-    const Vec3 a = Normalize(c[0] - x), b = Normalize(c[1] - x);
-    const Vec3 d = Normalize(c[2] - x), e = Normalize(c[3] - x);
-    const double first = SphericalTriangleArea(a, b, d), second = SphericalTriangleArea(a, d, e);
-    if (!(first + second > 0)) return sample;
-    const double share = first / (first + second);
-    if (u.x < share) {
-      u.x = std::min(u.x / share, 0x1.fffffffffffffp-1);
-      pdf_scale = share;
+  if (shape_.corners == 4) {
+    if (share_ < 0) return sample;
+    if (u.x < share_) {
+      u.x = std::min(u.x / share_, 0x1.fffffffffffffp-1);
+      pdf_scale = share_;
     } else {
-      u.x = std::min((u.x - share) / (1 - share), 0x1.fffffffffffffp-1);
-      triangle = {c[0], c[2], c[3]};
-      pdf_scale = 1 - share;
+      u.x = std::min((u.x - share_) / (1 - share_), 0x1.fffffffffffffp-1);
+      t = {0, 2, 3};
+      pdf_scale = 1 - share_;
     }
   }
   // Arvo's map takes u.y = 0 to the second vertex whatever u.x, and u.y = 1 along the arc
   // from the first vertex (u.x = 0) to the third (u.x = 1).
-  const double b = CosineWeight(x, n, triangle[1]);
-  const double warp =
-      Warp({b, b, CosineWeight(x, n, triangle[0]), CosineWeight(x, n, triangle[2])}, u);
-  const Vec3 w = SampleSphericalTriangle(triangle, x, u, &sample.pdf);
+  const double warp = Warp({cw[t[1]], cw[t[1]], cw[t[0]], cw[t[2]]}, u);
+  const Vec3 w = SampleSphericalTriangle({c[t[0]], c[t[1]], c[t[2]]}, x_, u, &sample.pdf);
   sample.pdf *= pdf_scale * warp;
   // Where the direction meets the emitter's plane.
-  const double along = Dot(w, shape.normal);
+  const double along = Dot(w, shape_.normal);
   if (!(along < 0)) {  // parallel to the plane, or towards its back: no such point
     sample.pdf = 0;
     return sample;
   }
-  sample.point = x + w * (Dot(c[0] - x, shape.normal) / along);
+  sample.point = x_ + w * (Dot(c[0] - x_, shape_.normal) / along);
   return sample;
+}
+
+EmitterSample SampleEmitterSolidAngle(const EmitterShape& shape, const Vec3& x, const Vec3& n,
+                                      Point2 u) {
+  return EmitterPointSampler(shape, x, n)(u);
 }
 
 }  // namespace radflux

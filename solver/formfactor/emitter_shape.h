@@ -5,8 +5,10 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "solver/core/sampling.h"
+#include "solver/core/spherical_sampling.h"
 #include "solver/mesh/patch_mesh.h"
 
 namespace radflux {
@@ -36,6 +38,8 @@ bool EmitterHit(const EmitterShape& shape, const Vec3& x, const Vec3& w, Vec3& p
 // constant: pi E F(x -> shape) = power / area * pi * F, with F Lambert's exact point-to-polygon
 // form factor of the part in front of x; 0 when x is not in front of the emitting side.
 double EmitterImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n);
+// The same from that form factor F, already computed (EmitterFormFactor(shape, x, n)).
+double EmitterImportance(const EmitterShape& shape, double form_factor);
 
 // A point on the emitter seen from receiver point x with unit normal n, and its pdf per
 // steradian (0 when the emitter subtends no solid angle at x): the solid-angle map of the
@@ -48,5 +52,22 @@ struct EmitterSample {
 };
 EmitterSample SampleEmitterSolidAngle(const EmitterShape& shape, const Vec3& x, const Vec3& n,
                                       Point2 u);
+
+// SampleEmitterSolidAngle for many u at one emitter and receiver point: what does not
+// depend on u (the corners' weights, a rectangle's set-up, a quad's halves' shares) is
+// computed once, and each sample is SampleEmitterSolidAngle's, bit for bit. Keeps a
+// reference to `shape`.
+class EmitterPointSampler {
+ public:
+  EmitterPointSampler(const EmitterShape& shape, const Vec3& x, const Vec3& n);
+  EmitterSample operator()(Point2 u) const;
+
+ private:
+  const EmitterShape& shape_;
+  Vec3 x_;
+  std::array<double, 4> weight_{};                      // CosineWeight of each corner
+  std::optional<SphericalRectangleSampler> rectangle_;  // a rectangle's set-up
+  double share_ = 1;  // a quad's first half's share of its solid angle (< 0: none)
+};
 
 }  // namespace radflux

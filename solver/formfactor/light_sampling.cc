@@ -112,9 +112,16 @@ class LightSampler::PointChooser {
     if (tree.size() > kExactEmitters) return;
     exact_ = true;
     for (uint32_t k = 0; k < tree.size(); ++k) {
-      total_ += EmitterImportance(tree.Emitter(k), x, n);
+      form_factor_[k] = EmitterFormFactor(tree.Emitter(k), x, n);
+      total_ += EmitterImportance(tree.Emitter(k), form_factor_[k]);
       cdf_[k] = total_;
     }
+  }
+
+  // EmitterFormFactor of emitter k from the point: kept from the choice's own computation
+  // when the choice was exact (the point's samples then never compute it again).
+  double FormFactor(uint32_t k) const {
+    return exact_ ? form_factor_[k] : EmitterFormFactor(tree_.Emitter(k), x_, n_);
   }
 
   std::optional<LightTree::Choice> operator()(double u) const {
@@ -134,6 +141,7 @@ class LightSampler::PointChooser {
   bool exact_ = false;
   double total_ = 0;
   std::array<double, kExactEmitters> cdf_{};
+  std::array<double, kExactEmitters> form_factor_{};
 };
 
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
@@ -176,6 +184,18 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
   const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
   const Frame frame = Frame::FromNormal(n);
   const PointChooser choose(tree_, x, n);
+  // The point's emitter samplers, set up once per emitter its samples choose.
+  std::array<std::optional<EmitterPointSampler>, kLightSamplesPerPoint> samplers;
+  std::array<uint32_t, kLightSamplesPerPoint> sampler_emitter{};
+  size_t sampler_count = 0;
+  const auto sampler_of = [&](uint32_t chosen) -> const EmitterPointSampler& {
+    for (size_t m = 0; m < sampler_count; ++m) {
+      if (sampler_emitter[m] == chosen) return *samplers[m];
+    }
+    const size_t m = sampler_count < samplers.size() ? sampler_count++ : samplers.size() - 1;
+    sampler_emitter[m] = chosen;
+    return samplers[m].emplace(tree_.Emitter(chosen), x, n);
+  };
   for (uint32_t k = 0; k < per_point; ++k) {
     // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
     const uint32_t s = first + k;
@@ -185,7 +205,7 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
     if (!choice) continue;
     const EmitterShape& emitter = tree_.Emitter(choice->emitter);
     if (emitter.patch == receiver) continue;
-    const double form_factor = EmitterFormFactor(emitter, x, n);
+    const double form_factor = choose.FormFactor(choice->emitter);
     if (!(form_factor > 0)) continue;
     Vec3 target;
     double value;  // the sample's F_j(x) estimate, if its ray is unoccluded
@@ -194,7 +214,7 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
                                  target)) {
       value = form_factor / choice->probability;
     } else {
-      const EmitterSample sample = SampleEmitterSolidAngle(emitter, x, n, directions[k]);
+      const EmitterSample sample = sampler_of(choice->emitter)(directions[k]);
       if (!(sample.pdf > 0)) continue;
       const Vec3 d = sample.point - x;
       const double cos_x = Dot(n, d) / Length(d);

@@ -1,6 +1,6 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
-// each of the row's light samples takes a point x on the receiver patch i (stratified; a few
-// samples share each point), one emitter j chosen with probability P(j | x) (by the
+// each of the row's light samples takes a point x on the receiver patch i (stratified; on one
+// patch a few samples share each point, on a group each takes its own), one emitter j chosen with probability P(j | x) (by the
 // LightTree, or among at most 16 emitters by their exact unoccluded contributions), a direction in
 // the solid angle Omega_j that j subtends at x with pdf (uniform, 1 / Omega_j, warped towards the
 // receiver's cosine: SampleEmitterSolidAngle), and one shadow ray. The sample adds

@@ -53,8 +53,13 @@ class MonteCarloBuilder final : public RowBuilder {
       const uint32_t j = context_.UnknownOf(hit);  // a group's hits on itself: see face_grouping.h
       if (j != i && !context_.emitter[j]) row.Add(j, weight);
     }
-    const uint64_t light_rays =
-        lights_.AddEmitterColumns(i, options_.samples, kLightSamplesPerPoint, options_.seed, row);
+    // A group's irradiance varies across its members far more than across one patch (some
+    // face a lamp, some do not): its light samples each take a point of their own, so the
+    // budget is spread over the whole group instead of 4 spots that mostly miss the lit ones.
+    const bool group = !context_.SinglePatch(i);
+    const int per_point = group ? 1 : kLightSamplesPerPoint;
+    const uint64_t light_rays = lights_.AddEmitterColumns(
+        i, options_.samples * (kLightSamplesPerPoint / per_point), per_point, options_.seed, row);
     // The two parts are independent estimates: where emitters fill much of the hemisphere
     // their noise can add up to more than 1, which no row may (rho F B must converge for
     // every rho < 1); such a row is scaled back to 1 (a closed room's rows sum to 1 exactly).

@@ -11,13 +11,6 @@ namespace {
 
 constexpr double kRelativeTolerance = 1e-9;
 
-bool AnyVertexInFront(const SurfaceShape& plane, const std::vector<Vec3>& points, double tolerance) {
-  for (const Vec3& p : points) {
-    if (Dot(p - plane.centroid, plane.normal) > tolerance) return true;
-  }
-  return false;
-}
-
 // The extent [lo, hi] of the points of `s` along `axis`, merged into lo and hi.
 void Extend(const SurfaceShape& s, const Vec3& axis, double& lo, double& hi) {
   for (const Vec3& p : s.polygon) {
@@ -32,17 +25,12 @@ Vec3 Abs(const Vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; 
 }  // namespace
 
 std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes) {
-  double extent = 0;
-  for (const SurfaceShape& s : shapes) extent = std::max(extent, s.diameter);
-  const double tolerance = kRelativeTolerance * extent;
   std::vector<uint8_t> blocks(shapes.size(), 0);
   ParallelFor(static_cast<int64_t>(shapes.size()), 256, 0, [&](int64_t begin, int64_t end) {
     for (int64_t k = begin; k < end; ++k) {
       const SurfaceShape& s = shapes[k];
       for (const SurfaceShape& other : shapes) {
-        bool behind = false;
-        for (const Vec3& p : other.polygon) behind = behind || Dot(p - s.centroid, s.normal) < -tolerance;
-        if (behind) {
+        if (PartlyBehind(s, other)) {
           blocks[k] = 1;
           break;
         }
@@ -54,6 +42,10 @@ std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes)
     if (blocks[k]) out.push_back(k);
   }
   return out;
+}
+
+bool MayBlockPair(const SurfaceShape& i, const SurfaceShape& j, const SurfaceShape& k) {
+  return PartlyInFront(i, k) && PartlyInFront(j, k);
 }
 
 Shaft::Shaft(const SurfaceShape& i, const SurfaceShape& j, double margin)
@@ -118,10 +110,7 @@ bool Shaft::MayHold(const SurfaceShape& k) const {
     Extend(k, axis_[a], klo, khi);
     if (khi < lo_[a] || klo > hi_[a]) return false;
   }
-  if (!AnyVertexInFront(i_, k.polygon, kRelativeTolerance * i_.diameter) ||
-      !AnyVertexInFront(j_, k.polygon, margin_)) {
-    return false;
-  }
+  if (!MayBlockPair(i_, j_, k)) return false;
   if (Separates(k.normal, k)) return false;
   for (size_t e = 0; e < k.polygon.size(); ++e) {
     const Vec3 axis = Cross(d_, k.polygon[(e + 1) % k.polygon.size()] - k.polygon[e]);

@@ -3,7 +3,7 @@
 //   1. a surface with all the scene in front of or on its plane (a room's walls, the ground
 //      of a city) can block nothing: a segment between two points in its closed front
 //      half-space only touches its plane where both ends lie in it (PotentialBlockers);
-//   2. a blocker of the pair lies partly in front of i's plane and of j's;
+//   2. a blocker of the pair lies partly in front of i's plane and of j's (MayBlockPair);
 //   3. a separating axis (the three coordinate axes, the normals of i, j and k, and the
 //      shaft direction crossed with the axes and with k's edges) between the convex hull of
 //      i and j and the polygon k proves k misses the shaft (Shaft).
@@ -19,9 +19,14 @@
 
 namespace radflux {
 
-// The surfaces of `shapes` that some other geometry lies strictly behind (filter 1),
-// ascending.
+// The surfaces of `shapes` that some other geometry lies strictly behind (filter 1, beyond
+// the coplanar band: a back-face twin is not "behind"), ascending.
 std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes);
+
+// Filter 2: whether k has a vertex in front of i's plane and one in front of j's, beyond the
+// coplanar band (CoplanarBand). A k lying in i's plane (i's twin, a coplanar neighbour) or
+// behind it cannot hide anything i sees; the same for j.
+bool MayBlockPair(const SurfaceShape& i, const SurfaceShape& j, const SurfaceShape& k);
 
 // The convex hull of a pair (i, j) as its extents on the separating axes that do not depend
 // on a blocker, computed once per pair (the coordinate axes at once, the others when a box

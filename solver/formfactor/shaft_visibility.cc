@@ -1,22 +1,89 @@
 #include "solver/formfactor/shaft_visibility.h"
 
 #include <algorithm>
+#include <cmath>
+#include <tuple>
 #include <vector>
+
+#include "solver/formfactor/polygon_form_factor.h"
 
 namespace radflux {
 namespace {
 
-constexpr size_t kMaxSamplePoints = 8;
+// Sample points per side of a cell: kSideDensity * diameter / distance (the surface's size as
+// seen from the other), rounded up, from 1 (a surface far away for its size: its centroid
+// alone) to kMaxSide, and at most kMaxSamplePoints in all. Measured against View3D (issue 23's
+// benches): density 6 keeps the city's median row L1 at 0.6% (2 or a minimum of 2 points a
+// side: 0.8%) and the grid room's at 0.7%, with about a third fewer segments there.
+constexpr int kMinSide = 1, kMaxSide = 4;
+constexpr double kSideDensity = 6;
+constexpr size_t kMaxSamplePoints = 64;
 
-size_t SamplePoints(const SurfaceShape& s, Vec3 (&out)[kMaxSamplePoints]) {
-  const size_t n = std::min(s.polygon.size(), kMaxSamplePoints);
-  for (size_t k = 0; k < n; ++k) out[k] = (s.centroid + s.polygon[k]) * 0.5;
-  return n;
+struct SamplePoints {
+  Vec3 point[kMaxSamplePoints];
+  double weight[kMaxSamplePoints];  // the area each point stands for, scene units^2
+  size_t count = 0;
+
+  void Add(const Vec3& p, double w) {
+    point[count] = p;
+    weight[count++] = w;
+  }
+  // Midpoint rule, side x side points: a quadrilateral through its bilinear map, a triangle
+  // split into side^2 equal triangles (their centroids).
+  void AddQuad(const Vec3 (&c)[4], int side) {
+    for (int a = 0; a < side; ++a) {
+      for (int b = 0; b < side; ++b) {
+        const double u = (a + 0.5) / side, v = (b + 0.5) / side;
+        const Vec3 du = (c[1] - c[0]) * (1 - v) + (c[2] - c[3]) * v;
+        const Vec3 dv = (c[3] - c[0]) * (1 - u) + (c[2] - c[1]) * u;
+        Add(c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v),
+            Length(Cross(du, dv)) / (side * side));
+      }
+    }
+  }
+  void AddTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, int side) {
+    const Vec3 e1 = (p1 - p0) / side, e2 = (p2 - p0) / side;
+    const double w = 0.5 * Length(Cross(p1 - p0, p2 - p0)) / (side * side);
+    for (int a = 0; a < side; ++a) {
+      for (int b = 0; a + b < side; ++b) {
+        Add(p0 + e1 * (a + 1.0 / 3) + e2 * (b + 1.0 / 3), w);  // upright small triangle
+        if (a + b + 1 < side) Add(p0 + e1 * (a + 2.0 / 3) + e2 * (b + 2.0 / 3), w);  // inverted
+      }
+    }
+  }
+};
+
+// Sample points on the part of s in front of `other`'s plane (the part that can see it; s's
+// own polygon when it is all in front, as for most pairs).
+void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out) {
+  bool whole = true;
+  for (const Vec3& p : s.polygon) whole = whole && Dot(p - other.centroid, other.normal) >= 0;
+  std::vector<Vec3> clipped;
+  if (!whole) clipped = ClipPolygonToHalfSpace(s.polygon, other.centroid, other.normal);
+  const std::vector<Vec3>& part = whole || clipped.size() < 3 ? s.polygon : clipped;
+  // Clamped as a double: centroids that (nearly) coincide give an unbounded ratio.
+  const double distance = Length(other.centroid - s.centroid);
+  const double ratio = distance > 0 ? std::ceil(kSideDensity * s.diameter / distance) : kMaxSide;
+  int side = static_cast<int>(std::clamp<double>(ratio, kMinSide, kMaxSide));
+  const size_t cells = part.size() == 4 ? 1 : part.size() - 2;
+  while (side > 1 && cells * side * side > kMaxSamplePoints) --side;
+  if (part.size() == 4) {
+    out.AddQuad({part[0], part[1], part[2], part[3]}, side);
+    return;
+  }
+  for (size_t k = 1; k + 1 < part.size() && out.count + side * side <= kMaxSamplePoints; ++k) {
+    out.AddTriangle(part[0], part[k], part[k + 1], side);
+  }
 }
 
 }  // namespace
 
-bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k) {
+bool SegmentHitsSurface(const Vec3& from, const Vec3& to, const SurfaceShape& k) {
+  // The same arithmetic whichever way round (pairs integrated either way agree to the bit,
+  // also for segments through a blocker's edge): from the lexicographically smaller end.
+  const bool swap = std::tie(to.x, to.y, to.z) < std::tie(from.x, from.y, from.z);
+  const Vec3& a = swap ? to : from;
+  const Vec3& b = swap ? from : to;
   const double da = Dot(a - k.centroid, k.normal), db = Dot(b - k.centroid, k.normal);
   if ((da > 0) == (db > 0) || da == 0 || db == 0) return false;  // not crossing its plane
   const Vec3 q = a + (b - a) * (da / (da - db));
@@ -30,20 +97,21 @@ bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k) {
 
 double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
                        uint64_t& segments) {
-  Vec3 pi[kMaxSamplePoints], pj[kMaxSamplePoints];
-  const size_t ni = SamplePoints(i, pi), nj = SamplePoints(j, pj);
+  SamplePoints pi, pj;
+  Sample(i, j, pi);
+  Sample(j, i, pj);
   double seen = 0, total = 0;
-  for (size_t a = 0; a < ni; ++a) {
-    for (size_t b = 0; b < nj; ++b) {
-      const Vec3 d = pj[b] - pi[a];
+  for (size_t a = 0; a < pi.count; ++a) {
+    for (size_t b = 0; b < pj.count; ++b) {
+      const Vec3 d = pj.point[b] - pi.point[a];
       const double r2 = Dot(d, d);
-      const double w = r2 > 0 ? std::max(0.0, Dot(d, i.normal)) *
+      const double w = r2 > 0 ? pi.weight[a] * pj.weight[b] * std::max(0.0, Dot(d, i.normal)) *
                                     std::max(0.0, -Dot(d, j.normal)) / (r2 * r2)
                               : 0;
       if (w <= 0) continue;
       ++segments;
       total += w;
-      if (!blocked(pi[a], pj[b])) seen += w;
+      if (!blocked(pi.point[a], pj.point[b])) seen += w;
     }
   }
   return total > 0 ? seen / total : 1.0;

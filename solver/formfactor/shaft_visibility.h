@@ -1,8 +1,11 @@
 // The visible fraction of a surface pair whose shaft may hold blockers (shaft_cull.h):
-// segments between points on i and points on j (each point halfway between the polygon's
-// centroid and one of its vertices), each tested exactly against the candidate blockers'
-// polygons, weighted by the form-factor kernel cos cos / r^2 so that the fraction is
-// consistent where visibility varies across the pair.
+// segments between midpoint-rule points on i and on j (1 to 4 x 4 a side per cell, more for a
+// surface near and large for the pair; on the part of the polygon in front of the other's
+// plane when it straddles that plane, so that a pair seeing each other only in part is
+// sampled where it does), each tested exactly against the candidate blockers' polygons,
+// weighted by the points' areas and the form-factor kernel cos cos / r^2 so that the
+// fraction is consistent where visibility varies across the pair. The same points and
+// answers whichever of the two is i.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +16,8 @@
 
 namespace radflux {
 
-// Whether the open segment from a to b crosses the convex polygon of k.
+// Whether the open segment from a to b crosses the convex polygon of k; the same answer
+// for (b, a).
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
 
 // blocked(a, b): whether something crosses the open segment from a to b.

@@ -10,9 +10,6 @@
 namespace radflux {
 namespace {
 
-// Distances below this fraction of the pair's size count as "on the plane".
-constexpr double kPlaneTolerance = 1e-9;
-
 // The integrand: F from a differential area at x on i to all of j.
 struct Integrand {
   const SurfaceShape& i;
@@ -155,16 +152,33 @@ SurfaceShape MakeSurfaceShape(std::vector<Vec3> polygon) {
     s.hi = {std::max(s.hi.x, p.x), std::max(s.hi.y, p.y), std::max(s.hi.z, p.z)};
     for (const Vec3& q : polygon) s.diameter = std::max(s.diameter, Length(p - q));
   }
+  for (const Vec3& p : polygon) s.flatness = std::max(s.flatness, std::abs(Dot(p - s.centroid, s.normal)));
   s.polygon = std::move(polygon);
   return s;
 }
 
+double CoplanarBand(const SurfaceShape& a, const SurfaceShape& b) {
+  return 2 * (a.flatness + b.flatness) + kCoplanarRelative * (a.diameter + b.diameter);
+}
+
+bool PartlyInFront(const SurfaceShape& a, const SurfaceShape& b) {
+  const double band = CoplanarBand(a, b);
+  for (const Vec3& p : b.polygon) {
+    if (Dot(p - a.centroid, a.normal) > band) return true;
+  }
+  return false;
+}
+
+bool PartlyBehind(const SurfaceShape& a, const SurfaceShape& b) {
+  const double band = CoplanarBand(a, b);
+  for (const Vec3& p : b.polygon) {
+    if (Dot(p - a.centroid, a.normal) < -band) return true;
+  }
+  return false;
+}
+
 bool CanSeeEachOther(const SurfaceShape& i, const SurfaceShape& j) {
-  const double tolerance = kPlaneTolerance * (i.diameter + j.diameter);
-  bool j_front = false, i_front = false;
-  for (const Vec3& p : j.polygon) j_front = j_front || Dot(p - i.centroid, i.normal) > tolerance;
-  for (const Vec3& p : i.polygon) i_front = i_front || Dot(p - j.centroid, j.normal) > tolerance;
-  return j_front && i_front;
+  return PartlyInFront(i, j) && PartlyInFront(j, i);
 }
 
 double UnoccludedViewFactor(const SurfaceShape& i, const SurfaceShape& j,
@@ -173,10 +187,10 @@ double UnoccludedViewFactor(const SurfaceShape& i, const SurfaceShape& j,
     ++counts.culled;
     return 0;
   }
-  const double tolerance = kPlaneTolerance * (i.diameter + j.diameter);
+  const double band = CoplanarBand(i, j);
   bool j_in_front = true, i_in_front = true;
-  for (const Vec3& p : j.polygon) j_in_front = j_in_front && Dot(p - i.centroid, i.normal) >= -tolerance;
-  for (const Vec3& p : i.polygon) i_in_front = i_in_front && Dot(p - j.centroid, j.normal) >= -tolerance;
+  for (const Vec3& p : j.polygon) j_in_front = j_in_front && Dot(p - i.centroid, i.normal) >= -band;
+  for (const Vec3& p : i.polygon) i_in_front = i_in_front && Dot(p - j.centroid, j.normal) >= -band;
   const Integrand f{i, j, j_in_front, counts.evaluations};
   const double gap = std::max(Length(j.centroid - i.centroid) - 0.5 * j.diameter, 0.0);
   if (i_in_front && gap >= options.far_ratio * i.diameter) {

@@ -8,7 +8,9 @@
 //     and 3 x 3 Gauss points; where they disagree by more than `tolerance` (relative) the
 //     cell is split in four at its edge midpoints, recursively. Smooth (separated) pairs stop
 //     at once; pairs sharing an edge (a log singularity along it) refine near the edge.
-// Parts of i behind j's plane contribute nothing (i is clipped to j's front first).
+// Parts of i behind j's plane contribute nothing (i is clipped to j's front first). "Behind"
+// and "in front" leave out a band around each plane (CoplanarBand): a face sees nothing in
+// its own plane, however its vertices were rounded (coincident twins, coplanar overlaps).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,9 @@ struct SurfaceShape {
   Vec3 centroid;              // area-weighted
   double area = 0;            // m^2 (scene units^2)
   double diameter = 0;        // the longest distance between two vertices
+  double flatness = 0;        // scene units: the largest distance of a vertex from the plane
+                              // (normal through centroid); 0 for a triangle, up to the import
+                              // rules' planarity tolerance for a rounded quadrilateral
   Vec3 lo, hi;                // bounding box
 };
 
@@ -40,7 +45,7 @@ struct PairIntegration {
 
 // What the pair integrations did, summed over the pairs of a run.
 struct PairCounts {
-  uint64_t culled = 0;       // j behind i's plane or i behind j's: no work
+  uint64_t culled = 0;       // j behind or in i's plane, or i in or behind j's: no work
   uint64_t one_point = 0;    // far pairs
   uint64_t middle = 0;       // pairs between middle_ratio and far_ratio
   uint64_t adaptive = 0;     // near pairs
@@ -48,7 +53,19 @@ struct PairCounts {
   void Merge(const PairCounts& o);
 };
 
-// Whether j has a part in front of i's plane and i a part in front of j's (else F_ij = 0).
+// The distance (scene units) within which a vertex of b counts as on a's plane: twice both
+// faces' flatness plus kCoplanarRelative of their diameters. A face and its back-face twin,
+// or two coplanar faces whose vertices were rounded, lie within it of each other's plane.
+inline constexpr double kCoplanarRelative = 1e-6;
+double CoplanarBand(const SurfaceShape& a, const SurfaceShape& b);
+
+// Whether some vertex of b lies in front of (behind) a's plane by more than
+// CoplanarBand(a, b).
+bool PartlyInFront(const SurfaceShape& a, const SurfaceShape& b);
+bool PartlyBehind(const SurfaceShape& a, const SurfaceShape& b);
+
+// Whether j has a part in front of i's plane and i a part in front of j's, beyond the
+// coplanar band (else F_ij = 0: back to back, behind, or in one plane).
 bool CanSeeEachOther(const SurfaceShape& i, const SurfaceShape& j);
 
 // F_ij without occlusion, in [0, 1].

@@ -1,5 +1,6 @@
 #include "solver/formfactor/view_factor_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 
@@ -72,6 +73,9 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
                                              const ViewFactorJobOptions& options) {
   ViewFactorReport report;
   report.surfaces = surfaces.radiating;
+  report.row_sums.allowance = std::max(kRowSumSlack, options.surface_rows.integration.tolerance);
+  size_t row_index = 0;
+  const auto check = [&](std::span<const double> row) { report.row_sums.Add(row_index++, row); };
   std::vector<double> area;
   for (size_t k = 0; k < surfaces.radiating; ++k) area.push_back(surfaces.shapes[k].area);
   ViewFactorSurfaces out = MakeSurfaces(surfaces.names, area, surfaces.emittance, options);
@@ -82,6 +86,7 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     absl::Status built = BuildSurfaceRows(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
         [&](std::span<const double> row) {
+          check(row);
           factor.emplace_back(row.begin(), row.end());
           return absl::OkStatus();
         },
@@ -95,7 +100,11 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     if (!writer.ok()) return writer.status();
     absl::Status built = BuildSurfaceRows(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
-        [&](std::span<const double> row) { return (*writer)->WriteRow(row); }, stats);
+        [&](std::span<const double> row) {
+          check(row);
+          return (*writer)->WriteRow(row);
+        },
+        stats);
     if (!built.ok()) return built;
     if (absl::Status s = (*writer)->Close(); !s.ok()) return s;
   }
@@ -104,6 +113,7 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
   report.rays = stats.segments;
   report.patches = surfaces.shapes.size();
   report.adaptive = stats;
+  if (!surfaces.names.empty()) report.row_sums.worst_name = surfaces.names[report.row_sums.worst_row];
   return report;
 }
 
@@ -129,6 +139,8 @@ absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOpti
   const auto start = std::chrono::steady_clock::now();
   SurfaceViewFactors f = AggregateViewFactors(prepared.scene, prepared.mesh, rows->matrix, options.by);
   report.surfaces = f.names.size();
+  for (size_t s = 0; s < f.factor.size(); ++s) report.row_sums.Add(s, f.factor[s]);
+  if (!f.names.empty()) report.row_sums.worst_name = f.names[report.row_sums.worst_row];
   if (options.enclosure) report.enclosure = AdjustEnclosure(f.factor, f.area);
   ViewFactorSurfaces out = MakeSurfaces(f.names, f.area, f.emittance, options);
   if (absl::Status s = WriteDense(f.factor, std::move(out), options.output); !s.ok()) return s;
@@ -137,6 +149,16 @@ absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOpti
 }
 
 }  // namespace
+
+void RowSumCheck::Add(size_t index, std::span<const double> row) {
+  double sum = 0;
+  for (double f : row) sum += f;
+  if (sum > 1 + allowance) ++rows_over;
+  if (index == 0 || sum > worst_sum) {
+    worst_sum = sum;
+    worst_row = index;
+  }
+}
 
 bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by) {
   if (by == SurfaceGrouping::kFace) return true;

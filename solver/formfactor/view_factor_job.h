@@ -4,6 +4,8 @@
 #pragma once
 
 #include <optional>
+#include <span>
+#include <string>
 
 #include "absl/status/statusor.h"
 #include "solver/formfactor/enclosure_adjust.h"
@@ -29,12 +31,27 @@ struct ViewFactorJobOptions {
   ViewFactorOutput output;
 };
 
+// Rows whose sum exceeds 1 by more than their error allowance (kRowSumSlack, or the adaptive
+// --vf-tolerance when larger): a surface cannot see more than its whole hemisphere, so such
+// a row is overestimated (a blocker missed, or the visibility estimate of a cluttered pair).
+inline constexpr double kRowSumSlack = 0.01;
+struct RowSumCheck {
+  double allowance = kRowSumSlack;  // a row may sum to 1 + allowance
+  size_t rows_over = 0;             // rows above it
+  size_t worst_row = 0;             // the row with the largest sum (0-based surface index)
+  double worst_sum = 0;             // its sum
+  std::string worst_name;           // its surface's name
+  // Counts `row` (surface `index`).
+  void Add(size_t index, std::span<const double> row);
+};
+
 struct ViewFactorReport {
   size_t surfaces = 0, patches = 0;
   uint64_t rays = 0;
   std::optional<SurfaceRowsStats> adaptive;  // set when pairs were integrated adaptively
   double mesh_seconds = 0, embree_seconds = 0, rows_seconds = 0, write_seconds = 0;
   std::optional<EnclosureAdjustment> enclosure;  // set when options.enclosure
+  RowSumCheck row_sums;  // of the rows as integrated (before any enclosure adjustment)
 };
 
 // Whether every surface of `scene` (by `by`) that is not an obstruction is one face: what

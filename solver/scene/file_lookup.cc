@@ -1,8 +1,11 @@
 #include "solver/scene/file_lookup.h"
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "absl/strings/ascii.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_replace.h"
 
 namespace radflux {
@@ -40,6 +43,25 @@ std::optional<std::string> FindFile(const std::string& dir, const std::string& n
   }
   if (!IsFile(found)) return std::nullopt;
   return (base.empty() ? found.lexically_relative(".") : found).string();
+}
+
+absl::StatusOr<std::string> ReadFoundFile(const std::string& dir, const std::string& name) {
+  const std::optional<std::string> found = FindFile(dir, name);
+  if (!found) return absl::NotFoundError("no such file");
+  std::ifstream in(*found, std::ios::binary);
+  if (!in) return absl::NotFoundError("cannot open the file");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+const std::string* FindInFiles(const std::map<std::string, std::string>& files,
+                               const std::string& path) {
+  if (const auto it = files.find(path); it != files.end()) return &it->second;
+  for (const auto& [candidate, bytes] : files) {
+    if (absl::EqualsIgnoreCase(candidate, path)) return &bytes;
+  }
+  return nullptr;
 }
 
 }  // namespace radflux

@@ -48,26 +48,18 @@ absl::StatusOr<Span> Locate(const tinygltf::Model& model, int index, int compone
   }
   const size_t component = ComponentBytes(accessor.componentType);
   if (component == 0) return AccessorError(index, "unknown componentType");
-  if (accessor.bufferView < 0 ||
-      static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
-    return AccessorError(index, "has no valid bufferView");
-  }
+  absl::StatusOr<absl::string_view> bytes = BufferViewBytes(model, accessor.bufferView);
+  if (!bytes.ok()) return AccessorError(index, std::string(bytes.status().message()));
   const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
-    return AccessorError(index, "its bufferView names no valid buffer");
-  }
-  const std::vector<unsigned char>& buffer = model.buffers[view.buffer].data;
-  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-    return AccessorError(index, "its bufferView reaches past the end of its buffer");
-  }
   const size_t element = component * static_cast<size_t>(components);
   const size_t stride = view.byteStride == 0 ? element : view.byteStride;
   if (stride < element) return AccessorError(index, "byteStride is smaller than an element");
-  Span span{buffer.data() + view.byteOffset, accessor.count, stride, accessor.componentType};
+  Span span{reinterpret_cast<const unsigned char*>(bytes->data()), accessor.count, stride,
+            accessor.componentType};
   if (accessor.count == 0) return span;
   // The last element ends at byteOffset + stride * (count - 1) + element <= byteLength,
   // checked without overflow.
-  const size_t length = view.byteLength;
+  const size_t length = bytes->size();
   if (accessor.byteOffset > length || element > length - accessor.byteOffset ||
       accessor.count - 1 > (length - accessor.byteOffset - element) / stride) {
     return AccessorError(index, "reaches past the end of its bufferView");
@@ -103,6 +95,22 @@ double Component(const Span& span, size_t i, int k, bool normalized) {
 }
 
 }  // namespace
+
+absl::StatusOr<absl::string_view> BufferViewBytes(const tinygltf::Model& model, int index) {
+  if (index < 0 || static_cast<size_t>(index) >= model.bufferViews.size()) {
+    return absl::InvalidArgumentError("has no valid bufferView");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[index];
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
+    return absl::InvalidArgumentError("its bufferView names no valid buffer");
+  }
+  const std::vector<unsigned char>& buffer = model.buffers[view.buffer].data;
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+    return absl::InvalidArgumentError("its bufferView reaches past the end of its buffer");
+  }
+  return absl::string_view(reinterpret_cast<const char*>(buffer.data()) + view.byteOffset,
+                           view.byteLength);
+}
 
 absl::StatusOr<std::vector<double>> ReadAccessor(const tinygltf::Model& model, int index,
                                                  int components) {

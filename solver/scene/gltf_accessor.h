@@ -7,9 +7,14 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "tiny_gltf.h"
 
 namespace radflux {
+
+// The bytes of bufferView `index`, checked to lie in its buffer. INVALID_ARGUMENT ("has no
+// valid bufferView", "... reaches past the end of its buffer") otherwise.
+absl::StatusOr<absl::string_view> BufferViewBytes(const tinygltf::Model& model, int index);
 
 // The elements of accessor `index` as doubles, `components` per element (3 for a VEC3),
 // element after element. Integer components are converted as glTF says: to [0,1] or [-1,1]

@@ -1,20 +1,50 @@
 #include "solver/scene/gltf_loader.h"
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "solver/scene/file_lookup.h"
 #include "solver/scene/gltf_accessor.h"
 #include "solver/scene/gltf_material.h"
 #include "solver/scene/gltf_nodes.h"
 #include "solver/scene/gltf_parse.h"
 #include "solver/scene/gltf_primitive.h"
+#include "solver/scene/gltf_textures.h"
 
 namespace radflux {
 namespace {
+
+// Texture coordinates of one face: the base colour texture's (the alpha's too) and the
+// emissive texture's.
+using FaceUv = std::array<std::vector<TexCoord>, 2>;
+
+// The texture coordinate sets one primitive's material reads (u, v per vertex), by set.
+struct PrimitiveUv {
+  const GltfMaterialTextures* textures = nullptr;
+  std::map<int, std::vector<double>> sets;
+
+  // The coordinates of triangle `t` (the primitive's vertex indices), each set transformed
+  // as its texture says; empty for a set the primitive does not have.
+  FaceUv Of(const Triangle& t) const {
+    FaceUv out;
+    const GltfTexCoordSet* slots[2] = {&textures->base, &textures->emissive};
+    for (int k = 0; k < 2; ++k) {
+      const auto it = sets.find(slots[k]->set);
+      if (it == sets.end()) continue;
+      std::vector<TexCoord> uv;
+      for (const uint32_t i : t) uv.push_back({it->second[2 * i], it->second[2 * i + 1]});
+      out[k] = TransformTexCoords(*slots[k], std::move(uv));
+    }
+    return out;
+  }
+};
 
 // The scene being built from one model, and how glTF's materials, nodes and meshes map
 // onto its materials, objects and groups.
@@ -28,7 +58,8 @@ class SceneBuilder {
 
   absl::Status AddMaterials();
   absl::Status AddInstance(const MeshInstance& instance);
-  Scene Take() { return std::move(scene_); }
+  // The scene, its textures applied (images read by `fallback` when not in the model).
+  Scene Take(const TextureReader& fallback);
 
  private:
   // `positions`: the first scene vertex of each POSITION accessor this instance has added
@@ -45,8 +76,14 @@ class SceneBuilder {
                                                          size_t vertex_count);
   // The primitive's vertices in scene space, appended to the scene; the index of the first.
   absl::StatusOr<uint32_t> AddPositions(int accessor, const Mat4& world, size_t& count);
-  absl::Status AddTriangles(const std::vector<Triangle>& triangles, bool flip, Face prototype,
-                            const std::string& where);
+  // The faces of `triangles` (indices into the primitive's vertices, the first of which is
+  // scene vertex `first`), with their texture coordinates from `uv` when it is given.
+  absl::Status AddTriangles(const std::vector<Triangle>& triangles, uint32_t first, bool flip,
+                            Face prototype, const std::string& where, const PrimitiveUv* uv);
+  // The texture coordinates of the primitive's vertices for its material's textures, when
+  // the material has textures.
+  absl::StatusOr<std::optional<PrimitiveUv>> ReadTexCoords(const tinygltf::Primitive& primitive,
+                                                           uint32_t material, size_t vertex_count);
 
   const tinygltf::Model& model_;
   const std::string& name_;
@@ -54,6 +91,9 @@ class SceneBuilder {
   Scene scene_;
   std::map<std::string, uint32_t> object_index_, group_index_;
   std::vector<bool> noted_;  // per glTF material: its losses are in the import log
+  std::vector<GltfMaterialTextures> textures_;  // per scene material (none for the default)
+  bool textured_ = false;                       // some material has a texture
+  std::vector<FaceUv> face_uv_;  // per face while textured_: base colour and emissive sets
   int default_material_ = -1;
   uint64_t triangles_ = 0;
 };
@@ -61,12 +101,49 @@ class SceneBuilder {
 absl::Status SceneBuilder::AddMaterials() {
   for (size_t m = 0; m < model_.materials.size(); ++m) {
     absl::StatusOr<Material> material = ConvertMaterial(model_.materials[m], static_cast<int>(m));
-    if (!material.ok()) {
-      return absl::InvalidArgumentError(absl::StrCat(name_, ": ", material.status().message()));
+    absl::StatusOr<GltfMaterialTextures> textures =
+        material.ok() ? ReadGltfMaterialTextures(model_, static_cast<int>(m))
+                      : absl::StatusOr<GltfMaterialTextures>(material.status());
+    if (!textures.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat(name_, ": ", textures.status().message()));
     }
     scene_.materials.push_back(*std::move(material));
+    textured_ = textured_ || textures->textures.any();
+    textures_.push_back(*std::move(textures));
   }
   return absl::OkStatus();
+}
+
+Scene SceneBuilder::Take(const TextureReader& fallback) {
+  if (textured_) {
+    textures_.resize(scene_.materials.size());  // the default material has none
+    std::vector<MaterialTextures> slots;
+    for (const GltfMaterialTextures& t : textures_) slots.push_back(t.textures);
+    const auto uvs = [this](size_t f, TextureSlot slot) -> const std::vector<TexCoord>& {
+      return face_uv_[f][slot == TextureSlot::kEmissive ? 1 : 0];
+    };
+    ApplyFaceTextures(slots, uvs, GltfImageReader(model_, fallback), kGltfTextureFormat, scene_);
+  }
+  return std::move(scene_);
+}
+
+absl::StatusOr<std::optional<PrimitiveUv>> SceneBuilder::ReadTexCoords(
+    const tinygltf::Primitive& primitive, uint32_t material, size_t vertex_count) {
+  if (material >= textures_.size() || !textures_[material].textures.any()) return std::nullopt;
+  const GltfMaterialTextures& textures = textures_[material];
+  PrimitiveUv uv{&textures, {}};
+  for (const int set : {textures.base.set, textures.emissive.set}) {
+    const auto it = primitive.attributes.find(absl::StrCat("TEXCOORD_", set));
+    if (it == primitive.attributes.end() || uv.sets.count(set) > 0) continue;
+    absl::StatusOr<std::vector<double>> read = ReadAccessor(model_, it->second, 2);
+    if (!read.ok()) return read.status();
+    if (read->size() < 2 * vertex_count) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("TEXCOORD_", set, " has fewer elements than POSITION"));
+    }
+    uv.sets[set] = *std::move(read);
+  }
+  return uv;
 }
 
 absl::StatusOr<uint32_t> SceneBuilder::MaterialOf(int material, const std::string& where) {
@@ -118,7 +195,7 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
       return error(absl::StrCat("unknown mode ", primitive.mode));
     }
     scene_.import_log.Add("gltf_points_lines_skipped",
-                          "glTF point and line primitives skipped (no surface)", where);
+                          "glTF point and line {primitive|primitives} skipped (no surface)", where);
     return absl::OkStatus();
   }
   const auto position = primitive.attributes.find("POSITION");
@@ -145,9 +222,11 @@ absl::Status SceneBuilder::AddPrimitive(const MeshInstance& instance, size_t p, 
       absl::StrCat(mesh.name.empty() ? absl::StrCat("mesh ", instance.mesh) : mesh.name,
                    mesh.primitives.size() > 1 ? absl::StrCat(" primitive ", p) : "");
   prototype.group = InternName(scene_.groups, group_index_, group);
-  for (uint32_t& index : *indices) index += first;
-  return AddTriangles(AssembleTriangles(primitive.mode, *indices),
-                      LinearDeterminant(instance.world) < 0, std::move(prototype), where);
+  absl::StatusOr<std::optional<PrimitiveUv>> uv = ReadTexCoords(primitive, *material, vertex_count);
+  if (!uv.ok()) return error(uv.status().message());
+  return AddTriangles(AssembleTriangles(primitive.mode, *indices), first,
+                      LinearDeterminant(instance.world) < 0, std::move(prototype), where,
+                      uv->has_value() ? &**uv : nullptr);
 }
 
 absl::Status SceneBuilder::ChargeTriangles(const tinygltf::Primitive& primitive,
@@ -203,11 +282,14 @@ absl::StatusOr<uint32_t> SceneBuilder::AddPositions(int accessor, const Mat4& wo
   return first;
 }
 
-absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, bool flip,
-                                        Face prototype, const std::string& where) {
+absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, uint32_t first,
+                                        bool flip, Face prototype, const std::string& where,
+                                        const PrimitiveUv* uv) {
   size_t dropped = 0, first_dropped = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
-    const Triangle& v = triangles[t];
+    const Triangle local = flip ? Triangle{triangles[t][0], triangles[t][2], triangles[t][1]}
+                                : triangles[t];
+    const Triangle v = {local[0] + first, local[1] + first, local[2] + first};
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
       if (options_.strict) {
         return absl::InvalidArgumentError(
@@ -217,20 +299,20 @@ absl::Status SceneBuilder::AddTriangles(const std::vector<Triangle>& triangles, 
       continue;
     }
     Face face = prototype;
-    face.vertices =
-        flip ? std::vector<uint32_t>{v[0], v[2], v[1]} : std::vector<uint32_t>{v[0], v[1], v[2]};
+    face.vertices = {v[0], v[1], v[2]};
     scene_.faces.push_back(std::move(face));
+    if (textured_) face_uv_.push_back(uv ? uv->Of(local) : FaceUv{});
   }
   if (dropped > 0) {
     scene_.import_log.Add("gltf_repeated_vertex_dropped",
-                          "glTF triangles with a repeated vertex (strip restarts) dropped",
+                          "glTF {triangle|triangles} with a repeated vertex (strip restarts) dropped",
                           absl::StrCat(where, " triangle ", first_dropped), dropped);
   }
   return absl::OkStatus();
 }
 
 absl::StatusOr<Scene> ModelToScene(const tinygltf::Model& model, const std::string& name,
-                                   const ImportOptions& options) {
+                                   const ImportOptions& options, const TextureReader& fallback) {
   absl::StatusOr<std::vector<MeshInstance>> instances = FlattenNodes(model);
   if (!instances.ok()) {
     return absl::InvalidArgumentError(absl::StrCat(name, ": ", instances.status().message()));
@@ -240,7 +322,7 @@ absl::StatusOr<Scene> ModelToScene(const tinygltf::Model& model, const std::stri
   for (const MeshInstance& instance : *instances) {
     if (absl::Status added = builder.AddInstance(instance); !added.ok()) return added;
   }
-  return builder.Take();
+  return builder.Take(fallback);
 }
 
 }  // namespace
@@ -254,7 +336,12 @@ absl::StatusOr<Scene> LoadGltfFile(const std::string& path, const ImportOptions&
   const std::string base_dir = slash == std::string::npos ? "." : path.substr(0, slash);
   absl::StatusOr<tinygltf::Model> model = ParseGltf(bytes.str(), path, base_dir, nullptr);
   if (!model.ok()) return model.status();
-  return ModelToScene(*model, path, options);
+  // An image named with other letter cases than on disk, under the glTF file's folder.
+  const TextureReader fallback = [&base_dir](const std::string& uri) -> absl::StatusOr<std::string> {
+    if (HasParentStep(uri) || absl::StartsWith(uri, "/")) return absl::NotFoundError("outside the scene's folder");
+    return ReadFoundFile(base_dir, uri);
+  };
+  return ModelToScene(*model, path, options, fallback);
 }
 
 absl::StatusOr<Scene> LoadGltfData(const std::string& data, const std::string& name,
@@ -262,7 +349,12 @@ absl::StatusOr<Scene> LoadGltfData(const std::string& data, const std::string& n
                                    const std::map<std::string, std::string>& files) {
   absl::StatusOr<tinygltf::Model> model = ParseGltf(data, name, "", &files);
   if (!model.ok()) return model.status();
-  return ModelToScene(*model, name, options);
+  const TextureReader fallback = [&files](const std::string& uri) -> absl::StatusOr<std::string> {
+    const std::string* bytes = HasParentStep(uri) ? nullptr : FindInFiles(files, uri);
+    if (bytes == nullptr) return absl::NotFoundError("no such file in the bundle");
+    return *bytes;
+  };
+  return ModelToScene(*model, name, options, fallback);
 }
 
 }  // namespace radflux

@@ -6,7 +6,7 @@
 // group per mesh primitive (the mesh's name, else "mesh <i>"; " primitive <k>" added when
 // the mesh has several). Each node's vertices are its POSITION accessors' elements in
 // scene space, once per accessor however many of its primitives share one, in the order
-// first used. Materials: see gltf_material.h. Point and line primitives, and
+// first used. Materials: see gltf_material.h; textures: gltf_textures.h. Point and line primitives, and
 // triangles with a repeated vertex, are left out and counted in Scene::import_log. Faces
 // have no source line: messages name the mesh and primitive instead. The result is not yet
 // validated: see ValidateScene.
@@ -27,14 +27,16 @@ namespace radflux {
 inline constexpr uint64_t kMaxGltfTriangles = uint64_t{1} << 24;
 
 // Loads `path` (.gltf or .glb, told apart by the GLB header, not the name). Buffers and
-// images named by relative URI are read from beside it. Errors are one line naming `path`
+// images named by relative URI are read from beside it (an image also when its name
+// differs only in letter case). Errors are one line naming `path`
 // (and the mesh and primitive when the problem is in one). With options.strict, a triangle
 // with a repeated vertex is refused instead of dropped.
 absl::StatusOr<Scene> LoadGltfFile(const std::string& path, const ImportOptions& options);
 
 // The same from the bytes of a .gltf or .glb file (uploads, fuzzing), with the files it
 // names (buffers, images) taken from `files`, keyed by the URI's path relative to the glTF
-// file ("scene.bin", "textures/wall.png"; a path with ".." is never served). A buffer in a
+// file ("scene.bin", "textures/wall.png"; a path with ".." is never served; an image is
+// also found ignoring letter case). A buffer in a
 // file that is not there is an error. `name` is used in messages and as Scene::source.
 absl::StatusOr<Scene> LoadGltfData(const std::string& data, const std::string& name,
                                    const ImportOptions& options,

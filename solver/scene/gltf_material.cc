@@ -64,15 +64,9 @@ Material DefaultMaterial() {
 
 void NoteMaterialLosses(const tinygltf::Material& material, const std::string& where,
                         ImportLog& log) {
-  if (material.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
-      material.emissiveTexture.index >= 0) {
-    log.Add("gltf_textures_ignored",
-            "glTF materials with textures read by their factors only (textures not applied)",
-            where);
-  }
   if (material.pbrMetallicRoughness.metallicFactor > 0) {
     log.Add("gltf_metallic_as_diffuse",
-            "glTF materials with metallicFactor > 0 read as diffuse (base colour as reflectance)",
+            "glTF {material|materials} with metallicFactor > 0 read as diffuse (base colour as reflectance)",
             where);
   }
 }

@@ -1,7 +1,8 @@
 // glTF 2.0 materials as radflux's diffuse materials: baseColorFactor (linear RGB) is the
 // reflectance, emissiveFactor times KHR_materials_emissive_strength the emitted radiance L_e
-// (so Material::emission = pi * L_e), doubleSided makes faces two-sided. Reflectance at or
-// above 1 is left for the shared import rules to clamp.
+// (so Material::emission = pi * L_e), doubleSided makes faces two-sided; textures multiply
+// these per face (gltf_textures.h). Reflectance at or above 1 is left for the shared import
+// rules to clamp.
 #pragma once
 
 #include <string>
@@ -24,8 +25,8 @@ absl::StatusOr<Material> ConvertMaterial(const tinygltf::Material& material, int
 Material DefaultMaterial();
 
 // Records in `log` what a diffuse solve leaves out of `material` (used at `where`): its
-// textures (only factors are read) and its metallic part (metallicFactor > 0 is read as
-// diffuse).
+// metallic part (metallicFactor > 0 is read as diffuse). Its textures are read:
+// gltf_textures.h.
 void NoteMaterialLosses(const tinygltf::Material& material, const std::string& where,
                         ImportLog& log);
 

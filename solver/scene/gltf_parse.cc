@@ -20,7 +20,7 @@ namespace {
 
 // Extensions a file may require and still load right: the material extensions (a diffuse
 // solve reads base colour and emission only; emissive strength is read), texture transforms
-// (textures are not read) and quantized vertex attributes (the accessor reader handles any
+// (read, gltf_textures.h) and quantized vertex attributes (the accessor reader handles any
 // component type). Compressed geometry (Draco, meshopt) is refused.
 bool Readable(const std::string& extension) {
   return absl::StartsWith(extension, "KHR_materials_") || extension == "KHR_texture_transform" ||
@@ -32,13 +32,6 @@ struct FileAccess {
   std::string base_dir;                                       // on disk, under this ("" = not)
   const std::map<std::string, std::string>* files = nullptr;  // or these (relative path -> bytes)
 };
-
-bool HasParentStep(const std::string& path) {
-  for (absl::string_view part : absl::StrSplit(path, '/')) {
-    if (part == "..") return true;
-  }
-  return false;
-}
 
 // The bytes `path` names in access.files, or null (the path as tinygltf joins it to an
 // empty base directory: the URI itself).
@@ -95,9 +88,13 @@ bool WriteWholeFile(std::string* err, const std::string&, const std::vector<unsi
   return false;
 }
 
-// Images are kept as tinygltf found them (not decoded): only material factors are used.
-bool KeepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                        const unsigned char*, int, void*) {
+// Images are not decoded here: the bytes of an image file (an external file or a data URI)
+// are kept in Image::image for the texture reader (gltf_textures.h). An image in a
+// bufferView is left alone: tinygltf does not check that view against its buffer, so its
+// bytes are read later through BufferViewBytes, which does.
+bool KeepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+  if (image->bufferView == -1 && bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -148,6 +145,13 @@ absl::Status RequiredExtensionsReadable(const tinygltf::Model& model, const std:
 
 }  // namespace
 
+bool HasParentStep(const std::string& path) {
+  for (absl::string_view part : absl::StrSplit(path, '/')) {
+    if (part == "..") return true;
+  }
+  return false;
+}
+
 absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::string& name,
                                           const std::string& base_dir,
                                           const std::map<std::string, std::string>* files) {
@@ -163,7 +167,7 @@ absl::StatusOr<tinygltf::Model> ParseGltf(const std::string& data, const std::st
   FileAccess access{files == nullptr ? base_dir : "", files};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&FileExists, &ExpandFilePath, &ReadWholeFile, &WriteWholeFile, &access});
-  loader.SetImageLoader(&KeepImageUndecoded, nullptr);
+  loader.SetImageLoader(&KeepImageBytes, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;

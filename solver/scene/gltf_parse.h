@@ -2,7 +2,8 @@
 // File access is ours, not tinygltf's defaults: external files are read only from the
 // scene's own directory and below, or from a bundle of files in memory (no ".." component,
 // no home-directory or shell expansion, no search of the working directory), at most
-// kMaxGltfExternalBytes each from disk; images are not decoded.
+// kMaxGltfExternalBytes each from disk; images are not decoded (an image file's bytes are
+// kept in Image::image; an image in a bufferView keeps only its view index).
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,9 @@ inline constexpr uint64_t kMaxGltfExternalBytes = uint64_t{1} << 32;
 // Deepest nesting of JSON arrays and objects accepted (glTF itself needs about 8; extras
 // may nest more).
 inline constexpr int kMaxGltfJsonDepth = 64;
+
+// Whether the '/'-separated `path` has a ".." component (such paths are never read).
+bool HasParentStep(const std::string& path);
 
 // Parses `data` (GLB when it starts with the "glTF" magic, glTF JSON otherwise). External
 // files (buffer and image URIs) come from `files` when it is given (keyed by the URI's path,

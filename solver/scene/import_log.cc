@@ -6,6 +6,22 @@
 
 namespace radflux {
 
+std::string ImportFixup::Text() const {
+  std::string text;
+  size_t at = 0;
+  for (size_t open; (open = message.find('{', at)) != std::string::npos;) {
+    const size_t bar = message.find('|', open);
+    const size_t close = message.find('}', open);
+    if (bar == std::string::npos || close == std::string::npos || bar > close) break;
+    absl::StrAppend(&text, absl::string_view(message).substr(at, open - at),
+                    count == 1 ? absl::string_view(message).substr(open + 1, bar - open - 1)
+                               : absl::string_view(message).substr(bar + 1, close - bar - 1));
+    at = close + 1;
+  }
+  absl::StrAppend(&text, absl::string_view(message).substr(at));
+  return text;
+}
+
 void ImportLog::Add(const std::string& kind, const std::string& message, const std::string& where,
                     uint64_t count) {
   auto it = std::find_if(fixups_.begin(), fixups_.end(),
@@ -20,7 +36,7 @@ void ImportLog::Add(const std::string& kind, const std::string& message, const s
 std::vector<std::string> ImportLog::Lines() const {
   std::vector<std::string> lines;
   for (const ImportFixup& f : fixups_) {
-    lines.push_back(absl::StrCat("import: ", f.count, " ", f.message,
+    lines.push_back(absl::StrCat("import: ", f.count, " ", f.Text(),
                                  f.first.empty() ? "" : absl::StrCat(" (first at ", f.first, ")")));
   }
   return lines;

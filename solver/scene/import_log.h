@@ -10,9 +10,15 @@ namespace radflux {
 
 struct ImportFixup {
   std::string kind;     // stable key for scripts, e.g. "triangulated_non_convex"
-  std::string message;  // what was done, in words, e.g. "non-convex faces triangulated"
-  uint64_t count = 0;   // how many times (faces, materials, ...)
-  std::string first;    // where it first happened, "file:line" (may be empty)
+  // What was done, in words; "{one|many}" picks by count, e.g.
+  // "non-convex {face|faces} triangulated".
+  std::string message;
+  uint64_t count = 0;  // how many times (faces, materials, ...)
+  std::string first;   // where it first happened, "file:line" (may be empty)
+
+  // The message for this count: each "{one|many}" replaced by `one` when count is 1, else
+  // by `many` ("1 material clamped", "2 materials clamped").
+  std::string Text() const;
 };
 
 class ImportLog {
@@ -23,7 +29,8 @@ class ImportLog {
            uint64_t count = 1);
   const std::vector<ImportFixup>& fixups() const { return fixups_; }
   bool empty() const { return fixups_.empty(); }
-  // One line per kind: "import: 12 non-convex faces triangulated (first at a.obj:621)".
+  // One line per kind: "import: 12 non-convex faces triangulated (first at a.obj:621)",
+  // the message's number agreeing with the count (ImportFixup::Text).
   std::vector<std::string> Lines() const;
 
  private:

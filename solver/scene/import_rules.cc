@@ -48,7 +48,7 @@ absl::Status FixMaterials(const ImportOptions& options, Scene& scene) {
     clamped.Add(absl::StrCat("material '", m.name, "'"));
   }
   clamped.Log(scene.import_log, "reflectance_clamped",
-              absl::StrFormat("materials with reflectance >= 1 clamped to %g", options.max_reflectance));
+              absl::StrFormat("{material|materials} with reflectance >= 1 clamped to %g", options.max_reflectance));
   return absl::OkStatus();
 }
 
@@ -122,11 +122,11 @@ absl::Status FixFaces(const ImportOptions& options, Scene& scene) {
   }
   scene.faces = std::move(faces);
   tally.repeated.Log(scene.import_log, "repeated_vertices_removed",
-                     "faces with a repeated vertex simplified");
-  tally.zero_area.Log(scene.import_log, "zero_area_dropped", "zero-area faces dropped");
-  tally.non_planar.Log(scene.import_log, "non_planar_split", "non-planar faces split into triangles");
+                     "{face|faces} with a repeated vertex simplified");
+  tally.zero_area.Log(scene.import_log, "zero_area_dropped", "zero-area {face|faces} dropped");
+  tally.non_planar.Log(scene.import_log, "non_planar_split", "non-planar {face|faces} split into triangles");
   tally.non_convex.Log(scene.import_log, "non_convex_triangulated",
-                       "non-convex faces triangulated");
+                       "non-convex {face|faces} triangulated");
   return absl::OkStatus();
 }
 
@@ -138,7 +138,7 @@ absl::Status DropDuplicates(const ImportOptions& options, Scene& scene) {
                                                    ": duplicate face (an earlier face has the "
                                                    "same vertices)"));
   }
-  scene.import_log.Add("duplicate_dropped", "duplicate faces dropped",
+  scene.import_log.Add("duplicate_dropped", "duplicate {face|faces} dropped",
                        scene.FaceLocation(duplicates[0]), duplicates.size());
   std::vector<Face> kept;
   kept.reserve(scene.faces.size() - duplicates.size());
@@ -157,7 +157,7 @@ void ReportOverlaps(Scene& scene) {
   const std::vector<FaceOverlap> overlaps = FindCoplanarOverlaps(scene);
   if (overlaps.empty()) return;
   scene.import_log.Add("coplanar_overlap",
-                       "pairs of coplanar faces overlap (each hides the other; not changed)",
+                       "{pair|pairs} of coplanar faces {overlaps|overlap} (each hides the other; not changed)",
                        absl::StrCat(scene.FaceLocation(overlaps[0].a), " and ",
                                     scene.FaceLocation(overlaps[0].b)),
                        overlaps.size());
@@ -182,7 +182,7 @@ absl::Status ApplyImportRules(const ImportOptions& options, Scene& scene) {
   if (absl::Status s = FixFaces(options, scene); !s.ok()) return s;
   if (absl::Status s = DropDuplicates(options, scene); !s.ok()) return s;
   if (const uint64_t twins = AddBackFaces(scene); twins > 0) {
-    scene.import_log.Add("two_sided", "two-sided faces given a back-face twin (each side lit on its own)", "",
+    scene.import_log.Add("two_sided", "two-sided {face|faces} given a back-face twin (each side lit on its own)", "",
                          twins);
   }
   ReportOverlaps(scene);

@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "absl/strings/str_split.h"
+#include "solver/scene/file_lookup.h"
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/import_rules.h"
 #include "solver/scene/mgf_loader.h"
@@ -90,10 +91,7 @@ std::string BundleMtl(const SceneBundle& bundle, const std::string& obj) {
 TextureReader BundleTextures(const SceneBundle& bundle) {
   return [&bundle](const std::string& name) -> absl::StatusOr<std::string> {
     const std::string path = BundlePath(bundle.main, absl::StrReplaceAll(name, {{"\\", "/"}}));
-    if (const auto it = bundle.files.find(path); it != bundle.files.end()) return it->second;
-    for (const auto& [candidate, bytes] : bundle.files) {
-      if (absl::EqualsIgnoreCase(candidate, path)) return bytes;
-    }
+    if (const std::string* bytes = FindInFiles(bundle.files, path)) return *bytes;
     return absl::NotFoundError("no such file in the bundle");
   };
 }

@@ -100,10 +100,10 @@ absl::Status MgfInterpreter::Execute(FileRun& run, size_t& pc, int depth) {
   } else if (IsSkippedEntity(e)) {
     scene_.import_log.Add(
         absl::StrCat("mgf_skipped_", e),
-        absl::StrCat("MGF '", e, "' entities skipped (no use in a diffuse solve)"),
+        absl::StrCat("MGF '", e, "' {entity|entities} skipped (no use in a diffuse solve)"),
         absl::StrCat(run.path, ":", s.line));
   } else {
-    scene_.import_log.Add("mgf_unknown_entity", "unknown MGF entities skipped",
+    scene_.import_log.Add("mgf_unknown_entity", "unknown MGF {entity|entities} skipped",
                           absl::StrCat(run.path, ":", s.line, " ('", e.substr(0, 32), "')"));
   }
   return status.ok() ? status : Locate(run.path, s.line, status);
@@ -156,7 +156,20 @@ absl::Status MgfInterpreter::PushXf(const std::vector<std::string>& args, size_t
   frame.total = frame.program.Evaluate(frame.indices).Then(Transform());
   xf_.push_back(std::move(frame));
   ++epoch_;
+  if (xf_.back().program.array_counts.empty()) return absl::OkStatus();
+  if (object_path_.size() >= limits_.max_object_depth) {
+    return Invalid(absl::StrCat("objects nested deeper than ", limits_.max_object_depth,
+                                " (each xf array element is an object)"));
+  }
+  object_path_.emplace_back();
+  NameArrayElement();
   return absl::OkStatus();
+}
+
+void MgfInterpreter::NameArrayElement() {
+  if (object_path_.empty()) object_path_.emplace_back();  // the body closed it: reopen
+  object_path_.back() = absl::StrCat("a", absl::StrJoin(xf_.back().indices, "."));
+  object_ = InternName(scene_.objects, object_index_, absl::StrJoin(object_path_, "."));
 }
 
 bool MgfInterpreter::StepXf() {
@@ -169,11 +182,16 @@ bool MgfInterpreter::StepXf() {
     frame.indices[d] = 0;
   }
   if (d == static_cast<size_t>(-1)) {
+    if (!counts.empty() && !object_path_.empty()) {  // leave the array's element object
+      object_path_.pop_back();
+      object_ = InternName(scene_.objects, object_index_, absl::StrJoin(object_path_, "."));
+    }
     xf_.pop_back();
     return false;
   }
   const Affine enclosing = xf_.size() > 1 ? xf_[xf_.size() - 2].total : Affine();
   frame.total = frame.program.Evaluate(frame.indices).Then(enclosing);
+  NameArrayElement();
   return true;
 }
 

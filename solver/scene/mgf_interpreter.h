@@ -57,6 +57,10 @@ class MgfInterpreter {
                       const std::string& path, int line);
   // Advances the top frame's array; true when it starts another element, false when popped.
   bool StepXf();
+  // Names the object in force after the innermost xf array's current element, as MGF's
+  // standard parser does: "a" and its indices joined by '.' ("a3", "a1.2"), one level
+  // below the objects open when the xf began (so "room.a3", "room.a3.chair").
+  void NameArrayElement();
   absl::Status Object(const std::vector<std::string>& words);
   absl::Status VertexStatement(const std::vector<std::string>& words);
   absl::StatusOr<Vertex*> FindVertex(const std::string& name);

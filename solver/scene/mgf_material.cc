@@ -77,22 +77,22 @@ Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& sta
   const bool moved_e = DesaturateIntoGamut(m.emission, emitted_y);
   if (moved_r || moved_e) {
     log.Add("mgf_colour_out_of_gamut",
-            "MGF materials with a colour outside the RGB gamut, desaturated at the same luminance",
+            "MGF {material|materials} with a colour outside the RGB gamut, desaturated at the same luminance",
             where);
   }
   if (state.rs > 0) {
     log.Add("mgf_specular_reflection_left_out",
-            "MGF materials with a specular reflection part (rs) left out of the diffuse solve",
+            "MGF {material|materials} with a specular reflection part (rs) left out of the diffuse solve",
             where);
   }
   if (state.ts > 0) {
     log.Add("mgf_specular_transmission_left_out",
-            "MGF materials with a specular transmission part (ts) left out of the diffuse solve",
+            "MGF {material|materials} with a specular transmission part (ts) left out of the diffuse solve",
             where);
   }
   if (state.td > 0) {
     log.Add("mgf_diffuse_transmission_left_out",
-            "MGF materials with a diffuse transmission part (td) left out of the diffuse solve",
+            "MGF {material|materials} with a diffuse transmission part (td) left out of the diffuse solve",
             where);
   }
   return m;

@@ -133,7 +133,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
     scene.positions.push_back(
         {attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]});
   }
-  std::vector<ObjTextureNames> texture_names;
+  std::vector<MaterialTextures> texture_names;
   bool textured = false;
   for (const auto& m : reader.GetMaterials()) {
     texture_names.push_back({m.diffuse_texname, m.emissive_texname, m.alpha_texname});
@@ -190,7 +190,11 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
       if (textured) uvs.push_back(FaceTexCoords(attrib, shape.mesh, offset - arity, arity));
     }
   }
-  if (textured) ApplyObjTextures(texture_names, uvs, textures, scene);
+  if (textured) {
+    ApplyFaceTextures(
+        texture_names, [&uvs](size_t f, TextureSlot) -> const std::vector<TexCoord>& { return uvs[f]; },
+        textures, kObjTextureFormat, scene);
+  }
   return scene;
 }
 
@@ -214,14 +218,8 @@ absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
   config.mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
   reader.ParseFromFile(path, config);
   const std::string folder = path.substr(0, slash == std::string::npos ? 0 : slash);
-  const TextureReader textures = [&](const std::string& texture) -> absl::StatusOr<std::string> {
-    const std::optional<std::string> found = FindFile(folder, texture);
-    if (!found) return absl::NotFoundError("no such file");
-    std::ifstream in(*found, std::ios::binary);
-    if (!in) return absl::NotFoundError("cannot open the file");
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
+  const TextureReader textures = [&](const std::string& texture) {
+    return ReadFoundFile(folder, texture);
   };
   return ConvertReader(reader, text.str(), path, textures);
 }

@@ -1,13 +1,13 @@
 // Wavefront OBJ + MTL loading through tinyobjloader. Kd is diffuse reflectance,
 // Ke is emitted radiance L_e (so emission E = pi * Ke), map_Kd / map_Ke / map_d textures
-// are applied per face as obj_textures.h says. Object ('o') and group ('g') names are kept
+// are applied per face as face_textures.h says. Object ('o') and group ('g') names are kept
 // per face. The result is not yet validated: see ValidateScene.
 #pragma once
 
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "solver/scene/obj_textures.h"
+#include "solver/scene/face_textures.h"
 #include "solver/scene/scene.h"
 
 namespace radflux {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -88,11 +89,15 @@ double SrgbToLinear(double c) {
 
 absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::string& name) {
   int width = 0, height = 0, channels = 0;
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(std::min<size_t>(bytes.size(), 1u << 30));
+  if (stbi_info_from_memory(data, size, &width, &height, &channels) != 0 &&
+      static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxTextureTexels) {
+    return absl::InvalidArgumentError(absl::StrCat(name, ": ", width, " x ", height,
+                                                   " texels, more than ", kMaxTextureTexels));
+  }
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
-      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
-                            static_cast<int>(std::min<size_t>(bytes.size(), 1u << 30)), &width,
-                            &height, &channels, 4),
-      stbi_image_free);
+      stbi_load_from_memory(data, size, &width, &height, &channels, 4), stbi_image_free);
   if (!pixels || width <= 0 || height <= 0) {
     const char* reason = stbi_failure_reason();
     return absl::InvalidArgumentError(absl::StrCat(name, ": not an image stb_image reads (",

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,13 @@ struct TextureImage {
   bool has_alpha = false;  // the file has an alpha channel (grey + alpha, or RGBA)
 };
 
+// Largest image decoded (4096 x 4096): a bigger one (or a small file that claims to be) is
+// refused before its pixels are allocated (16 bytes each here).
+inline constexpr uint64_t kMaxTextureTexels = uint64_t{1} << 24;
+
 // The image in `bytes` (PNG, JPEG, TGA, BMP, ... as stb_image reads them), named `name` in
-// messages. INVALID_ARGUMENT "NAME: not an image stb_image reads (REASON)" otherwise.
+// messages. INVALID_ARGUMENT "NAME: not an image stb_image reads (REASON)" otherwise, and
+// "NAME: W x H texels, more than kMaxTextureTexels" for an image too large.
 absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::string& name);
 
 // The linear value of the sRGB-encoded value `c` in [0, 1] (IEC 61966-2-1).

@@ -1,6 +1,7 @@
 #include "solver/solve/energy_balance.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cassert>
 #include <cmath>
 
@@ -16,18 +17,30 @@ bool Emits(const PatchAttributes& p, uint32_t i) { return MaxComponent(p.emissio
 struct BalancePass {
   std::vector<Rgb> arriving;    // power arriving per patch, W
   std::vector<Rgb> column_out;  // per row-less patch: its power the columns brought somewhere
-  Rgb variance{};
+  std::vector<Rgb> pairs;       // per patch: the imbalance of the emitter pairs it holds, W
+  Rgb variance{};               // the multinomial reading of the rows' cosine rays, W^2
+  Rgb pairs_ray_variance{};     // the part of sum pairs^2 the emitters' cosine rays explain
 };
 
+// The slot of `pairs` that holds pair {i, j} with an emitting patch among them (both with
+// rows): the non-emitting one, or the lower index when both emit; none (-1) otherwise.
+int64_t PairSlot(const PatchAttributes& p, uint32_t i, uint32_t j) {
+  if (!HasRow(p, j)) return -1;
+  const bool ei = Emits(p, i), ej = Emits(p, j);
+  if (ei && ej) return std::min(i, j);
+  if (ei != ej) return ei ? j : i;
+  return -1;
+}
+
 // Row i (a patch with a row): its power along the row, the row-less patches' power along
-// its columns, and the row's sampling variance (its cosine rays' and its light samples').
+// its columns, its cosine rays' multinomial variance and its emitter pairs' imbalance.
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
             const RowSampling& sampling, BalancePass& pass, EnergyBalance& out) {
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
   for (int band = 0; band < kBands; ++band) {
     const double outgoing = p.area[i] * b[i][band];
-    double row_sum = 0, mean_w = 0, mean_w2 = 0, emitter_w = 0;
+    double row_sum = 0, mean_w = 0, mean_w2 = 0;
     for (size_t e = 0; e < cols.size(); ++e) {
       const uint32_t j = cols[e];
       const double f = vals[e];
@@ -42,16 +55,19 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
       if (!Emits(p, j)) {
         mean_w += f * w;
         mean_w2 += f * w * w;
-      } else {
-        emitter_w += f * w;
       }
+      const int64_t slot = sampling.light_samples > 0 ? PairSlot(p, i, j) : -1;
+      if (slot < 0) continue;
+      const double term = p.area[i] * f * w;
+      pass.pairs[static_cast<size_t>(slot)][band] += term;
+      if (!Emits(p, j) && sampling.rays > 0 && f < 1)
+        pass.pairs_ray_variance[band] += term * term * (1 - f) / (f * sampling.rays);
     }
     out.escaped[band] += outgoing * (1 - row_sum);
-    const double area2 = p.area[i] * p.area[i];
-    if (sampling.rays > 0)
-      pass.variance[band] += area2 / sampling.rays * std::max(0.0, mean_w2 - mean_w * mean_w);
-    if (sampling.light_samples > 0)
-      pass.variance[band] += area2 * emitter_w * emitter_w / sampling.light_samples;
+    if (sampling.rays > 0) {
+      pass.variance[band] += p.area[i] * p.area[i] / sampling.rays *
+                             std::max(0.0, mean_w2 - mean_w * mean_w);
+    }
   }
 }
 
@@ -112,7 +128,8 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const RowSampling& sampling) {
   const PatchAttributes& p = *system.patches;
   EnergyBalance out;
-  BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}), Rgb{}};
+  BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}),
+                   std::vector<Rgb>(p.size(), Rgb{}), Rgb{}};
   const absl::Status read =
       ForEachRows(system.form_factors, system.row_store, [&](const RowsView& rows) {
         for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
@@ -120,14 +137,19 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
         }
       });
   if (!read.ok()) return read;
+  Rgb pairs_square{};
   for (uint32_t j = 0; j < p.size(); ++j) {
     for (int b = 0; b < kBands; ++b) {
       out.emitted[b] += p.area[j] * p.emission[j][b];
       out.absorbed[b] += (1 - p.reflectance[j][b]) * pass.arriving[j][b];
       if (!HasRow(p, j)) out.escaped[b] += p.area[j] * radiosity[j][b] - pass.column_out[j][b];
+      pairs_square[b] += pass.pairs[j][b] * pass.pairs[j][b];
     }
   }
-  for (int b = 0; b < kBands; ++b) out.noise[b] = std::sqrt(pass.variance[b]);
+  for (int b = 0; b < kBands; ++b) {
+    const double light = std::max(0.0, pairs_square[b] - pass.pairs_ray_variance[b]);
+    out.noise[b] = std::sqrt(pass.variance[b] + light);
+  }
   return out;
 }
 

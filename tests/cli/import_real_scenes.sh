@@ -22,7 +22,7 @@ h="$holodeck"
 cat >"$tmp/expected" <<LINES
 import: 161 faces took their reflectance from textures (map_Kd) (first at $h:616)
 import: 3 faces took their emission from textures (map_Ke) (first at $h:9680)
-import: 1 materials with reflectance >= 1 clamped to 0.98 (first at material 'door')
+import: 1 material with reflectance >= 1 clamped to 0.98 (first at material 'door')
 import: 4 faces with a repeated vertex simplified (first at $h:7693)
 import: 4 zero-area faces dropped (first at $h:7719)
 import: 44 non-planar faces split into triangles (first at $h:6267)

@@ -4,7 +4,8 @@
 // its partial files are gone; the server keeps answering; the FAILED state is written even
 // when SQLite itself finds the disk full (the store's space reserve) and survives a restart;
 // once space is back a small job succeeds with the exact result. A job that cannot fit the
-// disk at all is refused at submit.
+// disk at all is refused at submit, and so is one that does not fit beside the disk the
+// unfinished jobs may still write.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -114,6 +115,32 @@ TEST_F(DiskFullTest, JobThatCannotFitTheDiskIsRefusedAtSubmit) {
   EXPECT_EQ(Watch(job.job_id()).back().state(), v1::JOB_STATE_SUCCEEDED);
 }
 
+// The disk an unfinished job may still write is held for it: a second job that would fit
+// the free space alone, but not beside the first's estimate, is refused until the first
+// ends (both were taken, and could fill the disk between them).
+TEST_F(DiskFullTest, UnfinishedJobsKeepTheirDiskEstimateFromLaterSubmits) {
+  TinyFilesystem disk(data_dir_, 8 << 20);  // ~6.8 MiB free beside the reserve and database
+  ASSERT_TRUE(disk.ok());
+  // The first job writes nothing while the test runs: its blocks take 2 s each, and none is
+  // checkpointed before 16 MiB of them wait.
+  StartServer({"--testing-block-delay-ms", "2000", "--checkpoint-seconds", "1000"});
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");  // ~4.2 MiB of disk
+  v1::Job first, second;
+  ASSERT_TRUE(Submit(options, &first, sha).ok());
+  const grpc::Status status = Submit(options, &second, sha);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+  EXPECT_NE(status.error_message().find("the unfinished jobs may still write 4."),
+            std::string::npos)
+      << status.error_message();
+
+  v1::CancelJobRequest cancel;
+  cancel.set_job_id(first.job_id());
+  ASSERT_TRUE(stub_->CancelJob(Context().get(), cancel, &first).ok());
+  EXPECT_EQ(Watch(first.job_id()).back().state(), v1::JOB_STATE_CANCELLED);
+  EXPECT_TRUE(Submit(options, &second, sha).ok());
+}
+
 // SQLite itself finds the disk full: a RUNNING update is refused with a plain message,
 // and the job's end (FAILED) is still written, in the space the store kept for it.
 TEST_F(DiskFullTest, TheEndOfAJobIsWrittenOnAFullDisk) {
@@ -125,7 +152,7 @@ TEST_F(DiskFullTest, TheEndOfAJobIsWrittenOnAFullDisk) {
   job.set_job_id("job-1");
   job.set_scene_sha256("abc");
   job.set_state(v1::JOB_STATE_RUNNING);
-  ASSERT_TRUE((*store)->CreateJob(job).ok());
+  ASSERT_TRUE((*store)->CreateJob(job, /*request_hash=*/"").ok());
   disk.Fill();
 
   job.set_message(std::string(2 << 20, 'r'));  // far more than the log's slack

@@ -42,7 +42,7 @@ TEST(RowBlockWriter, CheckpointsByBytesBeforeTheIntervalAndStoresEveryBlockInOrd
   ASSERT_TRUE(store.ok()) << store.status();
   v1::Job job;
   job.set_job_id("writer-test");
-  ASSERT_TRUE((*store)->CreateJob(job).ok());
+  ASSERT_TRUE((*store)->CreateJob(job, /*request_hash=*/"").ok());
   constexpr uint32_t kBlockRows = 8;  // ~1.1 KB per block
   {
     RowBlockWriter writer(**store, job.job_id(), kBlockRows, /*interval_seconds=*/3600,

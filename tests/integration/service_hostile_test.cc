@@ -63,33 +63,5 @@ TEST_F(HostileTest, UploadSizesThatOverflowAreRefusedAndTheServerLives) {
   ExpectServerAlive();
 }
 
-// A request_id names one request: a retry gets its job, the same id with another scene or
-// other options is refused (it silently returned the earlier job), and ids are bounded (a
-// 4 MB id broke `radflux list` for every client).
-TEST_F(HostileTest, RequestIdReusedForAnotherRequestIsRefusedAndIdsAreBounded) {
-  StartServer();
-  const std::string sha = UploadCornell();
-  const v1::SolveOptions options = testing::SmallOptions(100, "jacobi");
-  v1::Job first;
-  ASSERT_TRUE(Submit(options, &first, sha, "id-1").ok());
-  v1::Job retry;
-  ASSERT_TRUE(Submit(options, &retry, sha, "id-1").ok());
-  EXPECT_EQ(retry.job_id(), first.job_id());
-
-  v1::SolveOptions other = options;
-  other.set_rays(64);
-  v1::Job refused;
-  const grpc::Status status = Submit(other, &refused, sha, "id-1");
-  EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION) << status.error_message();
-  EXPECT_NE(status.error_message().find(first.job_id()), std::string::npos)
-      << status.error_message();
-  EXPECT_TRUE(refused.job_id().empty());
-
-  v1::Job job;
-  EXPECT_EQ(Submit(options, &job, sha, std::string(129, 'x')).error_code(),
-            grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_TRUE(Submit(options, &job, sha, std::string(128, 'x')).ok());
-}
-
 }  // namespace
 }  // namespace radflux

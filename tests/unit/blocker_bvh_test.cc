@@ -1,5 +1,5 @@
 // The blocker hierarchy (blocker_bvh.h) answers as testing every blocker does (ShaftMayHold,
-// SegmentHitsSurface), for every pair of a cluttered scene of random quadrilaterals.
+// SegmentHitsSurface with MayBlockPair), for every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -44,7 +44,10 @@ TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
       const Vec3 a = shapes[i].centroid + (shapes[i].polygon[j % 4] - shapes[i].centroid) / 3;
       const Vec3 b = shapes[j].centroid + (shapes[j].polygon[i % 4] - shapes[j].centroid) / 3;
       bool hit = false;
-      for (uint32_t k : blockers) hit = hit || (k != i && k != j && SegmentHitsSurface(a, b, shapes[k]));
+      for (uint32_t k : blockers) {
+        hit = hit || (k != i && k != j && SegmentHitsSurface(a, b, shapes[k]) &&
+                      MayBlockPair(shapes[i], shapes[j], shapes[k]));
+      }
       ASSERT_EQ(bvh.SegmentBlocked(a, b, i, j), hit) << "pair " << i << " " << j;
       blocked += hit;
     }

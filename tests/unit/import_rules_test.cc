@@ -73,7 +73,7 @@ TEST(ImportRules, NonConvexFaceIsTriangulatedInItsPlaneKeepingAreaAndFacing) {
   EXPECT_EQ(fix->count, 1u);
   EXPECT_EQ(fix->first, "s.obj:15");
   EXPECT_EQ(scene.import_log.Lines(),
-            std::vector<std::string>{"import: 1 non-convex faces triangulated (first at s.obj:15)"});
+            std::vector<std::string>{"import: 1 non-convex face triangulated (first at s.obj:15)"});
 }
 
 TEST(ImportRules, StrictRefusesTheNonConvexFaceWithItsLine) {
@@ -135,6 +135,21 @@ TEST(ImportRules, ManyFixesOfOneKindAreOneLineWithTheirCount) {
   ASSERT_EQ(scene.import_log.Lines().size(), 1u);
   EXPECT_EQ(Fixup(scene, "non_convex_triangulated")->count, 50u);
   EXPECT_EQ(Fixup(scene, "non_convex_triangulated")->first, "s.obj:15");
+}
+
+TEST(ImportRules, ALineSaysOneInTheSingularAndOtherCountsInThePlural) {
+  ImportLog log;
+  log.Add("clamped", "{material|materials} with reflectance >= 1 clamped to 0.98", "m 'a'");
+  log.Add("overlap", "{pair|pairs} of faces {overlaps|overlap}", "a.obj:3", 0);
+  log.Add("plain", "scene recentred", "", 2);
+  EXPECT_EQ(log.Lines(),
+            (std::vector<std::string>{
+                "import: 1 material with reflectance >= 1 clamped to 0.98 (first at m 'a')",
+                "import: 0 pairs of faces overlap (first at a.obj:3)",
+                "import: 2 scene recentred"}));
+  log.Add("clamped", "", "m 'b'", 2);
+  EXPECT_EQ(log.fixups()[0].Text(), "materials with reflectance >= 1 clamped to 0.98");
+  EXPECT_EQ((ImportFixup{"k", "a {b|c", 1, ""}.Text()), "a {b|c") << "unclosed: left as written";
 }
 
 TEST(ImportRules, CoplanarOverlapsAreReportedAndEdgeNeighboursAreNot) {

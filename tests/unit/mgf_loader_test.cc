@@ -94,6 +94,19 @@ TEST(MgfLoader, ArraysRepeatTheirStatements) {
   const Vec3 expected[6] = {{0, 0, 0}, {0, 5, 0}, {0, 10, 0}, {5, 0, 0}, {5, 5, 0}, {5, 10, 0}};
   for (size_t f = 0; f < 6; ++f) ExpectNear(Corner(*s, f, 0), expected[f]);
   ExpectNear(Corner(*s, 6, 0), {0, 0, 0});
+  // Each element is an object named as MGF's standard parser names it: "a" and its indices.
+  const char* names[7] = {"a0.0", "a0.1", "a0.2", "a1.0", "a1.1", "a1.2", ""};
+  for (size_t f = 0; f < 7; ++f) EXPECT_EQ(s->objects[s->faces[f].object], names[f]) << f;
+}
+
+TEST(MgfLoader, ArrayElementsAreObjectsBelowTheOnesOpenAndAboveTheOnesInside) {
+  absl::StatusOr<Scene> s = Load(std::string(kSquare) +
+                                 "o room\nxf -a 2 -t 5 0 0\no chair\nf s0 s1 s2\no\n"
+                                 "f s0 s1 s2\nxf\nf s0 s1 s2\no\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_EQ(s->faces.size(), 5u);
+  const char* names[5] = {"room.a0.chair", "room.a0", "room.a1.chair", "room.a1", "room"};
+  for (size_t f = 0; f < 5; ++f) EXPECT_EQ(s->objects[s->faces[f].object], names[f]) << f;
 }
 
 TEST(MgfLoader, MirrorReversesWindingSoFacesKeepFacingTheirSide) {
@@ -151,6 +164,7 @@ TEST(MgfLoader, IncludeWithArrayRepeatsTheFile) {
   ASSERT_TRUE(s.ok()) << s.status();
   ASSERT_EQ(s->faces.size(), 3u);
   ExpectNear(Corner(*s, 2, 0), {4, 0, 0});
+  EXPECT_EQ(s->objects[s->faces[2].object], "a2");
 }
 
 TEST(MgfLoader, SkippedAndUnknownEntitiesAreCountedOncePerKind) {

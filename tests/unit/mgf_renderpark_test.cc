@@ -35,10 +35,13 @@ bool Logged(const Scene& scene, const std::string& kind) {
 TEST(MgfRenderPark, EverySceneLoadsWithItsLights) {
   // corridor: 67 f (57 of them the lights, from xf arrays) + 2 cyl x 16 + torus 16 x 16 +
   // sph 16 x 8. examp1: 2 x (cyl 16 + 12 f + 2 prisms of 15 sides + 2 caps + 7 f) + 15 x 4 f.
+  // Objects include each xf array element's (MGF's "a<i>"): corridor's lights are 4 arrays
+  // of up to 19 (lights.a0 .. lights.a18); examp1 has 2 lamps (a0.lamp, a1.lamp, ...) and
+  // 15 vanes (a0.reflector.vane .. a14.reflector.vane).
   const Expected scenes[] = {
       {"cube.mgf", 66, 9, 10, 2},
-      {"corridor.mgf", 67 + 32 + 256 + 128, 9, 12, 57},
-      {"examp1.mgf", 2 * (16 + 12 + 2 * 17 + 7) + 60, 4, 10, 32},
+      {"corridor.mgf", 67 + 32 + 256 + 128, 9, 12 + 19, 57},
+      {"examp1.mgf", 2 * (16 + 12 + 2 * 17 + 7) + 60, 4, 47, 32},
       {"floor_gloss.mgf", 8 + 128, 4, 3, 1},
       {"office2/office2.mgf", 422, 24, 41, 1},
       {"salon/classroom.mgf", 5250, 26, 632, 24},
@@ -65,7 +68,9 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
   }
   // "groen" is cxy 0 0.38, outside every RGB gamut.
   EXPECT_TRUE(Logged(*corridor, "mgf_colour_out_of_gamut"));
-  EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights");
+  // Faces 7 on are the first array of lights, one face per element.
+  EXPECT_EQ(corridor->objects[corridor->faces[6].object], "murenrechts");
+  EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights.a3");
 }
 
 TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {

@@ -201,7 +201,9 @@ TEST(SphericalSampling, TinySolidAnglesKeepThePairConsistent) {
 // The emitter sampler (solid-angle map composed with the cosine warp), for a rectangle, a
 // triangle and a general quad: E[cos / (pi pdf)] is the point-to-polygon form factor, and
 // with the warp the estimate's spread is small (the warp follows the cosine), here for a
-// receiver beside the emitter, where the cosine runs from about 0 to 1 across it.
+// receiver beside the emitter, where the cosine runs from about 0 to 1 across it. The
+// samples come from one EmitterPointSampler set up once (as light sampling uses it), and
+// each equals a fresh SampleEmitterSolidAngle's bit for bit: the set-up keeps no state.
 TEST(SphericalSampling, EmitterSamplesGiveLambertsFormFactor) {
   const auto c = Corners(kRect);
   PatchMesh mesh;
@@ -223,9 +225,15 @@ TEST(SphericalSampling, EmitterSamplesGiveLambertsFormFactor) {
     const double exact = PointToPolygonFormFactor(x, n, polygon);
     const uint32_t count = 4096;
     double mean = 0, mean2 = 0;
+    const EmitterPointSampler sampler(shape, x, n);
     for (uint32_t i = 0; i < count; ++i) {
-      const EmitterSample e =
-          SampleEmitterSolidAngle(shape, x, n, MultiJitteredSample(i, count, 31));
+      const Point2 u = MultiJitteredSample(i, count, 31);
+      const EmitterSample e = sampler(u);
+      const EmitterSample fresh = SampleEmitterSolidAngle(shape, x, n, u);
+      ASSERT_EQ(e.pdf, fresh.pdf);
+      ASSERT_EQ(e.point.x, fresh.point.x);
+      ASSERT_EQ(e.point.y, fresh.point.y);
+      ASSERT_EQ(e.point.z, fresh.point.z);
       ASSERT_GT(e.pdf, 0);
       const double v = std::max(0.0, Dot(n, Normalize(e.point - x))) / (std::numbers::pi * e.pdf);
       mean += v / count;

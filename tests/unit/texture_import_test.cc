@@ -1,8 +1,7 @@
-// OBJ textures (solver/scene/obj_textures.h, texture_image.h): a face's reflectance is Kd
+// OBJ textures (solver/scene/face_textures.h, texture_image.h): a face's reflectance is Kd
 // times the mean of its map_Kd texture over the face's footprint (sRGB decoded), a face
-// whose map_d alpha is 0 is dropped, a missing texture is one log line and Kd stays.
+// whose map_d alpha averages below 0.5 is dropped, a missing texture is one log line and Kd stays.
 #include <gtest/gtest.h>
-#include <stb/stb_image_write.h>
 #include <stdlib.h>
 
 #include <algorithm>
@@ -11,28 +10,19 @@
 
 #include "solver/scene/load_scene.h"
 #include "solver/scene/texture_image.h"
+#include "tests/unit/texture_test_png.h"
 
 namespace radflux {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A PNG of `width` x `height` RGBA pixels (rows from the top).
-std::string Png(int width, int height, const std::vector<unsigned char>& rgba) {
-  std::string bytes;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
-      },
-      &bytes, width, height, 4, rgba.data(), 4 * width);
-  return bytes;
-}
+using testing::Linear;
+using testing::Png;
 
 // Top-left, top-right, bottom-left, bottom-right: sRGB bytes, the bottom-right transparent.
 const std::vector<unsigned char> kTexels = {128, 64, 255, 255, 0,   255, 0,   255,
                                             10,  20, 30,  255, 200, 200, 200, 0};
-
-double Linear(unsigned char v) { return static_cast<float>(SrgbToLinear(v / 255.0)); }
 
 class TextureImportTest : public ::testing::Test {
  protected:
@@ -75,7 +65,7 @@ TEST_F(TextureImportTest, AQuadOverOneTexelTakesExactlyThatTexelsLinearValueTime
       << "the untextured lamp keeps its Kd";
   ASSERT_FALSE(s->import_log.empty());
   EXPECT_EQ(s->import_log.Lines().front(),
-            "import: 1 faces took their reflectance from textures (map_Kd) (first at " + dir_ +
+            "import: 1 face took its reflectance from textures (map_Kd) (first at " + dir_ +
                 "/s.obj:17)");
 }
 
@@ -97,7 +87,7 @@ TEST_F(TextureImportTest, AQuadOverTheWholeTextureTakesTheMeanOfItsTexels) {
       << "u in [-.5, -.25] repeats onto [.5, .75]: the top-right texel";
 }
 
-TEST_F(TextureImportTest, AFullyTransparentFaceIsDroppedWithOneLogLine) {
+TEST_F(TextureImportTest, AMostlyTransparentFaceIsDroppedWithOneLogLine) {
   // The bottom-right texel has alpha 0: a quad over it is cut out, the lamp stays.
   absl::StatusOr<Scene> s = Load("vt .5 0\nvt 1 0\nvt 1 .5\nvt .5 .5\n",
                                  "map_Kd tex/checker.png\nmap_d tex/checker.png\n");
@@ -105,8 +95,8 @@ TEST_F(TextureImportTest, AFullyTransparentFaceIsDroppedWithOneLogLine) {
   EXPECT_EQ(s->faces.size(), 1u);
   const std::vector<std::string> lines = s->import_log.Lines();
   EXPECT_NE(std::find(lines.begin(), lines.end(),
-                      "import: 1 faces fully transparent in their alpha texture (map_d) dropped "
-                      "(first at " +
+                      "import: 1 face mostly transparent (mean alpha < 0.5) in its alpha "
+                      "texture (map_d) dropped (first at " +
                           dir_ + "/s.obj:17)"),
             lines.end());
 }
@@ -117,7 +107,7 @@ TEST_F(TextureImportTest, AMissingTextureKeepsKdAndSaysWhichFile) {
   for (int b = 0; b < 3; ++b) EXPECT_NEAR(Wall(*s).reflectance[b], (Rgb{0.8, 0.6, 0.4})[b], 1e-15);
   ASSERT_FALSE(s->import_log.empty());
   EXPECT_EQ(s->import_log.Lines().front(),
-            "import: 1 textures not read, their materials' Kd/Ke used as they are (first at "
+            "import: 1 texture not read; the materials using it keep their Kd/Ke (first at "
             "missing.png: no such file)");
 }
 
@@ -141,6 +131,19 @@ TEST(TextureImage, SrgbDecodeMatchesTheStandardsEndsAndBreak) {
   EXPECT_DOUBLE_EQ(SrgbToLinear(0.04045), 0.04045 / 12.92);
   EXPECT_NEAR(SrgbToLinear(0.5), 0.214041, 1e-6);
   EXPECT_FALSE(DecodeTexture("not an image", "x.png").ok());
+}
+
+TEST(TextureImage, AnImageLargerThanTheLimitIsRefusedBeforeItsPixelsAreAllocated) {
+  // A PNG header that claims 5000 x 5000 RGBA texels; no pixel data follows.
+  const auto word = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + word(13) + "IHDR" + word(5000) +
+                          word(5000) + std::string("\x08\x06\x00\x00\x00", 5) + word(0);
+  const absl::StatusOr<TextureImage> image = DecodeTexture(png, "huge.png");
+  ASSERT_FALSE(image.ok());
+  EXPECT_EQ(image.status().message(), "huge.png: 5000 x 5000 texels, more than 16777216");
 }
 
 TEST(TextureImage, ClippedFootprintsAgreeWithTheSeparableRectangleMean) {

@@ -1,6 +1,7 @@
 // View-factor outputs (solver/formfactor/view_factor_writer.h) read back: sparse lines plus
 // the dropped column give every row's sum, SVF = max(0, 1 - sum), View3D's text layout; and
-// the enclosure adjustment (enclosure_adjust.h) reaches closure and reciprocity.
+// the enclosure adjustment (enclosure_adjust.h) reaches closure and reciprocity; rows summing
+// above 1 beyond their allowance are counted (`radflux viewfactors` exits 4 on them).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "solver/formfactor/enclosure_adjust.h"
+#include "solver/formfactor/view_factor_job.h"
 #include "solver/formfactor/view_factor_writer.h"
 
 namespace radflux {
@@ -116,6 +118,17 @@ TEST(ViewFactorOutput, UnwritableFileIsNamed) {
 
 // The unit cube's six faces: F to the opposite face 0.19982 (Howell C-11, a = b = c = 1),
 // to each adjacent face (1 - 0.19982) / 4. Perturbed by a few percent, then adjusted.
+TEST(RowSumCheck, CountsRowsAboveOnePlusAllowanceAndKeepsTheWorst) {
+  RowSumCheck check;
+  check.allowance = 0.01;
+  const std::vector<std::vector<double>> rows = {
+      {0.5, 0.5}, {0.5, 0.509}, {0.6, 0.5}, {0.2, 0.3}, {0.7, 0.32}};
+  for (size_t i = 0; i < rows.size(); ++i) check.Add(i, rows[i]);
+  EXPECT_EQ(check.rows_over, 2u);  // 1.1 and 1.02; 1.009 is within the allowance
+  EXPECT_EQ(check.worst_row, 2u);
+  EXPECT_DOUBLE_EQ(check.worst_sum, 1.1);
+}
+
 TEST(EnclosureAdjust, ReachesClosureAndReciprocityAndStaysNearTheTruth) {
   const double opposite = 0.1998243, adjacent = (1 - opposite) / 4;
   std::vector<std::vector<double>> f(6, std::vector<double>(6));

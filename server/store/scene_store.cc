@@ -1,0 +1,122 @@
+// JobStore's scenes: content-addressed scene files under scenes/, their rows in the
+// database, and which principals own each (see job_store.h).
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+#include "server/store/blob_file.h"
+#include "server/store/job_store.h"
+#include "server/store/sqlite_statement.h"
+
+namespace radflux {
+namespace {
+
+namespace fs = std::filesystem;
+using store_sql::SqlError;
+using store_sql::Statement;
+
+}  // namespace
+
+bool JobStore::HasScene(const std::string& sha256) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, "SELECT 1 FROM scenes WHERE sha256 = ?");
+  st.Bind(1, sha256);
+  return st.ok() && st.Step() == SQLITE_ROW;
+}
+
+absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
+  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  const auto write = [&](const std::string& suffix, const std::string& text) {
+    absl::Status s = WriteBlobFile(base + suffix, text, "a scene");
+    if (!s.ok()) {  // no part of the scene stays behind
+      std::error_code ec;
+      for (const char* part : {".mesh.rfb", ".obj.rfb", ".mtl.rfb", ".files.rfb", ".bundle.rfb"}) {
+        fs::remove(base + part, ec);
+      }
+    }
+    return s;
+  };
+  if (!scene.files.empty()) {
+    v1::SceneHeader index;  // the files' paths and sizes; their bytes follow in .bundle.rfb
+    std::string data;
+    for (const BundleFile& file : scene.files) {
+      v1::BundleFile* entry = index.add_files();
+      entry->set_path(file.path);
+      entry->set_size(file.data.size());
+      data += file.data;
+    }
+    if (absl::Status s = write(".files.rfb", index.SerializeAsString()); !s.ok()) return s;
+    if (absl::Status s = write(".bundle.rfb", data); !s.ok()) return s;
+  } else if (!scene.mesh.empty()) {
+    if (absl::Status s = write(".mesh.rfb", scene.mesh); !s.ok()) return s;
+  } else {
+    if (absl::Status s = write(".obj.rfb", scene.obj); !s.ok()) return s;
+    if (absl::Status s = write(".mtl.rfb", scene.mtl); !s.ok()) return s;
+  }
+  std::lock_guard lock(mu_);
+  Statement st(db_,
+               "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
+               "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
+  st.Bind(1, sha256);
+  st.Bind(2, scene.name);
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "a scene");
+  return absl::OkStatus();
+}
+
+absl::StatusOr<StoredScene> JobStore::GetBundle(const std::string& base, const std::string& name) {
+  absl::StatusOr<std::string> index = ReadBlobFile(base + ".files.rfb");
+  if (!index.ok()) return index.status();
+  absl::StatusOr<std::string> data = ReadBlobFile(base + ".bundle.rfb");
+  if (!data.ok()) return data.status();
+  v1::SceneHeader header;
+  if (!header.ParseFromString(*index)) return absl::DataLossError(base + ".files.rfb: corrupt");
+  header.set_name(name);
+  return SplitScenePayload(header, *data);
+}
+
+absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
+  StoredScene scene;
+  {
+    std::lock_guard lock(mu_);
+    Statement st(db_, "SELECT name FROM scenes WHERE sha256 = ?");
+    st.Bind(1, sha256);
+    if (!st.ok() || st.Step() != SQLITE_ROW) {
+      return absl::NotFoundError(
+          absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
+    }
+    scene.name = st.Column(0);
+  }
+  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  if (std::error_code ec; fs::exists(base + ".files.rfb", ec)) return GetBundle(base, scene.name);
+  if (std::error_code ec; fs::exists(base + ".mesh.rfb", ec)) {
+    absl::StatusOr<std::string> mesh = ReadBlobFile(base + ".mesh.rfb");
+    if (!mesh.ok()) return mesh.status();
+    scene.mesh = *std::move(mesh);
+    return scene;
+  }
+  absl::StatusOr<std::string> obj = ReadBlobFile(base + ".obj.rfb");
+  if (!obj.ok()) return obj.status();
+  absl::StatusOr<std::string> mtl = ReadBlobFile(base + ".mtl.rfb");
+  if (!mtl.ok()) return mtl.status();
+  scene.obj = *std::move(obj);
+  scene.mtl = *std::move(mtl);
+  return scene;
+}
+
+absl::Status JobStore::AddSceneOwner(const std::string& sha256, const std::string& owner) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, "INSERT OR IGNORE INTO scene_owners(sha256, owner) VALUES(?, ?)");
+  st.Bind(1, sha256);
+  st.Bind(2, owner);
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "a scene's owner");
+  return absl::OkStatus();
+}
+
+bool JobStore::SceneOwnedBy(const std::string& sha256, const std::string& owner) {
+  std::lock_guard lock(mu_);
+  Statement st(db_, "SELECT 1 FROM scene_owners WHERE sha256 = ? AND owner = ?");
+  st.Bind(1, sha256);
+  st.Bind(2, owner);
+  return st.ok() && st.Step() == SQLITE_ROW;
+}
+
+}  // namespace radflux
