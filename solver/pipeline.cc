@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "solver/formfactor/cell_direct.h"
 #include "solver/formfactor/row_context.h"
 #include "solver/hierarchical/hierarchical_job.h"
 #include "solver/scene/validation.h"
@@ -107,6 +108,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   if (!mesh.ok()) return mesh.status();
   job->mesh = std::move(mesh->mesh);
   job->clusters = std::move(mesh->clusters);
+  job->cells = std::move(mesh->cells);
   job->mesh_stats = ComputeMeshStats(job->mesh);
   job->attributes = job->clusters.empty()
                         ? ComputePatchAttributes(job->scene, job->mesh)
@@ -117,7 +119,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
   if (!caster.ok()) return caster.status();
   job->caster = *std::move(caster);
-  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters);
+  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
   job->embree_seconds = SecondsSince(start);
   return job;
 }
@@ -183,7 +185,14 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
       {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)});
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
-  result.solve.radiosity = PushDownToPatches(clusters, result.solve.radiosity);
+  result.unknown_radiosity = result.solve.radiosity;
+  CellDirectResult pushed = PushDownWithCellDirect(result.job->rows, result.job->attributes,
+                                                   result.unknown_radiosity, options.form_factors);
+  result.solve.radiosity = std::move(pushed.radiosity);
+  result.direct_cells = pushed.cells;
+  result.direct_rays = pushed.rays;
+  result.direct_lifted = pushed.lifted;
+  result.timings.direct = pushed.seconds;
   return absl::OkStatus();
 }
 

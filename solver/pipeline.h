@@ -65,6 +65,7 @@ struct PreparedJob {
   Scene scene;
   PatchMesh mesh;
   PatchClusters clusters;  // empty: one unknown per patch
+  PatchClusters cells;     // grouped: the direct-light cells (face_grouping.h); else empty
   MeshStats mesh_stats;
   PatchAttributes attributes;  // per unknown
   std::unique_ptr<EmbreeRayCaster> caster;
@@ -91,6 +92,7 @@ uint64_t EstimateJobBytes(uint64_t patches, const JobOptions& options);
 
 struct JobTimings {
   double load = 0, mesh = 0, embree = 0, rows = 0, solve = 0;  // seconds per phase
+  double direct = 0;  // grouped: the cells' direct light after the solve (cell_direct.h)
 };
 
 struct JobResult {
@@ -103,6 +105,10 @@ struct JobResult {
   RowBlockStats row_stats;
   SolveResult solve;
   JobTimings timings;
+  // Grouped jobs: the solved B per unknown (solve.radiosity is then per patch, with each
+  // direct-light cell's own direct light), and what the cells' pass did.
+  std::vector<Rgb> unknown_radiosity;
+  uint64_t direct_cells = 0, direct_rays = 0, direct_lifted = 0;
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
   // by one or more patches): the energy balance of the system that was solved, or why there
   // is none (hierarchical: light moves along links, there are no rows). The report uses it
@@ -125,8 +131,10 @@ struct JobCallbacks {
 };
 
 // After the solve of a job whose faces were grouped: the balance of the solved (grouped)
-// system into result.solved_balance, then result.solve.radiosity pushed down to one value
-// per patch (each patch its group's B). Nothing to do when the faces were not grouped.
+// system into result.solved_balance, the solved B into result.unknown_radiosity, then
+// result.solve.radiosity pushed down to one value per patch: its group's B with its
+// direct-light cell's own direct light (PushDownWithCellDirect; the group's area-weighted
+// mean stays its B). Nothing to do when the faces were not grouped.
 absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result);
 
 // Runs all phases in-process on options.form_factors.threads threads.

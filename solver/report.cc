@@ -124,7 +124,8 @@ nlohmann::json DroppedPowerJson(const JobResult& result) {
 
 // The unknowns against the faces and patches: how many groups of patches (face_grouping.h)
 // the solve had, and their sizes.
-nlohmann::json UnknownsJson(const PreparedJob& job) {
+nlohmann::json UnknownsJson(const JobResult& result) {
+  const PreparedJob& job = *result.job;
   const PatchClusters& c = job.clusters;
   size_t groups = 0, grouped = 0, largest = c.empty() ? 1 : 0;
   for (uint32_t u = 0; u < c.size(); ++u) {
@@ -139,7 +140,11 @@ nlohmann::json UnknownsJson(const PreparedJob& job) {
           {"grouped", !c.empty()},
           {"groups", groups},
           {"grouped_patches", grouped},
-          {"largest_group", largest}};
+          {"largest_group", largest},
+          {"direct_cells", job.cells.size()},
+          {"direct_cells_sampled", result.direct_cells},
+          {"direct_rays", result.direct_rays},
+          {"direct_lifted_patches", result.direct_lifted}};
 }
 
 // Where the rows lived when they spilled (before the report's own pass over them).
@@ -193,7 +198,7 @@ nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
       {"mesh",
        {{"faces", job.scene.faces.size()},
         {"patches", job.mesh_stats.patches},
-        {"unknowns", UnknownsJson(job)},
+        {"unknowns", UnknownsJson(result)},
         {"min_area", job.mesh_stats.min_area},
         {"max_area", job.mesh_stats.max_area},
         {"max_aspect", job.mesh_stats.max_aspect}}},
@@ -204,7 +209,12 @@ nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
         {"dropped_sum", result.row_stats.dropped_sum},
         {"max_row_dropped", result.row_stats.max_row_dropped},
         {"dropped_power_estimate", DroppedPowerJson(result)}}},
-      {"seconds", {{"mesh", t.mesh}, {"embree", t.embree}, {"rows", t.rows}, {"solve", t.solve}}},
+      {"seconds",
+       {{"mesh", t.mesh},
+        {"embree", t.embree},
+        {"rows", t.rows},
+        {"solve", t.solve},
+        {"direct", t.direct}}},
       {"rays", result.row_stats.rays},
       {"rays_per_second", t.rows > 0 ? result.row_stats.rays / t.rows : 0.0},
       {"solve",

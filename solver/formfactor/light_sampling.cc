@@ -18,6 +18,8 @@ constexpr uint64_t kLightPointStream = 21;
 constexpr uint64_t kLightChoiceStream = 22;
 constexpr uint64_t kLightDirectionStream = 23;
 constexpr uint64_t kRejectionStream = 24;
+// Cells' sample patterns apart from the rows' (which are seeded from (seed, unknown)).
+constexpr uint64_t kCellSeed = 0xce11d1ec7ull;
 
 // From this unoccluded form factor on, a light sample's direction is drawn exactly in
 // proportion to the receiver's cosine within the emitter (cosine-weighted directions until
@@ -66,14 +68,12 @@ int NearFieldFactor(double radius, double distance) {
   return static_cast<int>(std::clamp(std::ceil(ratio * ratio), 1.0, kMaxNearFieldFactor));
 }
 
-// NearFieldFactor of unknown i: a patch's size about its centroid against the nearest
-// emitter's distance from there; a group's (the members' vertices about the area-weighted
-// centroid, seen along the area-weighted normal), at one distance query per row.
-int UnknownNearFieldFactor(const RowContext& context, uint32_t i, const LightTree& tree) {
-  const PatchMesh& mesh = *context.mesh;
-  const std::span<const uint32_t> members =
-      context.SinglePatch(i) ? std::span<const uint32_t>() : context.clusters->Members(i);
-  const uint32_t first = context.FirstPatch(i);
+// NearFieldFactor of a set of patches (`members`; empty: the single patch `first`): a patch's
+// size about its centroid against the nearest emitter's distance from there; a set's (the
+// members' vertices about the area-weighted centroid, seen along the area-weighted normal),
+// at one distance query per set.
+int SetNearFieldFactor(const PatchMesh& mesh, uint32_t first, std::span<const uint32_t> members,
+                       const LightTree& tree) {
   Vec3 centroid = mesh.patches[first].centroid, normal = mesh.patches[first].normal;
   if (!members.empty()) {
     Vec3 weighted, summed;
@@ -147,7 +147,30 @@ class LightSampler::PointChooser {
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
-  points *= UnknownNearFieldFactor(context_, i, tree_);
+  const std::span<const uint32_t> members =
+      context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
+  points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, tree_);
+  return AddSamples(UnknownPointSampler(*context_.mesh, context_.clusters, i), i, points, per_point,
+                    seed, i, row);
+}
+
+uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed,
+                                             RowAccumulator& row) const {
+  if (tree_.empty() || budget < 1) return 0;
+  const std::span<const uint32_t> members = context_.cells->Members(c);
+  const uint32_t receiver = context_.UnknownOf(members[0]);
+  const int cells = static_cast<int>(context_.CellsOf(receiver).size());
+  const int points =
+      (budget + cells - 1) / std::max(cells, 1) *
+      SetNearFieldFactor(*context_.mesh, members[0],
+                         members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
+  return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, 1,
+                    seed ^ kCellSeed, c, row);
+}
+
+uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
+                                  int points, int per_point, uint64_t seed, uint64_t index,
+                                  RowAccumulator& row) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -157,13 +180,12 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   directions.resize(count);
   rays.clear();
   pending.clear();
-  MultiJitteredSamples(PatternSeed(seed, i, kLightPointStream), on_patch);
-  MultiJitteredSamples(PatternSeed(seed, i, kLightDirectionStream), directions);
-  const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, i);
+  MultiJitteredSamples(PatternSeed(seed, index, kLightPointStream), on_patch);
+  MultiJitteredSamples(PatternSeed(seed, index, kLightDirectionStream), directions);
   for (size_t p = 0; p < on_patch.size(); ++p) {
     const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
     const SurfacePoint at = sample_point(on_patch[p]);
-    SamplePoint(at.x, at.n, i, seed, i, first,
+    SamplePoint(at.x, at.n, receiver, seed, index, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
   }
   context_.caster->OccludedStream(rays);

@@ -1,9 +1,10 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
-// patch a few samples share each point, on a group each takes its own), one emitter j chosen with probability P(j | x) (by the
-// LightTree, or among at most 16 emitters by their exact unoccluded contributions), a direction in
-// the solid angle Omega_j that j subtends at x with pdf (uniform, 1 / Omega_j, warped towards the
-// receiver's cosine: SampleEmitterSolidAngle), and one shadow ray. The sample adds
+// patch a few samples share each point, on a group each takes its own), one emitter j chosen with
+// probability P(j | x) (by the LightTree, or among at most 16 emitters by their exact unoccluded
+// contributions), a direction in the solid angle Omega_j that j subtends at x with pdf (uniform, 1
+// / Omega_j, warped towards the receiver's cosine: SampleEmitterSolidAngle), and one shadow ray.
+// The sample adds
 //     cos(theta_x) V / (pi pdf P(j | x) budget)
 // to F_ij. Its expectation over x, j and the direction is
 //     (1 / A_i) integral_{A_i} (1 / pi) integral_{Omega_j} cos(theta_x) V dw dA = F_ij
@@ -41,6 +42,14 @@ class LightSampler {
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                              RowAccumulator& row) const;
 
+  // Adds the estimate of F_cj, cell c's (context.cells) area-averaged form factor to each
+  // emitter unknown j, to `row`: cell c of a group of k cells takes ceil(budget / k) light
+  // samples (times its own near-field factor), each at its own stratified point over the
+  // cell's patches by area, seeded from (seed, c) apart from the rows' patterns. So the
+  // cells of a group share one row's budget of light samples, spread over the group's cells
+  // (cell_direct.h). Returns the shadow rays cast.
+  uint64_t AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed, RowAccumulator& row) const;
+
   // One light sample waiting for its shadow ray: the emitter patch it chose and its
   // estimate of that emitter's form factor F_j(x) from the receiver point, if the ray is
   // unoccluded (divide by the samples drawn at the point: their mean estimates F_j(x)).
@@ -59,6 +68,11 @@ class LightSampler {
 
  private:
   class PointChooser;
+
+  // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
+  // `receiver` (never its own emitter), patterns seeded from (seed, index).
+  uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
+                      int per_point, uint64_t seed, uint64_t index, RowAccumulator& row) const;
 
   const RowContext& context_;
   LightTree tree_;

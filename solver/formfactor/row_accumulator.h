@@ -36,6 +36,15 @@ class RowAccumulator {
   double Value(uint32_t j) const { return value_[j]; }
   const std::vector<uint32_t>& Touched() const { return touched_; }
 
+  // Empties the row (for a caller that reads it with Value and Touched and keeps no block).
+  void Clear() {
+    for (uint32_t j : touched_) {
+      value_[j] = 0;
+      marked_[j / 64] = 0;
+    }
+    touched_.clear();
+  }
+
   // Moves the row into `block` (ascending columns, entries >= cutoff, and every entry in
   // a column with keep[j] != 0: emitter columns, which carry direct light however small
   // the form factor) and clears it; returns the sum of the entries the cut-off dropped.

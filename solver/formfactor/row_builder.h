@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -28,6 +29,11 @@ struct RowContext {
   const PatchMesh* mesh = nullptr;
   const RayCaster* caster = nullptr;
   const PatchClusters* clusters = nullptr;  // null: unknown u is patch u
+  // Grouped: the direct-light cells (face_grouping.h), each inside one unknown, which get
+  // their own direct light after the solve (cell_direct.h).
+  const PatchClusters* cells = nullptr;
+  std::vector<uint32_t> cell_first, cell_order;  // cells of unknown u, in cell order:
+                                                 // cell_order[cell_first[u], cell_first[u + 1])
   std::vector<uint8_t> needs_row;  // per unknown, 1 where rho > 0 in some band: only those get rows
   std::vector<uint8_t> emitter;    // 1 where the unknown emits
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;
@@ -45,6 +51,11 @@ struct RowContext {
     return clusters == nullptr || clusters->first[u + 1] - clusters->first[u] == 1;
   }
   uint32_t FirstPatch(uint32_t u) const { return clusters ? clusters->Members(u)[0] : u; }
+  // The direct-light cells of unknown u (empty without cells).
+  std::span<const uint32_t> CellsOf(uint32_t u) const {
+    if (cells == nullptr) return {};
+    return {cell_order.data() + cell_first[u], cell_order.data() + cell_first[u + 1]};
+  }
   // Unknown u's area, scene units^2.
   double Area(uint32_t u) const { return clusters ? clusters->area[u] : mesh->patches[u].area; }
 };

@@ -3,7 +3,8 @@
 namespace radflux {
 
 RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
-                          const RayCaster& caster, const PatchClusters* clusters) {
+                          const RayCaster& caster, const PatchClusters* clusters,
+                          const PatchClusters* cells) {
   RowContext context;
   context.mesh = &mesh;
   context.caster = &caster;
@@ -17,6 +18,19 @@ RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attribut
     context.needs_row[p] = MaxComponent(attributes.reflectance[p]) > 0;
     context.emitter[p] = MaxComponent(attributes.emission[p]) > 0;
     for (int b = 0; b < kBands; ++b) context.emission[p] += attributes.emission[p][b];
+  }
+  if (context.clusters != nullptr && cells != nullptr && !cells->empty()) {
+    context.cells = cells;
+    context.cell_first.assign(n + 1, 0);
+    for (uint32_t c = 0; c < cells->size(); ++c) {
+      ++context.cell_first[context.UnknownOf(cells->Members(c)[0]) + 1];
+    }
+    for (size_t u = 0; u < n; ++u) context.cell_first[u + 1] += context.cell_first[u];
+    context.cell_order.resize(cells->size());
+    std::vector<uint32_t> next(context.cell_first.begin(), context.cell_first.end() - 1);
+    for (uint32_t c = 0; c < cells->size(); ++c) {
+      context.cell_order[next[context.UnknownOf(cells->Members(c)[0])]++] = c;
+    }
   }
   return context;
 }

@@ -1,8 +1,8 @@
 #include "solver/mesh/face_grouping.h"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <numbers>
 #include <queue>
 #include <tuple>
@@ -27,17 +27,20 @@ double TotalFaceArea(const Scene& scene) {
 // `order`), built by top-down median splits, and the cut of them into groups.
 class GroupTree {
  public:
-  GroupTree(const PatchMesh& mesh, std::vector<uint32_t>& order)
+  // `target_area`: a*, the area of a group of the cut when the budget spreads evenly.
+  GroupTree(const PatchMesh& mesh, std::vector<uint32_t>& order, double target_area)
       : mesh_(mesh),
         min_cos_(std::cos(kMaxConeDegrees * std::numbers::pi / 180)),
+        normal_split_extent_(kMaxExtent * std::sqrt(target_area)),
         order_(order) {}
 
   // Builds the tree of order[begin, end) and makes it a root.
   void AddRoot(size_t begin, size_t end) { roots_.push_back(Build(begin, end)); }
 
-  // Numbers the nodes of a cut with `budget` nodes (or fewer, when every node of the cut is
-  // one patch) into group_of, from `next_group` on.
-  void Cut(int64_t budget, std::vector<uint32_t>& group_of, uint32_t& next_group) const {
+  // The nodes of the cut with `budget` nodes (or fewer, when every node of the cut is one
+  // patch), in index order. The cut is greedy (largest priority first), so a larger budget
+  // gives a refinement of a smaller one: each of its nodes lies inside one of the smaller's.
+  std::vector<uint32_t> CutNodes(int64_t budget) const {
     std::priority_queue<std::pair<double, uint32_t>> open;
     for (uint32_t r : roots_) open.push({nodes_[r].priority, r});
     std::vector<uint32_t> cut;
@@ -54,9 +57,15 @@ class GroupTree {
     }
     for (; !open.empty(); open.pop()) cut.push_back(open.top().second);
     std::sort(cut.begin(), cut.end());
+    return cut;
+  }
+
+  // Numbers the patches of each node of `cut` into set_of, one number per node from `next` on.
+  void Number(const std::vector<uint32_t>& cut, std::vector<uint32_t>& set_of,
+              uint32_t& next) const {
     for (uint32_t k : cut) {
-      for (size_t m = nodes_[k].begin; m < nodes_[k].end; ++m) group_of[order_[m]] = next_group;
-      ++next_group;
+      for (size_t m = nodes_[k].begin; m < nodes_[k].end; ++m) set_of[order_[m]] = next;
+      ++next;
     }
   }
 
@@ -85,14 +94,19 @@ class GroupTree {
     }
     const double extent = Length(hi - lo);
     const uint32_t index = static_cast<uint32_t>(nodes_.size());
-    nodes_.push_back({begin, end, {kUnassigned, kUnassigned},
+    nodes_.push_back({begin,
+                      end,
+                      {kUnassigned, kUnassigned},
                       std::max(area, (extent / kMaxExtent) * (extent / kMaxExtent)) *
                           (1 + kConeWeight * (1 - min_cos))});
     if (end - begin == 1) return index;
-    // Bent (normals beyond the cone): split the normals first; flat: split the centroids.
-    const bool by_normal = min_cos < min_cos_;
+    // Bent (normals beyond the cone) and no larger than a group: split the normals; else
+    // split the centroids (a bent node spanning the scene, all chairs of a room, is split in
+    // space first: split by normals, its children would span the room as it does).
+    const bool by_normal = min_cos < min_cos_ && extent <= normal_split_extent_;
     const Vec3 spread = by_normal ? n_hi - n_lo : hi - lo;
-    const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+    const int axis =
+        spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
     const auto key = [&](uint32_t p) {
       const Vec3& v = by_normal ? mesh_.patches[p].normal : mesh_.patches[p].centroid;
       return std::make_pair(axis == 0 ? v.x : (axis == 1 ? v.y : v.z), p);
@@ -117,10 +131,25 @@ class GroupTree {
 
   const PatchMesh& mesh_;
   double min_cos_;
+  double normal_split_extent_;  // scene units
   std::vector<uint32_t>& order_;
   std::vector<Node> nodes_;
   std::vector<uint32_t> roots_;
 };
+
+// Renumbers sets (0..count-1 in set_of) in the order of their first patch (emitters and walls
+// keep the scene's order; a set's rows sit near its neighbours').
+PatchClusters NumberByFirstPatch(const PatchMesh& mesh, const std::vector<uint32_t>& set_of,
+                                 uint32_t count) {
+  std::vector<uint32_t> renumber(count, kUnassigned), of_patch(set_of.size());
+  uint32_t next = 0;
+  for (uint32_t p = 0; p < set_of.size(); ++p) {
+    uint32_t& u = renumber[set_of[p]];
+    if (u == kUnassigned) u = next++;
+    of_patch[p] = u;
+  }
+  return ClustersFromAssignment(mesh, std::move(of_patch), next);
+}
 
 }  // namespace
 
@@ -129,15 +158,16 @@ bool GroupsFaces(const Scene& scene, const MeshOptions& options) {
          static_cast<int64_t>(scene.faces.size()) >= options.target_patches;
 }
 
-PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns) {
+PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns,
+                           PatchClusters* cells) {
   const uint32_t n = static_cast<uint32_t>(mesh.size());
   std::vector<uint32_t> group_of(n, kUnassigned);
   // The non-emitting patches, sorted by (object, material, sidedness): a tree per run.
   std::vector<uint32_t> small;
-  uint32_t groups = 0;
+  uint32_t emitters = 0;
   for (uint32_t p = 0; p < n; ++p) {
     if (scene.materials[scene.faces[mesh.patches[p].face].material].IsEmitter()) {
-      group_of[p] = groups++;
+      group_of[p] = emitters++;
     } else {
       small.push_back(p);
     }
@@ -148,24 +178,25 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   };
   std::stable_sort(small.begin(), small.end(),
                    [&](uint32_t a, uint32_t b) { return set_of(a) < set_of(b); });
-  GroupTree trees(mesh, small);
+  double small_area = 0;
+  for (uint32_t p : small) small_area += mesh.patches[p].area;
+  GroupTree trees(mesh, small,
+                  small_area / static_cast<double>(std::max<int64_t>(unknowns - emitters, 1)));
   for (size_t begin = 0; begin < small.size();) {
     size_t end = begin + 1;
     while (end < small.size() && set_of(small[end]) == set_of(small[begin])) ++end;
     trees.AddRoot(begin, end);
     begin = end;
   }
-  trees.Cut(unknowns - groups, group_of, groups);
-  // Number the unknowns in the order of their first patch (emitters and walls keep the
-  // scene's order; a group's rows sit near its neighbours').
-  std::vector<uint32_t> renumber(groups, kUnassigned), of_patch(n);
-  uint32_t next = 0;
-  for (uint32_t p = 0; p < n; ++p) {
-    uint32_t& u = renumber[group_of[p]];
-    if (u == kUnassigned) u = next++;
-    of_patch[p] = u;
+  if (cells != nullptr) {
+    std::vector<uint32_t> cell_of = group_of;
+    uint32_t count = emitters;
+    trees.Number(trees.CutNodes(kDirectCellsPerUnknown * (unknowns - emitters)), cell_of, count);
+    *cells = NumberByFirstPatch(mesh, cell_of, count);
   }
-  return ClustersFromAssignment(mesh, std::move(of_patch), next);
+  uint32_t groups = emitters;
+  trees.Number(trees.CutNodes(unknowns - emitters), group_of, groups);
+  return NumberByFirstPatch(mesh, group_of, groups);
 }
 
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
@@ -183,7 +214,7 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
   absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, split);
   if (!mesh.ok()) return mesh.status();
   out.mesh = *std::move(mesh);
-  out.clusters = GroupPatches(scene, out.mesh, options.target_patches);
+  out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells);
   return out;
 }
 

@@ -7,9 +7,12 @@
 //    of its own (light sampling needs emitters as single polygons);
 //  - the other patches are put, per (object, material, two-sidedness), in a binary tree by top-down
 //    median splits (a BVH build): a node whose normals spread beyond kMaxConeDegrees of their
-//    area-weighted mean is split along the normal component that varies most (so that groups
-//    are flat, and a group's rays seldom hit the group itself), any other node along its
-//    centroids' longest axis;
+//    area-weighted mean and whose centroids span at most kMaxExtent sqrt(a*) is split along
+//    the normal component that varies most (so that groups are flat, and a group's rays
+//    seldom hit the group itself), any other node along its centroids' longest axis (a bent
+//    node as large as a room, all its chairs, is split in space first: split by normals, its
+//    children would span the room as it does, and the cut would spend the unknowns on them
+//    before the ceiling got any);
 //  - the unknowns are a cut of these trees with N nodes in all (fewer only when the trees
 //    run out of nodes): starting from the roots, the node of largest
 //        max(area, (diagonal / kMaxExtent)^2) * (1 + kConeWeight (1 - min cos))
@@ -20,6 +23,10 @@
 // group of size ~a*, as for one patch of that size; rays from a group that hit the same group
 // (F_CC, non-zero only for a non-flat group) are not in the rows: light the group would
 // reflect back onto itself leaves the system (the report counts it as escaped).
+// A group's flat B would average very uneven direct light (a wall beside a lamp), so each
+// group is also split into direct-light cells, a finer cut of the same trees with
+// kDirectCellsPerUnknown times the groups' budget: each cell gets its own direct light after
+// the solve (solver/formfactor/cell_direct.h), the group's reflected light stays shared.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +41,7 @@ inline constexpr double kSplitEdge = 1.5;
 inline constexpr double kMaxExtent = 2.0;
 inline constexpr double kMaxConeDegrees = 30.0;
 inline constexpr double kConeWeight = 2.0;
+inline constexpr int64_t kDirectCellsPerUnknown = 16;
 
 // Whether SubdivideAndGroup groups faces for these options: group_faces, and a target patch
 // count (not --max-edge) no larger than the scene's face count.
@@ -42,6 +50,8 @@ bool GroupsFaces(const Scene& scene, const MeshOptions& options);
 struct GroupedMesh {
   PatchMesh mesh;          // the patches (what outputs draw)
   PatchClusters clusters;  // the unknowns; empty when the faces were not grouped
+  PatchClusters cells;     // the direct-light cells; each lies inside one unknown (an
+                           // emitter is a cell of its own); empty when not grouped
 };
 
 // The scene's patches and unknowns: with GroupsFaces, split and grouped as above to about
@@ -51,7 +61,10 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
 // per emitting patch and per (object, material, two-sidedness); or fewer: when every group is
 // one patch) by the rule above. A group never spans two objects, so per-object means stay
-// each object's own.
-PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns);
+// each object's own. With `cells`, also the direct-light cells: the same cut with
+// kDirectCellsPerUnknown times the budget of non-emitting groups, a refinement of the groups
+// (every cell's patches lie in one group).
+PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns,
+                           PatchClusters* cells = nullptr);
 
 }  // namespace radflux

@@ -1,0 +1,91 @@
+#include "solver/formfactor/cell_direct.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "solver/core/parallel.h"
+#include "solver/formfactor/light_sampling.h"
+
+namespace radflux {
+namespace {
+
+// D_c per cell (zero for cells not sampled: `sampled` 0); returns the shadow rays cast.
+uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& sampled,
+                         const std::vector<Rgb>& b, const FormFactorOptions& options,
+                         std::vector<Rgb>& direct) {
+  const LightSampler lights(context);
+  const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
+  std::vector<std::unique_ptr<RowAccumulator>> rows(
+      static_cast<size_t>(std::max(threads, DefaultThreadCount())));
+  std::vector<uint64_t> rays(rows.size(), 0);
+  direct.assign(sampled.size(), Rgb{});
+  ParallelFor(static_cast<int64_t>(sampled.size()), 64, threads, [&](int64_t begin, int64_t end) {
+    const size_t t = static_cast<size_t>(ThreadIndex());
+    if (rows[t] == nullptr) rows[t] = std::make_unique<RowAccumulator>(context.Unknowns());
+    RowAccumulator& row = *rows[t];
+    for (int64_t c = begin; c < end; ++c) {
+      if (!sampled[c]) continue;
+      rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c), LightSamplesPerRow(options),
+                                              options.seed, row);
+      Rgb& d = direct[c];
+      for (uint32_t j : row.Touched()) {
+        for (int k = 0; k < kBands; ++k) d[k] += row.Value(j) * b[j][k];
+      }
+      row.Clear();
+    }
+  });
+  uint64_t total = 0;
+  for (uint64_t r : rays) total += r;
+  return total;
+}
+
+}  // namespace
+
+CellDirectResult PushDownWithCellDirect(const RowContext& context,
+                                        const PatchAttributes& attributes,
+                                        const std::vector<Rgb>& b,
+                                        const FormFactorOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CellDirectResult result;
+  if (context.cells == nullptr) {
+    result.radiosity = PushDownToPatches(*context.clusters, b);
+    return result;
+  }
+  const PatchClusters& cells = *context.cells;
+  const uint32_t unknowns = context.Unknowns();
+  std::vector<uint32_t> group(cells.size());
+  for (uint32_t c = 0; c < cells.size(); ++c) group[c] = context.UnknownOf(cells.Members(c)[0]);
+  std::vector<uint8_t> sampled(cells.size(), 0);
+  for (uint32_t c = 0; c < cells.size(); ++c) {
+    sampled[c] = context.CellsOf(group[c]).size() > 1 && context.needs_row[group[c]];
+    result.cells += sampled[c];
+  }
+  std::vector<Rgb> direct;
+  result.rays = CellDirectLight(context, sampled, b, options, direct);
+  std::vector<Rgb> mean(unknowns, Rgb{});  // Dbar_g
+  for (uint32_t c = 0; c < cells.size(); ++c) {
+    for (int k = 0; k < kBands; ++k) mean[group[c]][k] += cells.area[c] * direct[c][k];
+  }
+  for (uint32_t g = 0; g < unknowns; ++g) {
+    for (int k = 0; k < kBands; ++k) mean[g][k] /= context.Area(g);
+  }
+  result.radiosity.resize(cells.of_patch.size());
+  for (uint32_t p = 0; p < result.radiosity.size(); ++p) {
+    const uint32_t c = cells.of_patch[p], g = group[c];
+    Rgb& out = result.radiosity[p];
+    out = b[g];
+    if (!sampled[c]) continue;
+    bool lifted = false;
+    for (int k = 0; k < kBands; ++k) {
+      out[k] += attributes.reflectance[g][k] * (direct[c][k] - mean[g][k]);
+      lifted = lifted || out[k] < attributes.emission[g][k];
+      out[k] = std::max(out[k], attributes.emission[g][k]);
+    }
+    result.lifted += lifted;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace radflux

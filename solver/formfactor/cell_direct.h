@@ -1,0 +1,47 @@
+// Direct light per cell after a grouped solve (face_grouping.h). A group of patches is one
+// unknown with one B, but the direct light on its patches can vary a lot within it (a wall
+// beside a lamp, a ceiling above a lit screen). So the light is split in two levels: the
+// solve's B_g carries the group's power, and each direct-light cell c of group g gets its
+// own direct light by light sampling (LightSampler::AddCellEmitterColumns over the cell's
+// patches, near-field rule included):
+//     D_c = sum over emitter unknowns j of F_cj B_j              (W/m^2 per band)
+// and each patch of cell c shows
+//     B_p = B_g + rho_g (D_c - Dbar_g),   Dbar_g = sum over cells c of g of A_c D_c / A_g,
+// that is E_g + rho_g (D_c + I_g) with I_g = (B_g - E_g) / rho_g - Dbar_g the group's
+// irradiance from everything but its cells' mean direct light (the group's reflected light,
+// in expectation: the group row's own emitter columns and the cells' mean estimate the same
+// F_gj). The area-weighted mean of B over the group's patches is B_g exactly, so the power
+// the solve balanced is the power the outputs show; only a patch whose B would fall below
+// E_g is lifted to E_g (it cannot reflect negative light), which the summary counts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/core/bands.h"
+#include "solver/formfactor/form_factor_options.h"
+#include "solver/formfactor/row_builder.h"
+#include "solver/mesh/patch_attributes.h"
+#include "solver/mesh/patch_clusters.h"
+
+namespace radflux {
+
+struct CellDirectResult {
+  std::vector<Rgb> radiosity;  // per patch of context.mesh, W/m^2 per band
+  uint64_t cells = 0;          // cells sampled (those of groups with more than one cell)
+  uint64_t rays = 0;           // their shadow rays
+  uint64_t lifted = 0;         // patches lifted to E_g (see above)
+  double seconds = 0;
+};
+
+// B per patch as above, from `b` per unknown of context (grouped: context.clusters and
+// context.cells set) and `attributes` per unknown; each group's cells share one row's budget
+// of LightSamplesPerRow(options) light samples, seeded from options.seed; on options.threads
+// threads (the result does not depend on them). Unknowns of one cell, and those with rho = 0,
+// show their B unchanged; without cells every patch shows its unknown's B.
+CellDirectResult PushDownWithCellDirect(const RowContext& context,
+                                        const PatchAttributes& attributes,
+                                        const std::vector<Rgb>& b,
+                                        const FormFactorOptions& options);
+
+}  // namespace radflux
