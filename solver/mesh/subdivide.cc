@@ -210,7 +210,8 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
 }
 
 // With a target count, contact meshing adds patches beside contacts and takes them from
-// under solids: h is re-chosen (between h and 16h) from the counts of the faces as meshed.
+// under solids: h is re-chosen (between h and 4h, 8 steps: each meshes the cut faces) from the
+// counts of the faces as meshed.
 double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>& extents,
                               const std::vector<std::vector<Footprint>>& footprints,
                               const MeshOptions& options, double h) {
@@ -233,7 +234,7 @@ double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>&
     return total;
   };
   if (count(h) <= options.target_patches) return h;
-  return BisectEdgeLength(count, options.target_patches, h, 16 * h, 16);
+  return BisectEdgeLength(count, options.target_patches, h, 4 * h, 8);
 }
 
 }  // namespace
