@@ -1,7 +1,8 @@
 // PatchMesh: the scene's faces split into patches, the unknowns of the radiosity
 // system. A patch is a planar convex triangle or quad that remembers its source face.
-// Patches of one face share vertices (no T-junctions inside a face); faces never
-// share vertices, so per-vertex values keep creases between faces sharp.
+// Patches of one face share vertices (no T-junctions inside a face, except where contact
+// meshing cut or split them: contact_clip.h); faces never share vertices, so per-vertex
+// values keep creases between faces sharp.
 #pragma once
 
 #include <algorithm>

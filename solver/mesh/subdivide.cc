@@ -6,6 +6,8 @@
 #include <tuple>
 
 #include "absl/strings/str_cat.h"
+#include "solver/mesh/contact_clip.h"
+#include "solver/mesh/contact_footprints.h"
 
 namespace radflux {
 namespace {
@@ -18,11 +20,11 @@ int Steps(double length, double h) {
 // The lengths that decide how finely a face is split (measured once per face, so choosing
 // the edge length is cheap arithmetic however many times it is tried).
 struct FaceExtent {
-  double u = 0, v = 0;     // quad: the longer of each pair of opposite edges; else u = v =
-                           // the longest edge (and centroid distance, for a fan)
+  double u = 0, v = 0;  // quad: the longer of each pair of opposite edges; else u = v =
+                        // the longest edge (and centroid distance, for a fan)
   double longest_edge = 0;
-  int fan = 1;             // patches per step^2: 1 for a triangle or quad, k for a k-gon fan
-  double reach = 0;        // the farthest vertex from the first (bounds the bisection)
+  int fan = 1;       // patches per step^2: 1 for a triangle or quad, k for a k-gon fan
+  double reach = 0;  // the farthest vertex from the first (bounds the bisection)
   bool quad = false;
   bool emitter = false;
 };
@@ -31,7 +33,8 @@ FaceExtent MeasureExtent(const std::vector<Vec3>& p, bool emitter) {
   FaceExtent e;
   e.emitter = emitter;
   for (const Vec3& q : p) e.reach = std::max(e.reach, Length(q - p[0]));
-  for (size_t i = 0; i < p.size(); ++i) e.longest_edge = std::max(e.longest_edge, Length(p[(i + 1) % p.size()] - p[i]));
+  for (size_t i = 0; i < p.size(); ++i)
+    e.longest_edge = std::max(e.longest_edge, Length(p[(i + 1) % p.size()] - p[i]));
   if (p.size() == 4) {
     e.quad = true;
     e.u = std::max(Length(p[1] - p[0]), Length(p[2] - p[3]));
@@ -157,6 +160,18 @@ class FaceMesher {
   std::map<Key, uint32_t> ids_;
 };
 
+// The h in [lo, hi] (log-scale bisection, `iterations` steps) whose count(h) is closest to
+// target; count must fall as h grows.
+template <typename Count>
+double BisectEdgeLength(Count&& count, int64_t target, double lo, double hi, int iterations) {
+  for (int it = 0; it < iterations; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (count(mid) > target ? lo : hi) = mid;
+  }
+  const int64_t above = count(lo), below = count(hi);
+  return (above - target < target - below) ? lo : hi;
+}
+
 double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOptions& options) {
   if (options.max_edge > 0) return options.max_edge;
   if (options.target_patches <= 0) return 0;
@@ -168,15 +183,58 @@ double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOption
     return total;
   };
   // Bisect (log scale) for the boundary where count(h) falls to <= target; pick the closer side.
-  double lo = longest * 1e-7, hi = longest * 2;
+  const double hi = longest * 2;
   const int64_t fewest = count(hi);  // every face one patch (or one fan)
   if (fewest >= options.target_patches) return hi;
-  for (int it = 0; it < 100; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    (count(mid) > options.target_patches ? lo : hi) = mid;
+  return BisectEdgeLength(count, options.target_patches, longest * 1e-7, hi, 100);
+}
+
+// Meshes face f at edge length h into `mesh` (its patches and positions appended), cut
+// along its contact footprints.
+void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
+              const FaceExtent& extent, double h, const std::vector<Footprint>& footprints,
+              PatchMesh& mesh) {
+  const uint32_t first_patch = static_cast<uint32_t>(mesh.patches.size());
+  const uint32_t first_vertex = static_cast<uint32_t>(mesh.positions.size());
+  const auto [nu, nv] = FaceSteps(extent, h);
+  const Vec3 normal = Normalize(PolygonNewellNormal(polygon));
+  FaceMesher mesher(mesh, f, normal, scene.materials[scene.faces[f].material].two_sided);
+  if (polygon.size() == 4) {
+    mesher.Quad(polygon, nu, nv);
+  } else {
+    mesher.Fan(polygon, nu);
   }
-  const int64_t above = count(lo), below = count(hi);
-  return (above - options.target_patches < options.target_patches - below) ? lo : hi;
+  if (!footprints.empty()) {
+    ClipFacePatches(footprints, normal, FaceEdgeLength(extent, h), first_patch, first_vertex, mesh);
+  }
+}
+
+// With a target count, contact meshing adds patches beside contacts and takes them from
+// under solids: h is re-chosen (between h and 4h, 8 steps: each meshes the cut faces) from the
+// counts of the faces as meshed.
+double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>& extents,
+                              const std::vector<std::vector<Footprint>>& footprints,
+                              const MeshOptions& options, double h) {
+  if (options.max_edge > 0 || options.target_patches <= 0) return h;
+  std::vector<uint32_t> touched;
+  for (uint32_t f = 0; f < footprints.size(); ++f) {
+    if (!footprints[f].empty()) touched.push_back(f);
+  }
+  if (touched.empty()) return h;
+  std::vector<Vec3> polygon;
+  auto count = [&](double edge) {
+    int64_t total = 0;
+    for (const FaceExtent& e : extents) total += FacePatchCount(e, edge);
+    for (uint32_t f : touched) {
+      PatchMesh face_mesh;
+      FacePolygonInto(scene, scene.faces[f], polygon);
+      MeshFace(scene, f, polygon, extents[f], edge, footprints[f], face_mesh);
+      total += static_cast<int64_t>(face_mesh.size()) - FacePatchCount(extents[f], edge);
+    }
+    return total;
+  };
+  if (count(h) <= options.target_patches) return h;
+  return BisectEdgeLength(count, options.target_patches, h, 4 * h, 8);
 }
 
 }  // namespace
@@ -192,26 +250,27 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
-  const double h = ChooseEdgeLength(extents, options);
+  const bool contacts = options.follow_contacts &&
+                        (options.target_patches <= 0 ||
+                         static_cast<int64_t>(scene.faces.size()) < options.target_patches);
+  const std::vector<std::vector<Footprint>> footprints =
+      contacts ? FindContactFootprints(scene)
+               : std::vector<std::vector<Footprint>>(scene.faces.size());
+  const double h = ContactAwareEdgeLength(scene, extents, footprints, options,
+                                          ChooseEdgeLength(extents, options));
   PatchMesh mesh;
   mesh.face_first_patch.reserve(scene.faces.size() + 1);
   mesh.face_first_vertex.reserve(scene.faces.size() + 1);
   for (uint32_t f = 0; f < scene.faces.size(); ++f) {
     mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
     mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
-    FacePolygonInto(scene, scene.faces[f], polygon);
     const auto [nu, nv] = FaceSteps(extents[f], h);
     if (int64_t{nu} * nv > (int64_t{1} << 31)) {
-      return absl::ResourceExhaustedError(absl::StrCat(scene.DescribeFace(f),
-                                                       ": subdivision would exceed 2^31 patches"));
+      return absl::ResourceExhaustedError(
+          absl::StrCat(scene.DescribeFace(f), ": subdivision would exceed 2^31 patches"));
     }
-    FaceMesher mesher(mesh, f, Normalize(PolygonNewellNormal(polygon)),
-                      scene.materials[scene.faces[f].material].two_sided);
-    if (polygon.size() == 4) {
-      mesher.Quad(polygon, nu, nv);
-    } else {
-      mesher.Fan(polygon, nu);
-    }
+    FacePolygonInto(scene, scene.faces[f], polygon);
+    MeshFace(scene, f, polygon, extents[f], h, footprints[f], mesh);
   }
   mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
   mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));
@@ -227,8 +286,8 @@ MeshStats ComputeMeshStats(const PatchMesh& mesh) {
     const Patch& patch = mesh.patches[p];
     double longest = 0;
     for (int k = 0; k < patch.VertexCount(); ++k) {
-      longest = std::max(longest, Length(mesh.Vertex(p, (k + 1) % patch.VertexCount()) -
-                                         mesh.Vertex(p, k)));
+      longest = std::max(longest,
+                         Length(mesh.Vertex(p, (k + 1) % patch.VertexCount()) - mesh.Vertex(p, k)));
     }
     const double shape = patch.IsTriangle() ? std::sqrt(3.0) / 4 : 1.0;
     stats.min_area = std::min(stats.min_area, patch.area);

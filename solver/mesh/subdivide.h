@@ -19,11 +19,17 @@ struct MeshOptions {
   double max_edge = 0;         // or: no patch edge longer than this (scene units)
   bool group_faces = true;     // SubdivideAndGroup: when the faces reach target_patches, the
                                // unknowns are groups of patches (face_grouping.h)
+  bool follow_contacts = true;  // cut faces along the feet of solids resting on them (below)
   // Neither set: every face becomes one patch (quads and triangles) or a fan.
 };
 
 // Subdivides every face: triangles into n^2 triangles, quads into a nu x nv grid,
-// larger convex polygons into a fan of subdivided triangles around their centroid.
+// larger convex polygons into a fan of subdivided triangles around their centroid. Where a
+// closed solid rests on a face (contact_footprints.h), the face's patches are cut along the
+// solid's outline and the part under it is left out (contact_clip.h): with follow_contacts,
+// when faces are split into patches (fewer faces than target_patches, or no target). A scene
+// of more faces than the target has its unknowns made of groups of faces (face_grouping.h),
+// which no outline can follow, and finding contacts costs there more than meshing.
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options);
 
 struct MeshStats {

@@ -9,11 +9,7 @@
 #include <iostream>
 
 #include "solver/output/default_view.h"
-#include "solver/output/render.h"
-#include "solver/output/shading_mesh.h"
-#include "solver/output/vertex_radiosity.h"
-#include "solver/pipeline.h"
-#include "solver/scene/obj_loader.h"
+#include "tests/unit/cornell_picture.h"
 
 namespace radflux {
 namespace {
@@ -68,25 +64,16 @@ double Quantile(std::vector<double> v, double q) {
 }
 
 TEST(OutputSeamsCornell, NoJumpAcrossTheRedWallsFaceEdgeBeyondTheRowsNoise) {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
-  ASSERT_TRUE(scene.ok());
-  const std::vector<uint32_t> materials = FaceMaterials(*scene);
-  JobOptions options;
-  options.mesh.target_patches = 2000;  // the CLI's default
-  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), options);
-  ASSERT_TRUE(result.ok()) << result.status();
-  const PreparedJob& job = *result->job;
-  auto shading = BuildShadingMesh(job.mesh, materials);
-  ASSERT_TRUE(shading.ok());
-  auto vertex_b = VertexRadiosity(job.mesh, *shading, result->solve.radiosity);
-  ASSERT_TRUE(vertex_b.ok());
+  const testing::SolvedCornell cornell = testing::SolveCornellDefaults();
+  ASSERT_FALSE(cornell.vertex_radiosity.empty());
+  const PreparedJob& job = cornell.job();
   Camera request;
   request.width = request.height = 256;
   request.vertical_fov_degrees = 39.3077;
   const Camera camera = DefaultCamera(job.mesh, *job.caster, request, Vec3{});
-  auto image = RenderRadiance(job.mesh, *job.caster, *vertex_b, camera, {});
-  ASSERT_TRUE(image.ok());
-  const SeamSteps steps = RedWallKinks(RedWallFaces(job, camera), *image);
+  const Image image = testing::RenderCornell(cornell, camera);
+  ASSERT_EQ(image.width, 256);
+  const SeamSteps steps = RedWallKinks(RedWallFaces(job, camera), image);
   ASSERT_GT(steps.across.size(), 100u);  // the diagonal crosses most rows of the wall
   ASSERT_GT(steps.within.size(), 5000u);
   std::cout << "red wall kinks, W/m^2/sr: across the face edge: median "

@@ -1,0 +1,35 @@
+// Cutting a face's patches along contact footprints (contact_footprints.h): the parts of
+// each patch outside every footprint stay, as convex triangles and quads whose edges
+// follow the footprints' outlines; the parts inside are left out (the floor under a block
+// is dark and hidden, so it needs no unknowns and must not darken the shading around it).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/mesh/contact_footprints.h"
+#include "solver/mesh/patch_mesh.h"
+
+namespace radflux {
+
+// Replaces the patches of the last face meshed into `mesh` (patches from `first_patch`,
+// positions from `first_vertex`, all of one face with unit normal `normal`) by their parts
+// outside `footprints` (polygons in the face's plane, counter-clockwise about `normal`):
+// - for a footprint at least 3 patches across (area >= 9 reach^2, reach > 0: the face's
+//   patch edge length, scene units), a patch within reach of it is first split in four by
+//   its edges' midpoints, and the pieces within reach / 2 in four again (the light changes
+//   fastest beside a contact: the floor there sees less of the room, and a block's shadow
+//   starts at it), and patches near it (its bounding box grown by reach) are cut along the
+//   lines of its sides, both sides kept (where a block's side starts or stops being seen);
+// - the parts inside a footprint are left out.
+// A patch clear of all this keeps its corners, a quarter of one is a quad, and a piece a cut
+// shaped becomes a fan of triangles (its refinement then splits into equal quarters); slivers
+// under 1e-9 of their patch's area are dropped. Afterwards the face's positions are exactly the
+// ones its patches use, shared between its patches when they are the same point (cuts and
+// midpoints on a shared edge are computed the same way from both sides); a split patch's
+// midpoint or a footprint's corner may sit on a neighbour's edge (a T-junction inside the
+// face, which the shading mesh resolves like one between faces).
+void ClipFacePatches(const std::vector<Footprint>& footprints, const Vec3& normal, double reach,
+                     uint32_t first_patch, uint32_t first_vertex, PatchMesh& mesh);
+
+}  // namespace radflux

@@ -1,0 +1,252 @@
+#include "solver/mesh/contact_footprints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+
+namespace radflux {
+namespace {
+
+struct Box {
+  Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+          std::numeric_limits<double>::max()};
+  Vec3 hi{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+          -std::numeric_limits<double>::max()};
+
+  void Add(const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  Box Padded(double pad) const { return {lo - Vec3{pad, pad, pad}, hi + Vec3{pad, pad, pad}}; }
+};
+
+struct FaceGeometry {
+  std::vector<Vec3> polygon;
+  Vec3 normal;  // unit
+  Box box;
+};
+
+bool Overlap(const Box& a, const Box& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
+// The faces' bounding boxes in a uniform grid of about one face per cell (at most 64 cells
+// per axis); a face over more than kMaxCells cells is kept in a list of big faces instead, so
+// that the grid holds O(faces) entries whatever the faces' shapes.
+class FaceGrid {
+ public:
+  FaceGrid(const std::vector<FaceGeometry>& faces, const Box& scene)
+      : faces_(faces), lo_(scene.lo), seen_(faces.size(), 0) {
+    const Vec3 extent = scene.hi - scene.lo;
+    n_ = std::clamp(static_cast<int64_t>(2 * std::cbrt(double(faces.size()))), int64_t{1}, int64_t{256});
+    cell_ = std::max({extent.x, extent.y, extent.z, 1e-300}) / double(n_);
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      if (CellCount(faces[f].box) > kMaxCells) {
+        big_.push_back(f);
+      } else {
+        ForCells(faces[f].box, [&](int64_t key) { cells_[key].push_back(f); });
+      }
+    }
+  }
+
+  // Calls visit(face) once for each face whose box overlaps `box` (one query at a time).
+  template <typename Visit>
+  void ForBox(const Box& box, Visit&& visit) {
+    ++stamp_;
+    auto once = [&](uint32_t f) {
+      if (seen_[f] == stamp_ || !Overlap(faces_[f].box, box)) return;
+      seen_[f] = stamp_;
+      visit(f);
+    };
+    for (uint32_t f : big_) once(f);
+    if (CellCount(box) > double(faces_.size())) {  // cheaper to try every face
+      for (uint32_t f = 0; f < faces_.size(); ++f) once(f);
+      return;
+    }
+    ForCells(box, [&](int64_t key) {
+      const auto it = cells_.find(key);
+      if (it == cells_.end()) return;
+      for (uint32_t f : it->second) once(f);
+    });
+  }
+
+ private:
+  static constexpr double kMaxCells = 512;
+
+  int64_t Index(double v, double lo) const {
+    return std::clamp(static_cast<int64_t>(std::floor((v - lo) / cell_)), int64_t{0}, n_ - 1);
+  }
+  double CellCount(const Box& b) const {
+    return double(Index(b.hi.x, lo_.x) - Index(b.lo.x, lo_.x) + 1) *
+           double(Index(b.hi.y, lo_.y) - Index(b.lo.y, lo_.y) + 1) *
+           double(Index(b.hi.z, lo_.z) - Index(b.lo.z, lo_.z) + 1);
+  }
+  template <typename Body>
+  void ForCells(const Box& b, Body&& body) const {
+    for (int64_t x = Index(b.lo.x, lo_.x); x <= Index(b.hi.x, lo_.x); ++x) {
+      for (int64_t y = Index(b.lo.y, lo_.y); y <= Index(b.hi.y, lo_.y); ++y) {
+        for (int64_t z = Index(b.lo.z, lo_.z); z <= Index(b.hi.z, lo_.z); ++z) {
+          body((x * n_ + y) * n_ + z);
+        }
+      }
+    }
+  }
+
+  const std::vector<FaceGeometry>& faces_;
+  Vec3 lo_;
+  int64_t n_ = 1;
+  double cell_ = 1;
+  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
+  std::vector<uint32_t> big_;
+  std::vector<uint32_t> seen_;  // per face: the last query that visited it
+  uint32_t stamp_ = 0;
+};
+
+// An edge of a standing face in a receiver's plane, oriented so that the face's normal
+// points to its right seen from the receiver's front (a solid's foot runs counter-clockwise).
+struct ContactEdge {
+  Vec3 a, b;
+  uint32_t face = 0;
+};
+
+double PlaneDistance(const FaceGeometry& receiver, const Vec3& p) {
+  return Dot(p - receiver.polygon[0], receiver.normal);
+}
+
+// The edges of `stander` lying in `receiver`'s plane, when `stander` stands on its front.
+// Whether segment a-b lies on the line of one of the receiver's edges (a face meeting the
+// receiver along its border, e.g. its neighbour in a tessellated surface, is not standing
+// on it).
+bool AlongBorder(const FaceGeometry& receiver, const Vec3& a, const Vec3& b, double tol) {
+  const std::vector<Vec3>& r = receiver.polygon;
+  for (size_t i = 0; i < r.size(); ++i) {
+    const Vec3 dir = Normalize(r[(i + 1) % r.size()] - r[i]);
+    if (Length(Cross(a - r[i], dir)) <= tol && Length(Cross(b - r[i], dir)) <= tol) return true;
+  }
+  return false;
+}
+
+void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, uint32_t face,
+                     double tol, std::vector<ContactEdge>& out) {
+  if (std::abs(Dot(receiver.normal, stander.normal)) > 1 - 1e-9) return;
+  const std::vector<Vec3>& p = stander.polygon;
+  for (const Vec3& q : p) {
+    if (PlaneDistance(receiver, q) < -tol) return;
+  }
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3& a = p[i];
+    const Vec3& b = p[(i + 1) % p.size()];
+    if (std::abs(PlaneDistance(receiver, a)) > tol || std::abs(PlaneDistance(receiver, b)) > tol ||
+        AlongBorder(receiver, a, b, tol)) {
+      continue;
+    }
+    const bool normal_left = Dot(Cross(receiver.normal, b - a), stander.normal) > 0;
+    out.push_back(normal_left ? ContactEdge{b, a, face} : ContactEdge{a, b, face});
+  }
+}
+
+// Closed loops of `edges` (chained end to start within tol), as the loops' edge lists.
+std::vector<std::vector<ContactEdge>> ChainLoops(const std::vector<ContactEdge>& edges,
+                                                 double tol) {
+  std::vector<std::vector<ContactEdge>> loops;
+  std::vector<bool> used(edges.size(), false);
+  for (size_t s = 0; s < edges.size(); ++s) {
+    if (used[s]) continue;
+    used[s] = true;
+    std::vector<ContactEdge> loop{edges[s]};
+    while (Length(loop.back().b - loop.front().a) > tol) {
+      size_t next = edges.size();
+      for (size_t e = 0; e < edges.size() && next == edges.size(); ++e) {
+        // The next edge starts where this one ends and does not run straight back (a
+        // two-sided solid's back-face twins give every edge its reverse).
+        if (!used[e] && Length(edges[e].a - loop.back().b) <= tol &&
+            Length(edges[e].b - loop.back().a) > tol) {
+          next = e;
+        }
+      }
+      if (next == edges.size()) break;
+      used[next] = true;
+      loop.push_back(edges[next]);
+    }
+    if (loop.size() >= 3 && Length(loop.back().b - loop.front().a) <= tol) loops.push_back(loop);
+  }
+  return loops;
+}
+
+// Whether a face of `object` facing away from `receiver` and above it covers `point`.
+bool HasLid(const Scene& scene, const std::vector<FaceGeometry>& faces, FaceGrid& grid,
+            const FaceGeometry& receiver, uint32_t object, const Vec3& point, double reach,
+            double tol) {
+  Box column;
+  column.Add(point);
+  column.Add(point + receiver.normal * reach);
+  bool found = false;
+  grid.ForBox(column.Padded(tol), [&](uint32_t g) {
+    const FaceGeometry& lid = faces[g];
+    if (found || scene.faces[g].object != object || Dot(lid.normal, receiver.normal) <= 0) return;
+    for (const Vec3& q : lid.polygon) {
+      if (PlaneDistance(receiver, q) <= tol) return;
+    }
+    bool positive = false, negative = false;
+    for (size_t i = 0; i < lid.polygon.size(); ++i) {
+      const Vec3& a = lid.polygon[i];
+      const Vec3& b = lid.polygon[(i + 1) % lid.polygon.size()];
+      const double side = Dot(Cross(b - a, point - a), receiver.normal);
+      positive |= side > 0;
+      negative |= side < 0;
+    }
+    found = !(positive && negative);
+  });
+  return found;
+}
+
+}  // namespace
+
+std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene) {
+  std::vector<std::vector<Footprint>> footprints(scene.faces.size());
+  if (scene.faces.empty()) return footprints;
+  std::vector<FaceGeometry> faces(scene.faces.size());
+  Box scene_box;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    faces[f].polygon = FacePolygon(scene, scene.faces[f]);
+    faces[f].normal = Normalize(PolygonNewellNormal(faces[f].polygon));
+    for (const Vec3& p : faces[f].polygon) faces[f].box.Add(p);
+    scene_box.Add(faces[f].box.lo);
+    scene_box.Add(faces[f].box.hi);
+  }
+  const double diagonal = Length(scene_box.hi - scene_box.lo);
+  const double tol = 1e-5 * diagonal;
+  FaceGrid grid(faces, scene_box);
+  std::vector<std::vector<ContactEdge>> edges(faces.size());
+  std::vector<uint32_t> near;
+  for (uint32_t s = 0; s < faces.size(); ++s) {
+    near.clear();
+    grid.ForBox(faces[s].box.Padded(tol), [&](uint32_t r) { near.push_back(r); });
+    for (uint32_t r : near) {
+      if (r != s) AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
+    }
+  }
+  for (uint32_t r = 0; r < faces.size(); ++r) {
+    for (const std::vector<ContactEdge>& loop : ChainLoops(edges[r], tol)) {
+      Footprint polygon;
+      Vec3 centroid;
+      bool one_object = true;
+      for (const ContactEdge& e : loop) {
+        polygon.push_back(e.a);
+        centroid += e.a / double(loop.size());
+        one_object &= scene.faces[e.face].object == scene.faces[loop[0].face].object;
+      }
+      if (!one_object || Dot(PolygonNewellNormal(polygon), faces[r].normal) <= tol * tol) continue;
+      if (HasLid(scene, faces, grid, faces[r], scene.faces[loop[0].face].object, centroid, diagonal,
+                 tol)) {
+        footprints[r].push_back(std::move(polygon));
+      }
+    }
+  }
+  return footprints;
+}
+
+}  // namespace radflux

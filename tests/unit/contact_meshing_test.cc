@@ -1,0 +1,131 @@
+// Meshing that follows contact: a closed block resting on a floor cuts the floor's patches
+// along its outline and leaves the floor under it out; open or lifted blocks and a room's
+// walls standing on the floor do not.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "solver/mesh/contact_footprints.h"
+#include "solver/mesh/subdivide.h"
+#include "tests/unit/test_scenes.h"
+
+namespace radflux {
+namespace {
+
+using testing::ObjQuad;
+
+// A diamond (a square turned 45 degrees, area 18) counter-clockwise seen from above (+y),
+// so that it is not aligned with the floor's 1 x 1 patch grid.
+const std::vector<Vec3> kDiamond = {{5, 0, 2}, {2, 0, 5}, {5, 0, 8}, {8, 0, 5}};
+constexpr double kDiamondArea = 18;
+
+struct BlockShape {
+  double lift = 0;  // gap between the floor and the block's foot
+  bool lid = true;  // the top face
+};
+
+// A 10 x 10 floor at y = 0 facing +y, and a block of height 3 on kDiamond.
+std::string FloorAndBlock(const BlockShape& shape, bool room_walls) {
+  int next = 1;
+  std::string obj =
+      ObjQuad("floor", "white", {{0, 0, 0}, {0, 0, 10}, {10, 0, 10}, {10, 0, 0}}, next);
+  const Vec3 up{0, 3, 0}, lift{0, shape.lift, 0};
+  for (size_t i = 0; i < kDiamond.size(); ++i) {
+    const Vec3 a = kDiamond[i] + lift, b = kDiamond[(i + 1) % kDiamond.size()] + lift;
+    obj += ObjQuad("block", "white", {a, b, b + up, a + up}, next);  // normal out of the block
+  }
+  if (shape.lid) {
+    std::vector<Vec3> top;
+    for (const Vec3& p : kDiamond) top.push_back(p + lift + up);
+    obj += ObjQuad("block", "white", top, next);
+  }
+  if (room_walls) {  // walls around the floor's border, facing into the room
+    const std::vector<Vec3> corners = {{0, 0, 0}, {0, 0, 10}, {10, 0, 10}, {10, 0, 0}};
+    for (size_t i = 0; i < 4; ++i) {
+      const Vec3 a = corners[i], b = corners[(i + 1) % 4], h{0, 5, 0};
+      obj += ObjQuad("wall" + std::to_string(i), "white", {b, a, a + h, b + h}, next);
+    }
+  }
+  obj += ObjQuad("lamp", "lamp", {{4, 9, 4}, {6, 9, 4}, {6, 9, 6}, {4, 9, 6}}, next);
+  return obj;
+}
+
+size_t CountFootprints(const std::vector<std::vector<Footprint>>& footprints) {
+  size_t n = 0;
+  for (const auto& f : footprints) n += f.size();
+  return n;
+}
+
+TEST(ContactFootprints, AClosedBlockOnTheFloorIsOneFootprintOnTheFloorOnly) {
+  const Scene scene = testing::SceneFromObj(FloorAndBlock({}, /*room_walls=*/true));
+  const std::vector<std::vector<Footprint>> footprints = FindContactFootprints(scene);
+  ASSERT_EQ(footprints.size(), scene.faces.size());
+  ASSERT_EQ(CountFootprints(footprints), 1u);  // the walls' loop faces inwards: not a foot
+  ASSERT_EQ(footprints[0].size(), 1u);         // face 0 is the floor
+  const Footprint& foot = footprints[0][0];
+  ASSERT_EQ(foot.size(), 4u);
+  for (const Vec3& corner : kDiamond) {
+    EXPECT_TRUE(std::any_of(foot.begin(), foot.end(),
+                            [&](const Vec3& p) { return Length(p - corner) < 1e-12; }));
+  }
+  EXPECT_NEAR(Dot(PolygonNewellNormal(foot), Vec3{0, 1, 0}) / 2, kDiamondArea, 1e-9);
+}
+
+TEST(ContactFootprints, AnOpenTubeOrALiftedBlockHasNone) {
+  EXPECT_EQ(CountFootprints(FindContactFootprints(
+                testing::SceneFromObj(FloorAndBlock({.lift = 0, .lid = false}, false)))),
+            0u);
+  // 0.01 is above the tolerance (1e-5 of the diagonal, ~1.4e-4 here).
+  EXPECT_EQ(CountFootprints(FindContactFootprints(
+                testing::SceneFromObj(FloorAndBlock({.lift = 0.01, .lid = true}, false)))),
+            0u);
+}
+
+bool InsideDiamond(const Vec3& p, double margin) {
+  for (size_t i = 0; i < kDiamond.size(); ++i) {
+    const Vec3& a = kDiamond[i];
+    const Vec3& b = kDiamond[(i + 1) % kDiamond.size()];
+    if (Dot(Cross(b - a, p - a), Vec3{0, 1, 0}) <= margin) return false;
+  }
+  return true;
+}
+
+TEST(ContactMeshing, FloorPatchesFollowTheBlocksOutlineAndLeaveItsFootOut) {
+  const Scene scene = testing::SceneFromObj(FloorAndBlock({}, true));
+  MeshOptions options;
+  options.max_edge = 1;
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  double floor_area = 0;
+  for (uint32_t p = mesh->face_first_patch[0]; p < mesh->face_first_patch[1]; ++p) {
+    const Patch& patch = mesh->patches[p];
+    EXPECT_GT(patch.area, 1e-9);
+    EXPECT_FALSE(InsideDiamond(patch.centroid, 1e-9)) << "patch " << p;
+    // No patch reaches into the foot: every corner is outside or on its outline.
+    for (int k = 0; k < patch.VertexCount(); ++k) {
+      EXPECT_FALSE(InsideDiamond(mesh->Vertex(p, k), 1e-9)) << "patch " << p << " corner " << k;
+    }
+    floor_area += patch.area;
+  }
+  EXPECT_NEAR(floor_area, 100 - kDiamondArea, 1e-9);
+  // The face's vertex range is exactly what its patches use.
+  std::vector<bool> used(mesh->positions.size(), false);
+  for (const Patch& patch : mesh->patches) {
+    for (int k = 0; k < patch.VertexCount(); ++k) used[patch.v[k]] = true;
+  }
+  EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
+  // The diamond's corners are patch corners: the outline is meshed, not approximated.
+  for (const Vec3& corner : kDiamond) {
+    bool found = false;
+    for (uint32_t v = mesh->face_first_vertex[0]; v < mesh->face_first_vertex[1]; ++v) {
+      found |= Length(mesh->positions[v] - corner) < 1e-12;
+    }
+    EXPECT_TRUE(found) << corner.x << " " << corner.z;
+  }
+}
+
+}  // namespace
+}  // namespace radflux

@@ -1,0 +1,57 @@
+// The Cornell box solved at the CLI's defaults and rendered as `radflux solve --render` does
+// (welded shading mesh, per-vertex radiosity, one ray per pixel): what the picture tests
+// measure.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "solver/output/render.h"
+#include "solver/output/shading_mesh.h"
+#include "solver/output/vertex_radiosity.h"
+#include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+
+namespace radflux::testing {
+
+// A solved Cornell box (scenes/cornell_box.obj, --patches 2000 as the CLI's default).
+struct SolvedCornell {
+  std::unique_ptr<JobResult> result;  // result->job: scene, mesh and caster
+  std::vector<Rgb> vertex_radiosity;  // per PatchMesh position, as the renderer takes it
+
+  const PreparedJob& job() const { return *result->job; }
+};
+
+inline SolvedCornell SolveCornellDefaults() {
+  SolvedCornell out;
+  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  EXPECT_TRUE(scene.ok()) << scene.status();
+  if (!scene.ok()) return out;
+  const std::vector<uint32_t> materials = FaceMaterials(*scene);
+  JobOptions options;
+  options.mesh.target_patches = 2000;  // the CLI's default
+  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), options);
+  EXPECT_TRUE(result.ok()) << result.status();
+  if (!result.ok()) return out;
+  out.result = std::make_unique<JobResult>(*std::move(result));
+  const PatchMesh& mesh = out.job().mesh;
+  absl::StatusOr<ShadingMesh> shading = BuildShadingMesh(mesh, materials);
+  EXPECT_TRUE(shading.ok()) << shading.status();
+  if (!shading.ok()) return out;
+  absl::StatusOr<std::vector<Rgb>> vertex_b =
+      VertexRadiosity(mesh, *shading, out.result->solve.radiosity);
+  EXPECT_TRUE(vertex_b.ok()) << vertex_b.status();
+  if (vertex_b.ok()) out.vertex_radiosity = *std::move(vertex_b);
+  return out;
+}
+
+// The solved box's radiance picture through `camera` (empty on failure, with a test failure).
+inline Image RenderCornell(const SolvedCornell& cornell, const Camera& camera) {
+  absl::StatusOr<Image> image = RenderRadiance(cornell.job().mesh, *cornell.job().caster,
+                                               cornell.vertex_radiosity, camera, {});
+  EXPECT_TRUE(image.ok()) << image.status();
+  return image.ok() ? *std::move(image) : Image{};
+}
+
+}  // namespace radflux::testing
