@@ -1,6 +1,7 @@
 #include "server/store/blob_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <openssl/evp.h>
 #include <unistd.h>
 #include <zstd.h>
@@ -99,10 +100,12 @@ absl::Status WriteBlobFile(const std::string& path, std::string_view data, std::
 
 absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file,
                                 std::string_view what) {
-  const std::string temp = path + ".tmp";
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return DiskWriteError(what, temp, errno);
-  int error = WriteAll(fd, file, /*sync=*/true);
+  // A temp name of this writer's own: writers of the same blob (one scene uploaded by many
+  // at once) each rename a whole file of the same bytes into place.
+  std::string temp = path + ".tmp.XXXXXX";
+  const int fd = ::mkostemp(temp.data(), O_CLOEXEC);
+  if (fd < 0) return DiskWriteError(what, path, errno);
+  int error = ::fchmod(fd, 0644) != 0 ? errno : WriteAll(fd, file, /*sync=*/true);
   ::close(fd);
   if (error == 0 && ::rename(temp.c_str(), path.c_str()) != 0) error = errno;
   if (error != 0) {

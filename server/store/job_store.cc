@@ -24,15 +24,33 @@ using store_sql::Statement;
 // The columns QueryJobs reads.
 constexpr const char* kSelectJobs = "SELECT job, owner FROM jobs";
 
+// FAILED_PRECONDITION when `data_dir` holds scene or job files but not `db_path`: a store
+// whose database was lost, which an empty new database would silently orphan.
+absl::Status CheckDatabaseNotLost(const std::string& data_dir, const std::string& db_path) {
+  std::error_code ec;
+  if (fs::exists(db_path, ec)) return absl::OkStatus();
+  for (const char* part : {"scenes", "jobs"}) {
+    const fs::path dir = fs::path(data_dir) / part;
+    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec)) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          data_dir, " holds stored ", part, " but no database (", db_path,
+          "): restore radflux.db from a backup, or move ", data_dir,
+          " away and start with an empty --data-dir"));
+    }
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<JobStore>> JobStore::Open(const std::string& data_dir) {
+  const std::string db_path = (fs::path(data_dir) / "radflux.db").string();
+  if (absl::Status s = CheckDatabaseNotLost(data_dir, db_path); !s.ok()) return s;
   std::error_code ec;
   fs::create_directories(fs::path(data_dir) / "scenes", ec);
   fs::create_directories(fs::path(data_dir) / "jobs", ec);
   if (ec) return absl::InternalError(absl::StrCat("cannot create ", data_dir, ": ", ec.message()));
   std::unique_ptr<JobStore> store(new JobStore(data_dir));
-  const std::string db_path = (fs::path(data_dir) / "radflux.db").string();
   if (sqlite3_open(db_path.c_str(), &store->db_) != SQLITE_OK) {
     return SqlError(store->db_, absl::StrCat("cannot open ", db_path));
   }

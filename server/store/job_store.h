@@ -43,7 +43,8 @@ struct JobFilter {
 
 class JobStore {
  public:
-  // Opens (creating if needed) the store in `data_dir`.
+  // Opens (creating if needed) the store in `data_dir`. FAILED_PRECONDITION, saying how to
+  // recover, when scenes/ or jobs/ hold files but the database radflux.db is gone.
   static absl::StatusOr<std::unique_ptr<JobStore>> Open(const std::string& data_dir);
   ~JobStore();
   JobStore(const JobStore&) = delete;
@@ -56,7 +57,9 @@ class JobStore {
   bool HasScene(const std::string& sha256);
   // Stores a scene under its content address (a no-op when already stored).
   absl::Status PutScene(const std::string& sha256, const StoredScene& scene);
-  // NOT_FOUND when no scene has that address.
+  // NOT_FOUND when no scene has that address. DATA_LOSS (a message without server paths)
+  // when its files are missing or fail their check: the scene is then marked missing
+  // (HasScene false, owners kept), so that an upload of the same bytes stores it again.
   absl::StatusOr<StoredScene> GetScene(const std::string& sha256);
   // Records that principal `owner` uploaded the scene (idempotent).
   absl::Status AddSceneOwner(const std::string& sha256, const std::string& owner);
@@ -150,6 +153,9 @@ class JobStore {
   std::string ResultPath(const std::string& job_id) const;  // JobDir/result.rfb
   // A bundle stored under `base` (+ .files.rfb: paths and sizes, + .bundle.rfb: the bytes).
   static absl::StatusOr<StoredScene> GetBundle(const std::string& base, const std::string& name);
+  // A scene's files under `base` (scenes/<sha256>), whichever form it was stored in.
+  static absl::StatusOr<StoredScene> ReadSceneFiles(const std::string& base,
+                                                    const std::string& name);
   explicit JobStore(std::string data_dir) : data_dir_(std::move(data_dir)) {}
   absl::StatusOr<std::optional<v1::Job>> FindRequestLocked(const std::string& owner,
                                                            const std::string& request_id,

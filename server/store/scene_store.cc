@@ -1,5 +1,7 @@
 // JobStore's scenes: content-addressed scene files under scenes/, their rows in the
 // database, and which principals own each (see job_store.h).
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
 
 #include "absl/strings/str_cat.h"
@@ -73,20 +75,11 @@ absl::StatusOr<StoredScene> JobStore::GetBundle(const std::string& base, const s
   return SplitScenePayload(header, *data);
 }
 
-absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
+absl::StatusOr<StoredScene> JobStore::ReadSceneFiles(const std::string& base,
+                                                     const std::string& name) {
+  if (std::error_code ec; fs::exists(base + ".files.rfb", ec)) return GetBundle(base, name);
   StoredScene scene;
-  {
-    std::lock_guard lock(mu_);
-    Statement st(db_, "SELECT name FROM scenes WHERE sha256 = ?");
-    st.Bind(1, sha256);
-    if (!st.ok() || st.Step() != SQLITE_ROW) {
-      return absl::NotFoundError(
-          absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
-    }
-    scene.name = st.Column(0);
-  }
-  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
-  if (std::error_code ec; fs::exists(base + ".files.rfb", ec)) return GetBundle(base, scene.name);
+  scene.name = name;
   if (std::error_code ec; fs::exists(base + ".mesh.rfb", ec)) {
     absl::StatusOr<std::string> mesh = ReadBlobFile(base + ".mesh.rfb");
     if (!mesh.ok()) return mesh.status();
@@ -100,6 +93,33 @@ absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
   scene.obj = *std::move(obj);
   scene.mtl = *std::move(mtl);
   return scene;
+}
+
+absl::StatusOr<StoredScene> JobStore::GetScene(const std::string& sha256) {
+  std::string name;
+  {
+    std::lock_guard lock(mu_);
+    Statement st(db_, "SELECT name FROM scenes WHERE sha256 = ?");
+    st.Bind(1, sha256);
+    if (!st.ok() || st.Step() != SQLITE_ROW) {
+      return absl::NotFoundError(
+          absl::StrCat("no scene with sha256 ", sha256, "; upload it first"));
+    }
+    name = st.Column(0);
+  }
+  const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
+  absl::StatusOr<StoredScene> scene = ReadSceneFiles(base, name);
+  if (scene.ok()) return scene;
+  // Files lost or failing their check: the scene is forgotten (its owners stay), so that
+  // HasScene says no and an upload of the same bytes writes it again.
+  spdlog::error("stored scene {}: {}; marked missing", sha256,
+                std::string(scene.status().message()));
+  std::lock_guard lock(mu_);
+  Statement st(db_, "DELETE FROM scenes WHERE sha256 = ?");
+  st.Bind(1, sha256);
+  if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "a corrupt scene's row");
+  return absl::DataLossError(absl::StrCat("stored scene ", sha256,
+                                          " is lost or corrupt on the server; upload it again"));
 }
 
 absl::Status JobStore::AddSceneOwner(const std::string& sha256, const std::string& owner) {

@@ -1,0 +1,123 @@
+// The job store repairs or refuses what it cannot trust (issue 22): writers of one blob at
+// once each rename a whole file of their own into place; a stored scene whose files fail
+// their check is marked missing so that an upload of the same bytes writes it again; a data
+// directory whose database is gone while scenes or jobs remain refuses to start.
+#include <stdio.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/strings/str_split.h"
+#include "server/store/blob_file.h"
+#include "tests/integration/service_fixture.h"
+#include "wire/scene_stream.h"
+
+namespace radflux {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kMtl;
+using testing::kObj;
+
+class StoreRepairTest : public testing::ServiceFixture {
+ public:
+  // GetScene of `sha` read to its end (ReadSceneChunks).
+  absl::StatusOr<StoredScene> GetScene(const std::string& sha) {
+    v1::GetSceneRequest request;
+    request.set_sha256(sha);
+    auto context = Context();
+    auto reader = stub_->GetScene(context.get(), request);
+    return ReadSceneChunks(*reader, sha);
+  }
+};
+
+TEST_F(StoreRepairTest, WritersOfOneBlobAtOnceAllSucceedAndLeaveOneWholeFile) {
+  constexpr int kWriters = 20;
+  constexpr int kRounds = 5;
+  const std::string path = data_dir_ + "/scene.obj.rfb";
+  std::string data(1 << 20, '\0');
+  for (size_t i = 0; i < data.size(); ++i) data[i] = static_cast<char>((i * 2654435761u) >> 13);
+  std::vector<absl::Status> statuses(kWriters * kRounds);
+  std::vector<std::thread> writers;
+  for (int w = 0; w < kWriters; ++w) {
+    writers.emplace_back([&, w] {
+      for (int r = 0; r < kRounds; ++r) statuses[w * kRounds + r] = WriteBlobFile(path, data);
+    });
+  }
+  for (std::thread& t : writers) t.join();
+  for (const absl::Status& s : statuses) EXPECT_TRUE(s.ok()) << s;
+  absl::StatusOr<std::string> read = ReadBlobFile(path);
+  ASSERT_TRUE(read.ok()) << read.status();
+  EXPECT_TRUE(*read == data);
+  std::vector<std::string> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(data_dir_)) {
+    files.push_back(e.path().filename().string());
+  }
+  EXPECT_EQ(files, std::vector<std::string>{"scene.obj.rfb"}) << "no temp file left";
+}
+
+TEST_F(StoreRepairTest, CorruptStoredSceneIsMarkedMissingAndAnUploadRepairsIt) {
+  StartServer();
+  v1::SceneRef ref;
+  ASSERT_TRUE(Upload(kObj, kMtl, &ref, SceneContentHash(kObj, kMtl)).ok());
+  const std::string obj = data_dir_ + "/scenes/" + ref.sha256() + ".obj.rfb";
+  {
+    std::fstream file(obj, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(fs::file_size(obj) / 2));
+    file.put('\x5a').put('\xa5').put('\x5a');
+  }
+  const absl::Status corrupt = GetScene(ref.sha256()).status();
+  EXPECT_EQ(corrupt.code(), absl::StatusCode::kDataLoss) << corrupt;
+  EXPECT_NE(corrupt.message().find("upload it again"), std::string::npos) << corrupt;
+  EXPECT_EQ(corrupt.message().find(data_dir_), std::string::npos) << "no server path: " << corrupt;
+
+  v1::SceneRef again;
+  ASSERT_TRUE(Upload(kObj, kMtl, &again, SceneContentHash(kObj, kMtl)).ok());
+  EXPECT_EQ(again.sha256(), ref.sha256());
+  EXPECT_FALSE(again.already_stored()) << "the corrupt scene was stored again";
+  const absl::StatusOr<StoredScene> repaired = GetScene(ref.sha256());
+  ASSERT_TRUE(repaired.ok()) << repaired.status();
+  EXPECT_TRUE(repaired->obj == kObj && repaired->mtl == kMtl);
+}
+
+// radfluxd's exit status and everything it printed (stdout and stderr), on `data_dir`.
+// `timeout` ends a server that starts after all, which then fails the test (exit 124).
+std::pair<int, std::string> RunRadfluxd(const std::string& data_dir) {
+  const std::string command = "timeout 60 " RADFLUXD_PATH " --listen 127.0.0.1:0 --data-dir '" +
+                              data_dir + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  for (size_t n; pipe && (n = fread(buffer, 1, sizeof(buffer), pipe)) > 0;) output.append(buffer, n);
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST_F(StoreRepairTest, DataDirWithoutItsDatabaseRefusesToStartAndSaysHowToRecover) {
+  StartServer();
+  UploadCornell();
+  ASSERT_EQ(server_->Stop(), 0);
+  ASSERT_TRUE(fs::remove(data_dir_ + "/radflux.db"));
+
+  const auto [exit_code, output] = RunRadfluxd(data_dir_);
+  EXPECT_NE(exit_code, 0) << output;
+  EXPECT_NE(exit_code, 124) << "it started: " << output;
+  const std::vector<std::string> lines = absl::StrSplit(output, '\n', absl::SkipEmpty());
+  EXPECT_EQ(lines.size(), 1u) << output;
+  EXPECT_NE(output.find("no database"), std::string::npos) << output;
+  EXPECT_NE(output.find("restore radflux.db"), std::string::npos) << output;
+  EXPECT_NE(output.find("move " + data_dir_ + " away"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(data_dir_ + "/radflux.db")) << "no empty database was created";
+
+  // A fresh directory (nothing to orphan) still starts.
+  fs::remove_all(data_dir_);
+  StartServer();
+  EXPECT_EQ(server_->Stop(), 0);
+}
+
+}  // namespace
+}  // namespace radflux
