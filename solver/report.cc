@@ -86,10 +86,11 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
                         {"tolerance", e.Tolerance()},
                         {"tolerance_rule",
                          absl::StrFormat(
-                             "max(%g, %g noise / emitted); noise: the standard deviation of the "
-                             "imbalance the rows' Monte Carlo noise gives (multinomial rows of k "
-                             "rays; light samples measured against the emitters' own rows)",
-                             kEnergyBalanceFloor, kEnergyBalanceSigmas)},
+                             "min(%g, max(%g, %g noise / emitted)); noise: the standard "
+                             "deviation of the imbalance the rows' Monte Carlo noise gives "
+                             "(multinomial rows of k rays; light samples measured against the "
+                             "emitters' own rows)",
+                             kEnergyBalanceCeiling, kEnergyBalanceFloor, kEnergyBalanceSigmas)},
                         {"ok", e.Ok()}};
   if (!e.Ok()) out["why"] = e.Why();
   return out;

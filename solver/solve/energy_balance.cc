@@ -87,14 +87,15 @@ double EnergyBalance::Tolerance() const {
   for (int b = 0; b < kBands; ++b) {
     if (emitted[b] > 0) worst = std::max(worst, kEnergyBalanceSigmas * noise[b] / emitted[b]);
   }
-  return worst;
+  return std::min(worst, kEnergyBalanceCeiling);
 }
 
 bool EnergyBalance::Ok() const {
   for (int b = 0; b < kBands; ++b) {
     if (emitted[b] <= 0) continue;
     const double allowed =
-        std::max(kEnergyBalanceFloor * emitted[b], kEnergyBalanceSigmas * noise[b]);
+        std::min(kEnergyBalanceCeiling * emitted[b],
+                 std::max(kEnergyBalanceFloor * emitted[b], kEnergyBalanceSigmas * noise[b]));
     if (!(std::abs(emitted[b] - absorbed[b] - escaped[b]) <= allowed)) return false;
   }
   return true;

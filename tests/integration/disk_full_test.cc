@@ -125,14 +125,21 @@ TEST_F(DiskFullTest, UnfinishedJobsKeepTheirDiskEstimateFromLaterSubmits) {
   // checkpointed before 16 MiB of them wait.
   StartServer({"--testing-block-delay-ms", "2000", "--checkpoint-seconds", "1000"});
   const std::string sha = UploadCornell();
-  const v1::SolveOptions options = SmallOptions(1200, "jacobi");  // ~4.2 MiB of disk
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");  // ~4 MiB of disk
   v1::Job first, second;
   ASSERT_TRUE(Submit(options, &first, sha).ok());
   const grpc::Status status = Submit(options, &second, sha);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
-  EXPECT_NE(status.error_message().find("the unfinished jobs may still write 4."),
-            std::string::npos)
-      << status.error_message();
+  // The first job has written nothing, so all of its estimate (the same as the second's
+  // need: same options) is still held for it.
+  const std::string& message = status.error_message();
+  const std::string need = "would need up to ", held = "the unfinished jobs may still write ";
+  const size_t need_at = message.find(need), held_at = message.find(held);
+  ASSERT_NE(need_at, std::string::npos) << message;
+  ASSERT_NE(held_at, std::string::npos) << message;
+  const std::string need_mib = message.substr(need_at + need.size(), 4);
+  EXPECT_EQ(message.substr(held_at + held.size(), 4), need_mib) << message;
+  EXPECT_GT(std::stod(need_mib), 2.0) << message;  // the estimate of ~1,100 patches, not 0
 
   v1::CancelJobRequest cancel;
   cancel.set_job_id(first.job_id());

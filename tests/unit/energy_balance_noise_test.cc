@@ -126,5 +126,23 @@ TEST(EnergyBalanceNoise, NoiseIsTheSpreadOverSeedsAndTheMeanIsZero) {
   EXPECT_EQ(ok, kSeeds);
 }
 
+// Noise widens the band only up to kEnergyBalanceCeiling: rows noisy enough for a 3-sigma
+// band of 21% (the conference room's seed 3) cannot vouch for a 13% imbalance.
+TEST(EnergyBalanceNoise, NoBandIsWiderThanTheCeiling) {
+  EnergyBalance balance;
+  balance.emitted = {100, 100, 100};
+  balance.absorbed = {87, 87, 87};  // 13% of the power lost
+  balance.noise = {7, 7, 7};        // 3 sigma = 21%
+  EXPECT_DOUBLE_EQ(balance.Tolerance(), kEnergyBalanceCeiling);
+  EXPECT_FALSE(balance.Ok());
+  EXPECT_NE(balance.OffMessage().find("(tolerance 10.00%)"), std::string::npos)
+      << balance.OffMessage();
+  balance.absorbed = {95, 95, 95};  // 5% lost: inside the (capped) band
+  EXPECT_TRUE(balance.Ok());
+  balance.noise = {1, 1, 1};  // 3 sigma = 3%: 5% lost is out again
+  EXPECT_FALSE(balance.Ok());
+  EXPECT_DOUBLE_EQ(balance.Tolerance(), 0.03);
+}
+
 }  // namespace
 }  // namespace radflux
