@@ -1,5 +1,7 @@
 // JobStore's files of one job under jobs/<id>/: row blocks, the solver checkpoint and the
 // result (see job_store.h).
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
 #include <map>
 
@@ -89,7 +91,13 @@ absl::Status JobStore::SyncResult(const std::string& job_id) {
 }
 
 absl::StatusOr<std::string> JobStore::GetResult(const std::string& job_id) {
-  return ReadBlobFile(ResultPath(job_id));
+  absl::StatusOr<std::string> read = ReadBlobFile(ResultPath(job_id));
+  if (read.ok()) return read;
+  spdlog::error("job {}: {}", job_id, std::string(read.status().message()));  // with its path
+  return absl::Status(read.status().code(),
+                      absl::StrCat("job ", job_id, ": its stored result is ",
+                                   absl::IsNotFound(read.status()) ? "lost" : "corrupt",
+                                   " on the server"));
 }
 
 void JobStore::DiscardResult(const std::string& job_id) {

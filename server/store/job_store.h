@@ -138,6 +138,8 @@ class JobStore {
   absl::Status PutResult(const std::string& job_id, std::string_view file, bool prepared);
   // fsyncs the job's result file (see PutResult).
   absl::Status SyncResult(const std::string& job_id);
+  // The job's result file, verified: NOT_FOUND (lost) or DATA_LOSS (corrupt) with a message
+  // naming the job, not the server's paths (the log names the file).
   absl::StatusOr<std::string> GetResult(const std::string& job_id);
   // Deletes a job's result file and solver checkpoint (a result found missing or corrupt
   // at a restart, before the job computes it again).

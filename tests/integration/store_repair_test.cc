@@ -84,6 +84,30 @@ TEST_F(StoreRepairTest, CorruptStoredSceneIsMarkedMissingAndAnUploadRepairsIt) {
   EXPECT_TRUE(repaired->obj == kObj && repaired->mtl == kMtl);
 }
 
+// A result file corrupted on disk after it was marked durable is reported without the
+// server's paths (it is not computed again: see issue 22).
+TEST_F(StoreRepairTest, CorruptResultIsReportedWithoutServerPaths) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  v1::Job job;
+  ASSERT_TRUE(Submit(testing::SmallOptions(100, "jacobi"), &job, sha).ok());
+  ASSERT_EQ(Watch(job.job_id()).back().state(), v1::JOB_STATE_SUCCEEDED);
+  ASSERT_EQ(server_->Stop(), 0);  // the result is read from its file after a restart
+  const std::string result = data_dir_ + "/jobs/" + job.job_id() + "/result.rfb";
+  {
+    std::fstream file(result, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(fs::file_size(result) / 2));
+    file.put('\x5a').put('\xa5').put('\x5a');
+  }
+  StartServer();
+  std::vector<double> radiosity;
+  const grpc::Status read = Result(job.job_id(), &radiosity);
+  EXPECT_EQ(read.error_code(), grpc::StatusCode::DATA_LOSS) << read.error_message();
+  EXPECT_NE(read.error_message().find("stored result is corrupt"), std::string::npos)
+      << read.error_message();
+  EXPECT_EQ(read.error_message().find(data_dir_), std::string::npos) << read.error_message();
+}
+
 // radfluxd's exit status and everything it printed (stdout and stderr), on `data_dir`.
 // `timeout` ends a server that starts after all, which then fails the test (exit 124).
 std::pair<int, std::string> RunRadfluxd(const std::string& data_dir) {
