@@ -7,13 +7,13 @@
 
 #include <algorithm>
 #include <map>
-#include <span>
 #include <vector>
 
 #include "howell_closed_forms.h"
 #include "solver/formfactor/surface_rows.h"
 #include "solver/scene/coplanar_overlaps.h"
 #include "solver/scene/load_scene.h"
+#include "surface_rows_collect.h"
 
 namespace radflux {
 namespace {
@@ -38,14 +38,7 @@ std::vector<std::vector<double>> Rows(const std::vector<SurfaceShape>& shapes, b
   SurfaceRowsOptions options;
   options.memory_limit = reciprocal ? 0 : 1;
   SurfaceRowsStats stats;
-  std::vector<std::vector<double>> f;
-  EXPECT_TRUE(BuildSurfaceRows(shapes, shapes.size(), options,
-                               [&](std::span<const double> row) {
-                                 f.emplace_back(row.begin(), row.end());
-                                 return absl::OkStatus();
-                               },
-                               stats)
-                  .ok());
+  std::vector<std::vector<double>> f = testing::CollectSurfaceRows(shapes, options, stats);
   EXPECT_EQ(stats.reciprocal, reciprocal);
   return f;
 }

@@ -12,6 +12,7 @@
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
 #include "solver/formfactor/surface_rows.h"
+#include "surface_rows_collect.h"
 
 namespace radflux {
 namespace {
@@ -150,16 +151,7 @@ std::vector<SurfaceShape> CubeRoom(int n) {
 
 std::vector<std::vector<double>> Rows(const std::vector<SurfaceShape>& shapes,
                                       const SurfaceRowsOptions& options, SurfaceRowsStats& stats) {
-  std::vector<std::vector<double>> f;
-  EXPECT_TRUE(BuildSurfaceRows(shapes, shapes.size(), options,
-                               [&](std::span<const double> row) {
-                                 f.emplace_back(row.begin(), row.end());
-                                 return absl::OkStatus();
-                               },
-                               stats)
-                  .ok());
-  EXPECT_EQ(f.size(), shapes.size());
-  return f;
+  return testing::CollectSurfaceRows(shapes, options, stats);
 }
 
 // A closed cube room of 3 x 3 squares per wall: every row sums to 1 (closure), A_i F_ij =
