@@ -128,6 +128,21 @@ TEST(PartialTransmission, EnergyBalancesWithAPartlyTransparentReflector) {
   }
 }
 
+TEST(PartialTransmission, TheHierarchicalSolverSolvesPartlyTransparentFacesOpaque) {
+  // It has no partial transmission: the half-opaque plate blocks all, and the import log
+  // says so for its face.
+  JobOptions options = Options(FormFactorMethod::kMonteCarlo);
+  options.hierarchical.enabled = true;
+  absl::StatusOr<JobResult> result = RunJob(Room(0.5), options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_EQ(FaceRadiosity(*result, kReceiverFace), 0);
+  const std::vector<std::string> lines = result->job->scene.import_log.Lines();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0],
+            "import: 1 face partly transparent solved opaque (--solver hierarchical has no "
+            "partial transmission) (first at room.obj:28)");
+}
+
 TEST(PartialTransmission, BothCastersLetTheSameRaysThroughAtTheRate) {
   // 4,096 rays straight up from under the plate, stopping short of the receiver: Embree and the brute-force caster agree on
   // each one, and the fraction that passes is 1 - alpha within 4 sigma.
