@@ -68,29 +68,30 @@ Rgb Times(const Rgb& a, const std::array<double, 4>& mean) {
   return {a[0] * mean[0], a[1] * mean[1], a[2] * mean[2]};
 }
 
-// Whether `face` (scene.faces[f] on entry) stays, by its mean opacity; logs what it decides.
-bool KeepByOpacity(const MaterialTextures& textures, const std::vector<TexCoord>& uv,
-                   const TextureFormat& format, const std::string& where, TextureCache& cache,
-                   ImportLog& log) {
+// The mean opacity of face f over its alpha texture's footprint (1 without one), or nullopt
+// when it is cut out (below kMinOpacity); logs what it decides.
+std::optional<double> FaceOpacity(const MaterialTextures& textures, const std::vector<TexCoord>& uv,
+                                  const TextureFormat& format, const std::string& where,
+                                  TextureCache& cache, ImportLog& log) {
   const TextureImage* opacity = cache.Opacity(textures);
-  if (opacity == nullptr || uv.empty()) return true;
+  if (opacity == nullptr || uv.empty()) return 1.0;
   const double alpha = TextureMean(*opacity, uv, format.v_up)[3];
   if (alpha < kMinOpacity) {
     log.Add("transparent_faces_dropped",
-            absl::StrCat("{face|faces} mostly transparent (mean alpha < 0.5) in {its|their} alpha "
+            absl::StrCat("{face|faces} transparent (mean alpha < 1/255) in {its|their} alpha "
                          "texture (",
                          format.alpha, ") dropped"),
             where);
-    return false;
+    return std::nullopt;
   }
   if (alpha < 1) {
-    log.Add("partly_transparent_kept",
-            absl::StrCat("{face|faces} partly transparent (mean alpha in [0.5, 1)) in {its|their} "
-                         "alpha texture (",
-                         format.alpha, ") kept opaque (no partial transmission)"),
+    log.Add("partly_transparent",
+            absl::StrCat("{face|faces} partly transparent (mean alpha in [1/255, 1)) in "
+                         "{its|their} alpha texture (",
+                         format.alpha, ") let the transparent fraction through"),
             where);
   }
-  return true;
+  return alpha;
 }
 
 }  // namespace
@@ -98,7 +99,8 @@ bool KeepByOpacity(const MaterialTextures& textures, const std::vector<TexCoord>
 void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const FaceTexCoords& uvs,
                        const TextureReader& read, const TextureFormat& format, Scene& scene) {
   TextureCache cache(read, format, scene.import_log);
-  std::map<std::tuple<uint32_t, Rgb, Rgb>, uint32_t> variants;  // (material, rho, E) -> index
+  // (material, rho, E, opacity) -> index
+  std::map<std::tuple<uint32_t, Rgb, Rgb, double>, uint32_t> variants;
   std::vector<Face> kept;
   kept.reserve(scene.faces.size());
   for (size_t f = 0; f < scene.faces.size(); ++f) {
@@ -110,11 +112,11 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
       kept.push_back(std::move(face));
       continue;
     }
-    if (!KeepByOpacity(slots, uvs(f, TextureSlot::kAlpha), format, where, cache,
-                       scene.import_log)) {
-      continue;
-    }
+    const std::optional<double> opacity =
+        FaceOpacity(slots, uvs(f, TextureSlot::kAlpha), format, where, cache, scene.import_log);
+    if (!opacity) continue;
     Material material = scene.materials[face.material];
+    material.opacity = *opacity;
     bool without_uv = false;
     const auto apply = [&](const std::string& name, TextureSlot slot, Rgb& value,
                            const char* kind, const std::string& message) {
@@ -139,7 +141,8 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
                                         format.untextured),
                            where);
     }
-    const auto key = std::make_tuple(face.material, material.reflectance, material.emission);
+    const auto key =
+        std::make_tuple(face.material, material.reflectance, material.emission, material.opacity);
     auto [it, inserted] = variants.try_emplace(key, static_cast<uint32_t>(scene.materials.size()));
     if (inserted) scene.materials.push_back(std::move(material));
     face.material = it->second;

@@ -1,6 +1,7 @@
 // OBJ textures (solver/scene/face_textures.h, texture_image.h): a face's reflectance is Kd
 // times the mean of its map_Kd texture over the face's footprint (sRGB decoded), a face
-// whose map_d alpha averages below 0.5 is dropped, a missing texture is one log line and Kd stays.
+// whose map_d alpha averages below 1/255 is dropped (any other keeps its mean as its
+// opacity), a missing texture is one log line and Kd stays.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -95,8 +96,27 @@ TEST_F(TextureImportTest, AMostlyTransparentFaceIsDroppedWithOneLogLine) {
   EXPECT_EQ(s->faces.size(), 1u);
   const std::vector<std::string> lines = s->import_log.Lines();
   EXPECT_NE(std::find(lines.begin(), lines.end(),
-                      "import: 1 face mostly transparent (mean alpha < 0.5) in its alpha "
+                      "import: 1 face transparent (mean alpha < 1/255) in its alpha "
                       "texture (map_d) dropped (first at " +
+                          dir_ + "/s.obj:17)"),
+            lines.end());
+}
+
+TEST_F(TextureImportTest, AFaceThirtyPercentOpaqueIsKeptWithThatOpacity) {
+  // One texel, alpha 77/255 = 0.302 (alpha is linear, not sRGB): the quad over it stays,
+  // 0.302 opaque, its reflectance still Kd times the texel's colour.
+  Write("tex/veil.png", Png(1, 1, {255, 255, 255, 77}));
+  absl::StatusOr<Scene> s =
+      Load("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", "map_Kd tex/veil.png\nmap_d tex/veil.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_EQ(s->faces.size(), 2u);
+  EXPECT_NEAR(Wall(*s).opacity, 77 / 255.0, 1e-7);
+  EXPECT_NEAR(Wall(*s).reflectance[0], 0.8, 1e-7);
+  EXPECT_EQ(s->materials[s->faces.front().material].opacity, 1) << "the untextured lamp";
+  const std::vector<std::string> lines = s->import_log.Lines();
+  EXPECT_NE(std::find(lines.begin(), lines.end(),
+                      "import: 1 face partly transparent (mean alpha in [1/255, 1)) in its alpha "
+                      "texture (map_d) let the transparent fraction through (first at " +
                           dir_ + "/s.obj:17)"),
             lines.end());
 }
