@@ -75,7 +75,7 @@ std::optional<double> FaceOpacity(const MaterialTextures& textures, const std::v
                                   TextureCache& cache, ImportLog& log) {
   const TextureImage* opacity = cache.Opacity(textures);
   if (opacity == nullptr || uv.empty()) return 1.0;
-  const double alpha = TextureMean(*opacity, uv, format.v_up)[3];
+  const double alpha = TextureMean(*opacity, uv, format.v_up, textures.alpha_wrap)[3];
   if (alpha < kMinOpacity) {
     log.Add("transparent_faces_dropped",
             absl::StrCat("{face|faces} transparent (mean alpha < 1/255) in {its|their} alpha "
@@ -118,8 +118,8 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
     Material material = scene.materials[face.material];
     material.opacity = *opacity;
     bool without_uv = false;
-    const auto apply = [&](const std::string& name, TextureSlot slot, Rgb& value,
-                           const char* kind, const std::string& message) {
+    const auto apply = [&](const std::string& name, TextureWrapping wrap, TextureSlot slot,
+                           Rgb& value, const char* kind, const std::string& message) {
       const TextureImage* image = cache.Get(name);
       if (image == nullptr) return;
       const std::vector<TexCoord>& uv = uvs(f, slot);
@@ -127,13 +127,17 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
         without_uv = true;
         return;
       }
-      value = Times(value, TextureMean(*image, uv, format.v_up));
+      value = Times(value, TextureMean(*image, uv, format.v_up, wrap));
       scene.import_log.Add(kind, message, where);
     };
-    apply(slots.diffuse, TextureSlot::kDiffuse, material.reflectance, "reflectance_from_textures",
-          absl::StrCat("{face|faces} took {its|their} reflectance from textures (", format.diffuse, ")"));
-    apply(slots.emissive, TextureSlot::kEmissive, material.emission, "emission_from_textures",
-          absl::StrCat("{face|faces} took {its|their} emission from textures (", format.emissive, ")"));
+    apply(slots.diffuse, slots.diffuse_wrap, TextureSlot::kDiffuse, material.reflectance,
+          "reflectance_from_textures",
+          absl::StrCat("{face|faces} took {its|their} reflectance from textures (", format.diffuse,
+                       ")"));
+    apply(slots.emissive, slots.emissive_wrap, TextureSlot::kEmissive, material.emission,
+          "emission_from_textures",
+          absl::StrCat("{face|faces} took {its|their} emission from textures (", format.emissive,
+                       ")"));
     if (without_uv || (!slots.alpha.empty() && uvs(f, TextureSlot::kAlpha).empty())) {
       scene.import_log.Add("textures_without_uv",
                            absl::StrCat("{face|faces} in textured materials without texture "

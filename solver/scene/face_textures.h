@@ -46,6 +46,8 @@ struct MaterialTextures {
   // then 1 when at least alpha_cutoff, else 0.
   double alpha_scale = 1;
   double alpha_cutoff = -1;
+  // How each texture goes on outside [0, 1] (TextureMean).
+  TextureWrapping diffuse_wrap{}, emissive_wrap{}, alpha_wrap{};
   bool any() const { return !diffuse.empty() || !emissive.empty() || !alpha.empty(); }
 };
 

@@ -3,9 +3,10 @@
 // glTF's v = 0 is the image's top row), its emission emissiveFactor x emissiveStrength x the
 // emissive texture's mean; under alphaMode MASK a texel is opaque when its alpha (times the
 // factor's) reaches alphaCutoff, under BLEND its alpha is its opacity, under OPAQUE alpha is
-// ignored; a face less than half opaque is dropped, one partly transparent is kept whole and
-// counted. KHR_texture_transform maps the coordinates; images come from data URIs, buffer
-// views or files (found ignoring case).
+// ignored; a face under 1/255 opaque is dropped, one partly transparent keeps its mean alpha
+// as its opacity and is counted. KHR_texture_transform maps the coordinates, the sampler's
+// wrap modes continue the image outside [0, 1]; images come from data URIs, buffer views or
+// files (found ignoring case).
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -169,6 +170,52 @@ TEST(GltfTextures, AFacePartlyOverACutOutTexelIsAsOpaqueAsItsOpaqueFraction) {
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0].substr(0, 35), "import: 2 faces partly transparent ");
   EXPECT_EQ(lines[1].substr(0, 40), "import: 2 faces took their reflectance f");
+}
+
+// The red reflectance over the quad with coordinates `uv` (the mean of its two triangles,
+// of equal area) under a sampler with `wrap_s`, `wrap_t` (0: no sampler).
+double RedUnder(const std::vector<float>& uv, int wrap_s, int wrap_t) {
+  GltfBuilder b = Quad(uv, BaseColour({1, 1, 1, 1}));
+  if (wrap_s != 0 || wrap_t != 0) {
+    b.json()["samplers"] = {{{"wrapS", wrap_s == 0 ? 10497 : wrap_s},
+                             {"wrapT", wrap_t == 0 ? 10497 : wrap_t}}};
+    b.json()["textures"][0]["sampler"] = 0;
+  }
+  const Scene s = Load(b);
+  EXPECT_EQ(s.faces.size(), 2u);
+  if (s.faces.size() != 2u) return -1;
+  return (MaterialOf(s, 0).reflectance[0] + MaterialOf(s, 1).reflectance[0]) / 2;
+}
+
+TEST(GltfTextures, SamplerWrapModesContinueTheImageOutsideTheUnitSquare) {
+  constexpr int kRepeat = 10497, kClamp = 33071, kMirror = 33648;
+  // u in [1.5, 2], the top row: repeat (with no sampler too) and clamp show the top-right
+  // texel, mirrored repeat the top-left one (the second period runs backwards).
+  const std::vector<float> right = {1.5f, 0, 2, 0, 2, .5f, 1.5f, .5f};
+  EXPECT_NEAR(RedUnder(right, 0, 0), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kRepeat, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kClamp, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kMirror, kRepeat), Texel(0, 0), 1e-12);
+  // u in [1, 1.5]: repeat shows the top-left texel, clamp and mirror the top-right.
+  const std::vector<float> next = {1, 0, 1.5f, 0, 1.5f, .5f, 1, .5f};
+  EXPECT_NEAR(RedUnder(next, kRepeat, kRepeat), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(next, kClamp, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(next, kMirror, kRepeat), Texel(1, 0), 1e-12);
+  // v in [-.5, 0] and [1.5, 2] (glTF's v runs down), the left column: repeat shows the
+  // bottom-left texel, clamp (above the top) and mirror the top-left.
+  const std::vector<float> above = {0, -.5f, .5f, -.5f, .5f, 0, 0, 0};
+  const std::vector<float> below = {0, 1.5f, .5f, 1.5f, .5f, 2, 0, 2};
+  EXPECT_NEAR(RedUnder(above, kRepeat, kRepeat), Texel(2, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(above, kRepeat, kClamp), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(above, kRepeat, kMirror), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(below, kRepeat, kRepeat), Texel(2, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(below, kRepeat, kMirror), Texel(0, 0), 1e-12);
+  // A footprint across the edge, u in [.5, 1.5]: the mean of the top-right texel and what
+  // lies beyond it.
+  const std::vector<float> across = {.5f, 0, 1.5f, 0, 1.5f, .5f, .5f, .5f};
+  EXPECT_NEAR(RedUnder(across, kRepeat, kRepeat), (Texel(1, 0) + Texel(0, 0)) / 2, 1e-12);
+  EXPECT_NEAR(RedUnder(across, kClamp, kClamp), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(across, kMirror, kRepeat), Texel(1, 0), 1e-12);
 }
 
 TEST(GltfTextures, TextureTransformMapsTheCoordinatesFirst) {

@@ -86,6 +86,11 @@ TEST_F(TextureImportTest, AQuadOverTheWholeTextureTakesTheMeanOfItsTexels) {
   ASSERT_TRUE(wrapped.ok());
   EXPECT_NEAR(Wall(*wrapped).reflectance[1], 0.6 * Linear(255), 1e-12)
       << "u in [-.5, -.25] repeats onto [.5, .75]: the top-right texel";
+  // Under `-clamp on` the left edge stretches on instead: the top-left texel.
+  absl::StatusOr<Scene> clamped =
+      Load("vt -.5 .5\nvt -.25 .5\nvt -.25 1\nvt -.5 1\n", "map_Kd -clamp on tex/checker.png\n");
+  ASSERT_TRUE(clamped.ok()) << clamped.status();
+  EXPECT_NEAR(Wall(*clamped).reflectance[1], 0.6 * Linear(64), 1e-12);
 }
 
 TEST_F(TextureImportTest, AMostlyTransparentFaceIsDroppedWithOneLogLine) {
