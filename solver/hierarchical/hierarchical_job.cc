@@ -48,9 +48,9 @@ void MakeTransparentFacesOpaque(Scene& scene) {
   }
   for (Material& m : scene.materials) m.opacity = 1;
   if (faces > 0) {
-    spdlog::warn("{} partly transparent faces solved opaque: --solver hierarchical has no "
+    spdlog::warn("{} partly transparent {} solved opaque: --solver hierarchical has no "
                  "partial transmission",
-                 faces);
+                 faces, faces == 1 ? "face" : "faces");
   }
 }
 
