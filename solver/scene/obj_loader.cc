@@ -18,6 +18,12 @@
 namespace radflux {
 namespace {
 
+// The wrap modes of an MTL texture: its edges stretch on under `-clamp on`, else it repeats.
+TextureWrapping ObjWrapping(const tinyobj::texture_option_t& option) {
+  if (!option.clamp) return {};
+  return {TextureWrap::kClampToEdge, TextureWrap::kClampToEdge};
+}
+
 // Where each 'f' statement stands in the file and which 'o', 'g' and 'usemtl' are
 // in force there. tinyobjloader parses the geometry; this scan only recovers the
 // provenance that it does not keep, so that messages and results can name surfaces,
@@ -187,6 +193,10 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const Sour
   bool textured = false;
   for (const auto& m : reader.GetMaterials()) {
     texture_names.push_back({m.diffuse_texname, m.emissive_texname, m.alpha_texname});
+    MaterialTextures& wrap = texture_names.back();  // `-clamp on`: the edges stretch on
+    wrap.diffuse_wrap = ObjWrapping(m.diffuse_texopt);
+    wrap.emissive_wrap = ObjWrapping(m.emissive_texopt);
+    wrap.alpha_wrap = ObjWrapping(m.alpha_texopt);
     textured = textured || texture_names.back().any();
     Material material;
     material.name = m.name;
