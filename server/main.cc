@@ -4,7 +4,7 @@
 //            [--principal-cpu-seconds S]
 //            [--tls-cert F --tls-key F [--tls-client-ca F]] [--max-patches N]
 //            [--max-memory BYTES] [--worker-token T | --allow-workers-without-token]
-//            [--lease-seconds S] [--verify-fraction F]
+//            [--lease-seconds S] [--verify-fraction F] [--max-concurrent-uploads N]
 //   radfluxd --worker --server HOST:PORT [--threads N] [--worker-token T] [--tls-ca F]
 //            [--tls-cert F --tls-key F]
 //   (a worker node: builds row blocks for the server, see server/worker_node.h)
@@ -247,6 +247,10 @@ int main(int argc, char** argv) {
                  "spilled, or do not fit and cannot spill (cg, southwell, direct, "
                  "hierarchical, adaptive)");
   app.add_option("--max-upload", flags.manager.max_upload, "largest scene upload in bytes");
+  app.add_option("--max-concurrent-uploads", flags.manager.max_concurrent_uploads,
+                 "uploads in progress at once (each holds its scene in memory until it is "
+                 "stored); more are refused with RESOURCE_EXHAUSTED")
+      ->check(CLI::PositiveNumber);
   app.add_option(
          "--checkpoint-seconds", flags.manager.checkpoint_seconds,
          "at most one checkpoint of row blocks and one of the solver state per job per this "

@@ -23,9 +23,10 @@ class ErrorWriteReactor final : public grpc::ServerWriteReactor<T> {
 // (off the reactor thread).
 class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
  public:
+  // Holds one of `uploads` (already counted by the caller) until the upload is done.
   UploadReactor(JobManager& manager, WorkQueue& work, const Principal& caller,
-                v1::SceneRef* response)
-      : manager_(manager), work_(work), caller_(caller), response_(response) {
+                v1::SceneRef* response, std::atomic<int>& uploads)
+      : manager_(manager), work_(work), caller_(caller), response_(response), uploads_(uploads) {
     StartRead(&chunk_);
   }
 
@@ -35,7 +36,10 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
     if (!finished_) StartRead(&chunk_);
   }
 
-  void OnDone() override { delete this; }
+  void OnDone() override {
+    uploads_.fetch_sub(1);
+    delete this;
+  }
 
  private:
   // Takes one chunk (`ok` false: the stream ended); an error ends the upload with it.
@@ -93,6 +97,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   WorkQueue& work_;
   const Principal& caller_;
   v1::SceneRef* response_;
+  std::atomic<int>& uploads_;
   v1::SceneChunk chunk_;
   v1::SceneHeader header_;
   bool first_ = true;
@@ -204,25 +209,42 @@ grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context,
 
 grpc::ServerReadReactor<v1::SceneChunk>* RadiosityService::UploadScene(
     grpc::CallbackServerContext* context, v1::SceneRef* response) {
+  class Refuse final : public grpc::ServerReadReactor<v1::SceneChunk> {
+   public:
+    explicit Refuse(const grpc::Status& s) { Finish(s); }
+    void OnDone() override { delete this; }
+  };
   const Principal* caller = nullptr;
   if (grpc::Status auth = principals_.Identify(*context, &caller); !auth.ok()) {
-    class Refuse final : public grpc::ServerReadReactor<v1::SceneChunk> {
-     public:
-      explicit Refuse(const grpc::Status& s) { Finish(s); }
-      void OnDone() override { delete this; }
-    };
     return new Refuse(auth);
   }
-  return new UploadReactor(manager_, work_, *caller, response);
+  const int limit = manager_.options().max_concurrent_uploads;
+  if (uploads_.fetch_add(1) >= limit) {
+    uploads_.fetch_sub(1);
+    return new Refuse(grpc::Status(
+        grpc::StatusCode::RESOURCE_EXHAUSTED,
+        absl::StrCat(limit, " uploads are in progress, the most this server takes at once "
+                            "(--max-concurrent-uploads); try again when one ends")));
+  }
+  return new UploadReactor(manager_, work_, *caller, response, uploads_);
 }
 
 grpc::ServerUnaryReactor* RadiosityService::SubmitJob(grpc::CallbackServerContext* context,
-                                                      const v1::SubmitJobRequest* request,
-                                                      v1::Job* response) {
-  return RunUnary(context, principals_, work_, [this, request, response](const Principal& caller) {
-    absl::StatusOr<v1::Job> job = manager_.Submit(*request, caller);
-    if (job.ok()) *response = *job;
-    return job.status();
+                                                      const grpc::ByteBuffer* raw_request,
+                                                      grpc::ByteBuffer* response) {
+  return RunUnary(context, principals_, work_, [this, raw_request, response](const Principal& caller) {
+    v1::SubmitJobRequest request;
+    grpc::ByteBuffer bytes(*raw_request);  // shares the slices; Deserialize consumes it
+    if (!grpc::SerializationTraits<v1::SubmitJobRequest>::Deserialize(&bytes, &request).ok()) {
+      return absl::InvalidArgumentError("malformed SubmitJobRequest");
+    }
+    absl::StatusOr<v1::Job> job = manager_.Submit(request, caller);
+    if (!job.ok()) return job.status();
+    bool own_buffer = false;
+    if (!grpc::SerializationTraits<v1::Job>::Serialize(*job, response, &own_buffer).ok()) {
+      return absl::InternalError("cannot serialize the submitted job");
+    }
+    return absl::OkStatus();
   });
 }
 

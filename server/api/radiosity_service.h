@@ -5,6 +5,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <string>
 
 #include "radflux/v1/radiosity.grpc.pb.h"
@@ -15,8 +16,11 @@
 namespace radflux {
 
 // WatchJob is a raw method: its reactor writes events serialized once for all watchers.
+// SubmitJob is raw so that bytes that are no SubmitJobRequest get INVALID_ARGUMENT (gRPC's
+// own parse answers UNIMPLEMENTED).
 class RadiosityService final
-    : public v1::Radiosity::WithRawCallbackMethod_WatchJob<v1::Radiosity::CallbackService> {
+    : public v1::Radiosity::WithRawCallbackMethod_SubmitJob<
+          v1::Radiosity::WithRawCallbackMethod_WatchJob<v1::Radiosity::CallbackService>> {
  public:
   // `principals` (outliving the service) says who each call comes from.
   RadiosityService(JobManager& manager, WorkQueue& work, const Principals& principals)
@@ -24,9 +28,10 @@ class RadiosityService final
 
   grpc::ServerReadReactor<v1::SceneChunk>* UploadScene(grpc::CallbackServerContext* context,
                                                        v1::SceneRef* response) override;
+  // A serialized v1::SubmitJobRequest in, a serialized v1::Job out.
   grpc::ServerUnaryReactor* SubmitJob(grpc::CallbackServerContext* context,
-                                      const v1::SubmitJobRequest* request,
-                                      v1::Job* response) override;
+                                      const grpc::ByteBuffer* request,
+                                      grpc::ByteBuffer* response) override;
   // A serialized v1::WatchJobRequest in, serialized v1::JobEvents out.
   grpc::ServerWriteReactor<grpc::ByteBuffer>* WatchJob(grpc::CallbackServerContext* context,
                                                        const grpc::ByteBuffer* request) override;
@@ -47,6 +52,7 @@ class RadiosityService final
   JobManager& manager_;
   WorkQueue& work_;
   const Principals& principals_;
+  std::atomic<int> uploads_{0};  // UploadScene calls in progress (--max-concurrent-uploads)
 };
 
 }  // namespace radflux

@@ -110,7 +110,12 @@ absl::StatusOr<uint64_t> JobManager::CheckLimits(const v1::SubmitJobRequest& req
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
   const int64_t max_patches = options_.max_patches;
   const auto too_many = [&](double n) {
-    return absl::ResourceExhaustedError(absl::StrCat("job would mesh ", static_cast<int64_t>(n),
+    // A bound past any integer is written as a float, never cast (--max-edge 1e-300 bounds
+    // the Cornell box past the largest double: it wrapped to -9223372036854775808).
+    const std::string count = n < 1e15         ? absl::StrCat(static_cast<int64_t>(n))
+                              : std::isfinite(n) ? absl::StrFormat("about %.3g", n)
+                                                 : std::string("more than 1e+308");
+    return absl::ResourceExhaustedError(absl::StrCat("job would mesh ", count,
                                                      " patches; this server allows at most ",
                                                      max_patches, " (--max-patches)"));
   };

@@ -36,6 +36,7 @@ struct ManagerOptions {
   int64_t max_patches = 2'000'000;     // larger jobs are refused (RESOURCE_EXHAUSTED)
   uint64_t max_memory = 0;             // bytes per job by EstimateJobBytes (0 = half the RAM)
   uint64_t max_upload = 256ull << 20;  // bytes of OBJ + MTL per scene
+  int max_concurrent_uploads = 4;      // uploads in progress at once; more are refused
   size_t max_queued = 1000;            // queued jobs beyond this are refused
   double checkpoint_seconds = 1.0;     // at most one row-block and one solver checkpoint per job
                                        // per interval (0 = after every block / iteration)

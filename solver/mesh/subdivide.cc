@@ -12,9 +12,14 @@
 namespace radflux {
 namespace {
 
+// Steps along one side saturate here: far past the 2^31 patches SubdivideScene refuses, and
+// small enough that a face's count (fan x steps^2) stays an int64. A length / h past int
+// (--max-edge 1e-300) was cast to INT_MIN and meshed as one step: no refusal at all.
+constexpr double kMaxSteps = 1 << 24;
+
 int Steps(double length, double h) {
   if (h <= 0) return 1;
-  return std::max(1, static_cast<int>(std::ceil(length / h - 1e-9)));
+  return std::max(1, static_cast<int>(std::min(kMaxSteps, std::ceil(length / h - 1e-9))));
 }
 
 // The lengths that decide how finely a face is split (measured once per face, so choosing

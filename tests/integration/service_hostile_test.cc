@@ -1,8 +1,10 @@
 // radfluxd against hostile clients (issue 22): requests built to crash, confuse or exhaust
 // the server are refused with a clear status, and the server keeps serving.
 #include <grpcpp/grpcpp.h>
+#include <grpcpp/impl/client_unary_call.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <limits>
@@ -81,6 +83,84 @@ TEST_F(HostileTest, UploadedNanColourOrWrappingFaceIndexIsRefusedNamingTheLine) 
             "cornell_box.obj:6: face index 9223372036854775809 is out of range");
   EXPECT_TRUE(Upload(lamp + "f 1 2 3\n", good_mtl, &ref).ok());
   ExpectServerAlive();
+}
+
+// --max-edge 1e-300 bounds the Cornell box past the largest double: refused saying so,
+// not with the int64 it wrapped to ("would mesh -9223372036854775808 patches").
+TEST_F(HostileTest, AMaxEdgeFarBeyondTheLimitNamesAHugeCountNotANegativeOne) {
+  StartServer({"--max-patches", "100000"});
+  const std::string sha = UploadCornell();
+  v1::SolveOptions options;
+  options.set_max_edge(1e-300);
+  v1::Job job;
+  const grpc::Status status = Submit(options, &job, sha);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(status.error_message(),
+            "job would mesh more than 1e+308 patches; this server allows at most 100000 "
+            "(--max-patches)");
+  options.set_max_edge(1e-150);  // a bound a double holds, past any int64
+  const grpc::Status finite = Submit(options, &job, sha);
+  EXPECT_EQ(finite.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(finite.error_message().rfind("job would mesh about ", 0), 0) << finite.error_message();
+  EXPECT_NE(finite.error_message().find("e+30"), std::string::npos) << finite.error_message();
+}
+
+// A SubmitJob whose bytes are no SubmitJobRequest is a bad argument, not an unknown method.
+TEST_F(HostileTest, AMalformedSubmitJobIsAnInvalidArgument) {
+  StartServer();
+  auto channel = grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials());
+  const grpc::internal::RpcMethod method("/radflux.v1.Radiosity/SubmitJob",
+                                         grpc::internal::RpcMethod::NORMAL_RPC);
+  const std::string garbage = "\xff\xff\xff\xff\xff\xff\xff\xff\xff\x0f garbage";
+  grpc::Slice slice(garbage);
+  const grpc::ByteBuffer request(&slice, 1);
+  grpc::ByteBuffer response;
+  auto context = Context();
+  const grpc::Status status =
+      grpc::internal::BlockingUnaryCall(channel.get(), method, context.get(), request, &response);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
+  ExpectServerAlive();
+}
+
+// With --max-concurrent-uploads 1, an upload while another is open is refused with
+// RESOURCE_EXHAUSTED naming the flag; once the open one ends its slot is free again.
+TEST_F(HostileTest, UploadsBeyondTheConcurrentLimitAreRefusedNamingTheLimit) {
+  StartServer({"--max-concurrent-uploads", "1"});
+  v1::SceneRef open_ref;
+  auto open_context = Context();
+  auto open = stub_->UploadScene(open_context.get(), &open_ref);
+  v1::SceneChunk chunk;
+  chunk.mutable_header()->set_name("cornell_box.obj");
+  chunk.mutable_header()->set_obj_size(kObj.size());
+  chunk.mutable_header()->set_mtl_size(kMtl.size());
+  chunk.set_data(kObj);
+  ASSERT_TRUE(open->Write(chunk));
+  // Until the server has seen the open upload a second one may still pass; then it may not.
+  grpc::Status refused;
+  for (int attempt = 0; attempt < 500 && refused.ok(); ++attempt) {
+    v1::SceneRef ref;
+    refused = Upload(kObj, kMtl, &ref);
+    if (refused.ok()) usleep(10'000);
+  }
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << refused.error_message();
+  EXPECT_EQ(refused.error_message(),
+            "1 uploads are in progress, the most this server takes at once "
+            "(--max-concurrent-uploads); try again when one ends");
+  chunk.Clear();
+  chunk.set_data(kMtl);
+  ASSERT_TRUE(open->Write(chunk));
+  open->WritesDone();
+  const grpc::Status finished = open->Finish();
+  EXPECT_TRUE(finished.ok()) << finished.error_message();
+  // The slot is freed when the server is done with the call (just after the client sees
+  // its status): a new upload is served then.
+  grpc::Status again = refused;
+  for (int attempt = 0; attempt < 500 && !again.ok(); ++attempt) {
+    v1::SceneRef ref;
+    again = Upload(kObj, kMtl, &ref);
+    if (!again.ok()) usleep(10'000);
+  }
+  EXPECT_TRUE(again.ok()) << again.error_message();
 }
 
 }  // namespace

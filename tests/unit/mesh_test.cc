@@ -123,6 +123,18 @@ TEST(Subdivide, MaxEdgeBoundsEveryEdge) {
   EXPECT_GE(stats.max_aspect, 0.99);
 }
 
+// --max-edge 1e-300: the steps per side (~1e302) do not fit an int; they were cast to
+// INT_MIN and meshed as one step each (148 patches, exit 0). Now the count is refused.
+TEST(Subdivide, AMaxEdgeFarBelowTheSceneIsRefusedNotMeshedCoarsely) {
+  for (const double edge : {1e-300, 1e-12}) {
+    const absl::StatusOr<PatchMesh> mesh = SubdivideScene(Cornell(), MeshOptions{0, edge});
+    ASSERT_FALSE(mesh.ok()) << edge << ": " << mesh->size() << " patches";
+    EXPECT_EQ(mesh.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(mesh.status().message().find("would exceed 2^31 patches"), std::string::npos)
+        << mesh.status().message();
+  }
+}
+
 TEST(Subdivide, NormalsFaceIntoTheCornellBox) {
   const Scene scene = Cornell();
   const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{200, 0});
