@@ -5,6 +5,7 @@
 
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
+#include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -91,6 +92,10 @@ bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
 bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
   const Vec3 d = b - a;
   const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};  // +-inf along an axis the segment does not move
+  const float origin[3] = {static_cast<float>(a.x), static_cast<float>(a.y),
+                           static_cast<float>(a.z)};
+  const float direction[3] = {static_cast<float>(d.x), static_cast<float>(d.y),
+                              static_cast<float>(d.z)};
   // Slab test of the segment a + t d, t in [0, 1], against the box (widened a little).
   const auto meets_box = [&](const Node& node) {
     double t0 = 0, t1 = 1;
@@ -110,7 +115,9 @@ bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32
   return AnyBlocker(
       i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; },
       [&](const SurfaceShape& blocker) {
-        return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker);
+        return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker) &&
+               !PassesThrough(origin, direction, static_cast<uint32_t>(&blocker - shapes_.data()),
+                              blocker.opacity);
       });
 }
 

@@ -30,7 +30,9 @@ class BlockerBvh {
 
   // Whether the open segment from a to b crosses a blocker other than i and j that may block
   // the pair (SegmentHitsSurface, shaft_visibility.h, and MayBlockPair, shaft_cull.h: i's
-  // back-face twin, or a face in i's or j's plane, never blocks the segments between them).
+  // back-face twin, or a face in i's or j's plane, never blocks the segments between them),
+  // and that does not let it through: a partly transparent blocker (SurfaceShape::opacity)
+  // lets it through as PassesThrough (ray_caster.h) decides for the segment as a ray.
   bool SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const;
 
   // Number of blockers held.

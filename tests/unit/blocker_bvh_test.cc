@@ -2,6 +2,7 @@
 // SegmentHitsSurface with MayBlockPair), for every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -63,6 +64,33 @@ TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
   const BlockerBvh bvh(shapes, {});
   EXPECT_FALSE(bvh.AnyInShaft(0, 1));
   EXPECT_FALSE(bvh.SegmentBlocked(shapes[0].centroid, shapes[1].centroid, 0, 1));
+}
+
+TEST(BlockerBvh, APartlyTransparentBlockerLetsThroughItsTransparentFraction) {
+  // Unit squares at z = 0 (facing up) and z = 2 (facing down), a wide plate at z = 1 of
+  // opacity 0.3 between them: of 4,096 segments between them 0.3 are blocked within 4
+  // sigma, and the same segment always gets the same answer.
+  std::vector<SurfaceShape> shapes = {
+      MakeSurfaceShape({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}),
+      MakeSurfaceShape({{0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}}),
+      MakeSurfaceShape({{-5, -5, 1}, {6, -5, 1}, {6, 6, 1}, {-5, 6, 1}})};
+  shapes[2].opacity = 0.3f;
+  const BlockerBvh bvh(shapes, {2});
+  constexpr int kSide = 64;
+  int blocked = 0;
+  for (int a = 0; a < kSide; ++a) {
+    for (int b = 0; b < kSide; ++b) {
+      const Vec3 x{(a + 0.5) / kSide, (b + 0.5) / kSide, 0};
+      const Vec3 y{(b + 0.5) / kSide, (a + 0.5) / kSide, 2};
+      const bool here = bvh.SegmentBlocked(x, y, 0, 1);
+      EXPECT_EQ(bvh.SegmentBlocked(x, y, 0, 1), here);
+      blocked += here;
+    }
+  }
+  const double n = kSide * kSide;
+  EXPECT_NEAR(blocked / n, 0.3, 4 * std::sqrt(0.3 * 0.7 / n));
+  shapes[2].opacity = 1;
+  EXPECT_TRUE(bvh.SegmentBlocked({0.5, 0.5, 0}, {0.5, 0.5, 2}, 0, 1)) << "opaque: always";
 }
 
 }  // namespace
