@@ -1,5 +1,7 @@
-// The blocker hierarchy (blocker_bvh.h) answers as testing every blocker does (ShaftMayHold,
-// SegmentHitsSurface with MayBlockPair), for every pair of a cluttered scene of random quadrilaterals.
+// The blocker hierarchy (blocker_bvh.h) says a pair's shaft holds a blocker exactly when
+// testing every blocker does (ShaftMayHold), and the candidates it lists lose nothing: the
+// visible fraction over them equals the one over every blocker that may block the pair, for
+// every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -32,37 +34,39 @@ TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
   ASSERT_GT(blockers.size(), 100u);  // random orientations: nearly every square can block
   const BlockerBvh bvh(shapes, blockers);
   EXPECT_EQ(bvh.size(), blockers.size());
-  int in_shaft = 0, blocked = 0;
+  int in_shaft = 0, hidden = 0;
+  std::vector<uint32_t> found;
   for (uint32_t i = 0; i < shapes.size(); ++i) {
     for (uint32_t j = 0; j < shapes.size(); ++j) {
       if (i == j) continue;
       bool any = false;
-      for (uint32_t k : blockers) any = any || ShaftMayHold(shapes[i], shapes[j], shapes[k]);
-      ASSERT_EQ(bvh.AnyInShaft(i, j), any) << "pair " << i << " " << j;
-      in_shaft += any;
-      // A segment between points of i and j (at a third of the way to two vertices).
-      const Vec3 a = shapes[i].centroid + (shapes[i].polygon[j % 4] - shapes[i].centroid) / 3;
-      const Vec3 b = shapes[j].centroid + (shapes[j].polygon[i % 4] - shapes[j].centroid) / 3;
-      bool hit = false;
+      std::vector<uint32_t> may_block;
       for (uint32_t k : blockers) {
-        hit = hit || (k != i && k != j && SegmentHitsSurface(a, b, shapes[k]) &&
-                      MayBlockPair(shapes[i], shapes[j], shapes[k]));
+        any = any || ShaftMayHold(shapes[i], shapes[j], shapes[k]);
+        if (k != i && k != j && MayBlockPair(shapes[i], shapes[j], shapes[k])) may_block.push_back(k);
       }
-      ASSERT_EQ(bvh.SegmentBlocked(a, b, i, j), hit) << "pair " << i << " " << j;
-      blocked += hit;
+      ASSERT_EQ(bvh.InShaft(i, j, found), any) << "pair " << i << " " << j;
+      in_shaft += any;
+      if (!any) continue;
+      uint64_t segments = 0;
+      const double all = VisibleFraction(shapes[i], shapes[j], shapes, may_block, segments);
+      ASSERT_EQ(VisibleFraction(shapes[i], shapes[j], shapes, found, segments), all)
+          << "pair " << i << " " << j;
+      hidden += all < 1;
     }
   }
   // The scene is cluttered: both answers are often yes, and often no.
   EXPECT_GT(in_shaft, 2000);
   EXPECT_LT(in_shaft, 14000);
-  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(hidden, 1000);
 }
 
 TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
   const std::vector<SurfaceShape> shapes = RandomSquares(3, 1);
   const BlockerBvh bvh(shapes, {});
-  EXPECT_FALSE(bvh.AnyInShaft(0, 1));
-  EXPECT_FALSE(bvh.SegmentBlocked(shapes[0].centroid, shapes[1].centroid, 0, 1));
+  std::vector<uint32_t> found{7};
+  EXPECT_FALSE(bvh.InShaft(0, 1, found));
+  EXPECT_TRUE(found.empty());
 }
 
 }  // namespace
