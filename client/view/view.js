@@ -14,6 +14,8 @@
     stops: 0,            // the exposure control
     plotPoints: 0,       // points drawn in the residual plot
     state: '', ended: false, error: '', ready: false,
+    lightmapped: 0,      // meshes of a saved result drawn with radflux's baked lightmap
+    lightmapStrength: 1, // their emissive strength (the texture's scale, >= 1)
   };
   const $ = (id) => document.getElementById(id);
   const hide = (id) => $(id).classList.add('hidden');
@@ -220,11 +222,34 @@
       }).catch((e) => { $('jobs').textContent = String(e); $('jobs').className = 'error'; });
   }
 
+  // radflux's lightmapped GLB (solver/output/lightmap_gltf.h: a material whose extras hold
+  // radflux_radiance_scale) shows its baked light as an emissive texture on TEXCOORD_1 with
+  // KHR_materials_emissive_strength. This three.js (r111) samples every map but the aoMap and
+  // lightMap on TEXCOORD_0 and ignores that extension, so the mesh's first UV set is replaced
+  // by its second (TEXCOORD_0 maps nothing else in this material) and the emissive colour
+  // scaled by the strength. No mipmaps: the atlas's gutter guards bilinear filtering only,
+  // coarser levels would mix neighbouring charts.
+  function useLightmap(mesh) {
+    const material = mesh.material, geometry = mesh.geometry;
+    if (!material.emissiveMap || material.userData.radflux_radiance_scale === undefined) return;
+    if (!geometry.attributes.uv2) { view.error = 'lightmap material without TEXCOORD_1'; return; }
+    geometry.setAttribute('uv', geometry.attributes.uv2);
+    const strength = ((material.userData.gltfExtensions || {}).KHR_materials_emissive_strength || {}).emissiveStrength;
+    view.lightmapStrength = strength === undefined ? 1 : strength;
+    material.emissive.multiplyScalar(view.lightmapStrength);
+    material.emissiveMap.generateMipmaps = false;
+    material.emissiveMap.minFilter = THREE.LinearFilter;
+    material.emissiveMap.needsUpdate = true;
+    material.needsUpdate = true;
+    view.lightmapped += 1;
+  }
+
   function savedResult(three) {
     ['live', 'exposure-box', 'plot-box', 'options-box', 'report-box'].forEach(hide);
     $('title').textContent = 'saved result';
     three.renderer.outputEncoding = THREE.sRGBEncoding;  // COLOR_0 is linear
     new THREE.GLTFLoader().load('result.glb', (gltf) => {
+      gltf.scene.traverse((o) => { if (o.isMesh) useLightmap(o); });
       three.scene.add(gltf.scene);
       frame(three, new THREE.Box3().setFromObject(gltf.scene));
       three.redraw();

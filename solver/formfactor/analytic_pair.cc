@@ -142,8 +142,9 @@ PairPlan PlanPair(const RowContext& context, const PairPatches& patches, uint32_
 }
 
 // F_ij of a planned pair once its rays are traced: the unoccluded mean times the
-// kernel-weighted visible fraction.
-double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
+// kernel-weighted visible fraction, times j's opacity (`mesh`'s Patch::opacity: a ray
+// from i meets j's opaque part only).
+double FinishPair(const PatchMesh& mesh, const PairPlan& plan, const std::vector<double>& kernels,
                   const std::vector<StreamRay>& rays) {
   if (plan.unoccluded <= 0) return 0;
   double weight = 0, visible = 0;
@@ -151,7 +152,8 @@ double FinishPair(const PairPlan& plan, const std::vector<double>& kernels,
     weight += kernels[r];
     if (!rays[r].Occluded()) visible += kernels[r];
   }
-  return weight > 0 ? plan.unoccluded * (visible / weight) : 0;  // 0: kernels underflowed
+  if (!(weight > 0)) return 0;  // the kernels underflowed
+  return plan.unoccluded * (visible / weight) * mesh.patches[plan.j].opacity;
 }
 
 }  // namespace
@@ -181,7 +183,7 @@ double AnalyticPairs::FormFactor(uint32_t i, const std::vector<Vec3>& points, ui
                                  FacePlane(patches_[j], patches_[i]), seed, batch, nullptr);
   context_.caster->OccludedStream(batch.rays);
   rays += batch.rays.size();
-  return FinishPair(plan, batch.kernels, batch.rays);
+  return FinishPair(*context_.mesh, plan, batch.kernels, batch.rays);
 }
 
 uint64_t AnalyticPairs::AddColumns(uint32_t i, std::span<const uint32_t> columns, int samples,
@@ -202,7 +204,7 @@ uint64_t AnalyticPairs::AddColumns(uint32_t i, std::span<const uint32_t> columns
   auto trace_planned = [&] {
     context_.caster->OccludedStream(batch.rays);
     for (const PairPlan& plan : batch.plans) {
-      row.Add(plan.j, FinishPair(plan, batch.kernels, batch.rays));
+      row.Add(plan.j, FinishPair(*context_.mesh, plan, batch.kernels, batch.rays));
     }
     traced += batch.rays.size();
     batch.plans.clear();

@@ -30,7 +30,8 @@ EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance
   for (int k = 0; k < 4; ++k) shape.corner[k] = mesh.Vertex(p, k);
   shape.normal = patch.normal;
   shape.area = patch.area;
-  shape.power = exitance * patch.area;
+  shape.opacity = patch.opacity;
+  shape.power = exitance * patch.area * patch.opacity;
   shape.rectangle = shape.corners == 4 && IsRectangle(shape.corner);
   return shape;
 }

@@ -19,7 +19,8 @@ struct EmitterShape {
   uint32_t corners = 0;        // 3 or 4
   Vec3 normal;                 // unit, the emitting (front) side
   double area = 0;             // scene units^2
-  double power = 0;            // E A summed over bands, W (importance only)
+  double opacity = 1;          // Patch::opacity: a ray meets it (and its light) with this
+  double power = 0;            // E A opacity summed over bands, W (importance only)
   bool rectangle = false;      // a quad with parallel, orthogonal sides
 };
 

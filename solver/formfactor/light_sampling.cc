@@ -246,7 +246,8 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
     }
     rays.push_back(StreamRay::Segment(x + n * context_.ray_epsilon,
                                       target + emitter.normal * context_.ray_epsilon));
-    pending.push_back({emitter.patch, value});
+    // Only the emitter's opaque part emits: a cosine ray meets it with that probability.
+    pending.push_back({emitter.patch, value * emitter.opacity});
   }
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "solver/formfactor/polygon_form_factor.h"
+#include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -130,17 +131,30 @@ void SideBlockers(const SamplePoints& pi, const SamplePoints& pj,
   }
 }
 
-// Whether the segment from point a of pi to point b of pj crosses a blocker; the one that
-// does moves to the front.
+// Whether the segment from point a of pi to point b of pj crosses a blocker of `shapes` that
+// does not let it through (a partly transparent one lets it through as PassesThrough,
+// ray_caster.h, decides for the segment as a ray from a); the one that blocks moves to the
+// front.
 bool SegmentBlocked(const SamplePoints& pi, size_t a, const SamplePoints& pj, size_t b,
-                    std::vector<SidedBlocker>& blockers) {
+                    const std::vector<SurfaceShape>& shapes, std::vector<SidedBlocker>& blockers) {
+  const Vec3 &from = pi.point[a], &to = pj.point[b];
   for (size_t c = 0; c < blockers.size(); ++c) {
     const SidedBlocker& k = blockers[c];
     const uint64_t crosses = ((k.front_i >> a) & (k.back_j >> b)) | ((k.back_i >> a) & (k.front_j >> b));
-    if ((crosses & 1) && SegmentHitsSurface(pi.point[a], pj.point[b], *k.k)) {
-      std::swap(blockers[0], blockers[c]);
-      return true;
+    if (!(crosses & 1) || !SegmentHitsSurface(from, to, *k.k)) continue;
+    if (k.k->opacity < 1) {
+      const Vec3 d = to - from;
+      const float origin[3] = {static_cast<float>(from.x), static_cast<float>(from.y),
+                               static_cast<float>(from.z)};
+      const float direction[3] = {static_cast<float>(d.x), static_cast<float>(d.y),
+                                  static_cast<float>(d.z)};
+      if (PassesThrough(origin, direction, static_cast<uint32_t>(k.k - shapes.data()),
+                        k.k->opacity)) {
+        continue;
+      }
     }
+    std::swap(blockers[0], blockers[c]);
+    return true;
   }
   return false;
 }
@@ -166,7 +180,7 @@ double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
       if (w <= 0) continue;
       ++segments;
       total += w;
-      if (!SegmentBlocked(pi, a, pj, b, blockers)) seen += w;
+      if (!SegmentBlocked(pi, a, pj, b, shapes, blockers)) seen += w;
     }
   }
   return total > 0 ? seen / total : 1.0;

@@ -20,7 +20,8 @@ namespace radflux {
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
 
 // The kernel-weighted fraction of segments from i to j that cross no shapes[k] for k in
-// `candidates`, in [0, 1]; adds the segments tested to `segments`. `candidates` must hold
+// `candidates` (or cross only ones that let them through: a partly transparent blocker,
+// SurfaceShape::opacity < 1, as PassesThrough in ray_caster.h decides), in [0, 1]; adds the segments tested to `segments`. `candidates` must hold
 // every blocker that may hide part of the pair (BlockerBvh::InShaft: MayBlockPair holds for
 // each); those with all the sample points of i, or all of j, on one side of their plane are
 // set aside before any segment, and a segment tries the blocker that hid the last one first.

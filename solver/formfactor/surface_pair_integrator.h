@@ -31,6 +31,8 @@ struct SurfaceShape {
                               // (normal through centroid); 0 for a triangle, up to the import
                               // rules' planarity tolerance for a rounded quadrilateral
   Vec3 lo, hi;                // bounding box
+  float opacity = 1;          // Material::opacity: as a blocker, a segment crosses it with
+                              // probability 1 - opacity (VisibleFraction)
 };
 
 // The shape of a convex polygon (at least 3 vertices, non-degenerate).

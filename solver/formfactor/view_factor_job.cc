@@ -53,6 +53,7 @@ std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGroupin
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     const Face& face = scene.faces[f];
     SurfaceShape shape = MakeSurfaceShape(FacePolygon(scene, face));
+    shape.opacity = static_cast<float>(scene.materials[face.material].opacity);
     if (face.obstruction) {
       obstructions.push_back(std::move(shape));
       continue;

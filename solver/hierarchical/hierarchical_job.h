@@ -9,6 +9,9 @@ namespace radflux {
 
 // options.hierarchical.enabled: form_factors in the result is n x n with EMPTY rows (the
 // link set is not expanded to patches), so the report's energy balance does not apply.
+// The hierarchical solver has no partial transmission: partly transparent faces
+// (Material::opacity < 1) are solved opaque, counted in the scene's import log and in one
+// warning line.
 absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& options,
                                              const JobCallbacks& callbacks);
 

@@ -83,6 +83,7 @@ void AddPatch(PatchMesh& mesh, const Element& e, std::array<uint32_t, 4> v) {
   patch.v = v;
   patch.face = e.face;
   patch.two_sided = e.two_sided;
+  patch.opacity = e.opacity;
   const Vec3& normal = e.normal;
   FinishPatch(mesh.positions, normal, patch);
   mesh.patches.push_back(patch);
@@ -101,6 +102,7 @@ ElementTree ElementTree::FromMesh(const PatchMesh& mesh) {
     e.face = patch.face;
     e.normal = patch.normal;
     e.two_sided = patch.two_sided;
+    e.opacity = patch.opacity;
     FinishElement(e);
     tree.roots.push_back(static_cast<uint32_t>(tree.nodes.size()));
     tree.nodes.push_back(e);
@@ -127,6 +129,7 @@ uint32_t ElementTree::Split(uint32_t node) {
     e.corners = corners;
     e.triangle = parent.triangle;
     e.two_sided = parent.two_sided;
+    e.opacity = parent.opacity;
     e.face = parent.face;
     e.parent = node;
     e.depth = parent.depth + 1;

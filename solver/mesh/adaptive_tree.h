@@ -22,6 +22,7 @@ struct Element {
   std::array<Vec3, 4> corners;  // ccw seen from the front; corners[3] == corners[2] for a triangle
   bool triangle = false;
   bool two_sided = false;                // as Patch::two_sided
+  float opacity = 1;                     // as Patch::opacity
   uint32_t face = 0;                     // source face in the Scene
   uint32_t parent = kNoElement;          // kNoElement for a root
   uint32_t first_child = kNoElement;     // 4 consecutive children, or kNoElement for a leaf

@@ -213,6 +213,7 @@ class PieceEmitter {
     patch.v = v;
     patch.face = source.face;
     patch.two_sided = source.two_sided;
+    patch.opacity = source.opacity;
     FinishPatch(mesh_.positions, normal_, patch);
     mesh_.patches.push_back(patch);
   }

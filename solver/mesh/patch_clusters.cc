@@ -25,12 +25,13 @@ PatchAttributes ComputeClusterAttributes(const Scene& scene, const PatchMesh& me
                                          const PatchClusters& clusters) {
   PatchAttributes out;
   const size_t n = clusters.size();
-  out.area = clusters.area;
+  out.area.reserve(n);
   out.reflectance.reserve(n);
   out.emission.reserve(n);
   for (uint32_t u = 0; u < n; ++u) {
     const Patch& patch = mesh.patches[clusters.members[clusters.first[u]]];
     const Material& m = scene.materials[scene.faces[patch.face].material];
+    out.area.push_back(clusters.area[u] * m.opacity);
     out.reflectance.push_back(m.reflectance);
     out.emission.push_back(m.emission);
     out.grey = out.grey && IsGrey(m.reflectance) && IsGrey(m.emission);

@@ -35,7 +35,7 @@ struct PatchClusters {
 PatchClusters ClustersFromAssignment(const PatchMesh& mesh, std::vector<uint32_t> of_patch,
                                      uint32_t count);
 
-// Per-unknown attributes: area the members' sum, reflectance and emission of the members'
+// Per-unknown attributes: area the members' sum times their opacity, reflectance and emission of the members'
 // material (grouping never mixes materials).
 PatchAttributes ComputeClusterAttributes(const Scene& scene, const PatchMesh& mesh,
                                          const PatchClusters& clusters);

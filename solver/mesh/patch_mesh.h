@@ -19,6 +19,7 @@ struct Patch {
   std::array<uint32_t, 4> v{};  // PatchMesh::positions indices, ccw; v[3] == v[2] for a triangle
   uint32_t face = 0;            // source face in the Scene
   bool two_sided = false;       // its face has a back-face twin: hits on its back are ignored
+  float opacity = 1;            // its material's Material::opacity: rays pass with 1 - opacity
   Vec3 centroid;                // area-weighted centroid
   Vec3 normal;                  // unit normal of the source face (front side)
   double area = 0;              // scene units^2

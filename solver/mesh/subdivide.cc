@@ -74,8 +74,12 @@ int64_t FacePatchCount(const FaceExtent& e, double h) {
 // Builds one face's vertices and patches into the mesh.
 class FaceMesher {
  public:
-  FaceMesher(PatchMesh& mesh, uint32_t face, const Vec3& normal, bool two_sided)
-      : mesh_(mesh), face_(face), normal_(normal), two_sided_(two_sided) {}
+  FaceMesher(PatchMesh& mesh, uint32_t face, const Vec3& normal, const Material& material)
+      : mesh_(mesh),
+        face_(face),
+        normal_(normal),
+        two_sided_(material.two_sided),
+        opacity_(static_cast<float>(material.opacity)) {}
 
   void Quad(const std::vector<Vec3>& p, int nu, int nv) {
     const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());
@@ -149,6 +153,7 @@ class FaceMesher {
     patch.v = v;
     patch.face = face_;
     patch.two_sided = two_sided_;
+    patch.opacity = opacity_;
     FinishPatch(mesh_.positions, normal_, patch);
     mesh_.patches.push_back(patch);
   }
@@ -157,6 +162,7 @@ class FaceMesher {
   uint32_t face_;
   Vec3 normal_;
   bool two_sided_;
+  float opacity_;
   std::map<Key, uint32_t> ids_;
 };
 
@@ -198,7 +204,7 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
   const uint32_t first_vertex = static_cast<uint32_t>(mesh.positions.size());
   const auto [nu, nv] = FaceSteps(extent, h);
   const Vec3 normal = Normalize(PolygonNewellNormal(polygon));
-  FaceMesher mesher(mesh, f, normal, scene.materials[scene.faces[f].material].two_sided);
+  FaceMesher mesher(mesh, f, normal, scene.materials[scene.faces[f].material]);
   if (polygon.size() == 4) {
     mesher.Quad(polygon, nu, nv);
   } else {

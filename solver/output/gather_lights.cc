@@ -70,9 +70,10 @@ std::vector<uint32_t> ConvexOutline(const PatchMesh& mesh, const std::vector<uin
   return outline;
 }
 
-// Appends one light patch with corners `outline` (vertex indices of `source`).
-void AddLight(const PatchMesh& source, const std::vector<uint32_t>& outline, const Vec3& normal,
-              GatherLights& lights) {
+// Appends one light patch with corners `outline` (vertex indices of `source`), as opaque
+// as patch `first` of `source`.
+void AddLight(const PatchMesh& source, uint32_t first, const std::vector<uint32_t>& outline,
+              const Vec3& normal, GatherLights& lights) {
   Patch patch;
   for (size_t k = 0; k < 4; ++k) {
     patch.v[k] = static_cast<uint32_t>(lights.mesh.positions.size() +
@@ -80,6 +81,7 @@ void AddLight(const PatchMesh& source, const std::vector<uint32_t>& outline, con
   }
   for (uint32_t v : outline) lights.mesh.positions.push_back(source.positions[v]);
   patch.face = static_cast<uint32_t>(lights.mesh.patches.size());
+  patch.opacity = source.patches[first].opacity;
   FinishPatch(lights.mesh.positions, normal, patch);
   lights.mesh.patches.push_back(patch);
 }
@@ -108,7 +110,7 @@ GatherLights MakeGatherLights(const PatchMesh& mesh, const PatchAttributes& attr
           const Patch& patch = mesh.patches[p];
           outline.assign(patch.v.begin(), patch.v.begin() + patch.VertexCount());
         }
-        AddLight(mesh, outline, normal, lights);
+        AddLight(mesh, p, outline, normal, lights);
         lights.emission.push_back(attributes.emission[p]);
       }
       lights.of_patch[p] = static_cast<uint32_t>(lights.mesh.size() - 1);

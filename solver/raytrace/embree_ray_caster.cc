@@ -51,16 +51,28 @@ static_assert(offsetof(StreamRay, org_x) == offsetof(RTCRayHit, ray.org_x) &&
               offsetof(StreamRay, inst) == offsetof(RTCRayHit, hit.instID));
 static_assert(kNoPatch == RTC_INVALID_GEOMETRY_ID);
 
-// Rejects hits on the back of two-sided patches (user data: one byte per patch).
-void IgnoreTwoSidedBacks(const RTCFilterFunctionNArguments* args) {
-  const auto* two_sided = static_cast<const uint8_t*>(args->geometryUserPtr);
-  for (unsigned i = 0; i < args->N; ++i) {
+// Rejects hits on the back of two-sided patches and the hits PassesThrough lets through
+// partly transparent patches (user data: a PatchFilter per patch).
+void FilterHits(const RTCFilterFunctionNArguments* args) {
+  const auto* filter = static_cast<const EmbreeRayCaster::PatchFilter*>(args->geometryUserPtr);
+  const unsigned n = args->N;
+  for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
-    if (!two_sided[RTCHitN_primID(args->hit, args->N, i)]) continue;
-    const float facing = RTCRayN_dir_x(args->ray, args->N, i) * RTCHitN_Ng_x(args->hit, args->N, i) +
-                         RTCRayN_dir_y(args->ray, args->N, i) * RTCHitN_Ng_y(args->hit, args->N, i) +
-                         RTCRayN_dir_z(args->ray, args->N, i) * RTCHitN_Ng_z(args->hit, args->N, i);
-    if (facing >= 0) args->valid[i] = 0;
+    const EmbreeRayCaster::PatchFilter& patch = filter[RTCHitN_primID(args->hit, n, i)];
+    const float direction[3] = {RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
+                                RTCRayN_dir_z(args->ray, n, i)};
+    const float facing = direction[0] * RTCHitN_Ng_x(args->hit, n, i) +
+                         direction[1] * RTCHitN_Ng_y(args->hit, n, i) +
+                         direction[2] * RTCHitN_Ng_z(args->hit, n, i);
+    if (patch.two_sided && facing >= 0) {
+      args->valid[i] = 0;
+      continue;
+    }
+    const float origin[3] = {RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i),
+                             RTCRayN_org_z(args->ray, n, i)};
+    if (PassesThrough(origin, direction, RTCHitN_primID(args->hit, n, i), patch.opacity)) {
+      args->valid[i] = 0;
+    }
   }
 }
 
@@ -100,19 +112,19 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
     vertices[3 * i + 1] = static_cast<float>(mesh.positions[i].y);
     vertices[3 * i + 2] = static_cast<float>(mesh.positions[i].z);
   }
-  std::vector<uint8_t> two_sided(mesh.patches.size());
-  bool any_two_sided = false;
+  std::vector<PatchFilter> filter(mesh.patches.size());
+  bool any_filtered = false;
   for (size_t p = 0; p < mesh.patches.size(); ++p) {
     std::copy(mesh.patches[p].v.begin(), mesh.patches[p].v.end(), indices + 4 * p);
-    two_sided[p] = mesh.patches[p].two_sided;
-    any_two_sided = any_two_sided || two_sided[p];
+    filter[p] = {mesh.patches[p].two_sided, mesh.patches[p].opacity};
+    any_filtered = any_filtered || filter[p].two_sided || filter[p].opacity < 1;
   }
-  if (any_two_sided) {
-    rtcSetGeometryUserData(geometry, two_sided.data());  // moved into the caster: same buffer
-    rtcSetGeometryIntersectFilterFunction(geometry, IgnoreTwoSidedBacks);
-    rtcSetGeometryOccludedFilterFunction(geometry, IgnoreTwoSidedBacks);
+  if (any_filtered) {
+    rtcSetGeometryUserData(geometry, filter.data());  // moved into the caster: same buffer
+    rtcSetGeometryIntersectFilterFunction(geometry, FilterHits);
+    rtcSetGeometryOccludedFilterFunction(geometry, FilterHits);
   } else {
-    two_sided.clear();
+    filter.clear();
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene, geometry);
@@ -122,7 +134,7 @@ absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> EmbreeRayCaster::Create(const P
     rtcReleaseScene(scene);
     return absl::InternalError("Embree failed to build the scene (see log)");
   }
-  return std::unique_ptr<EmbreeRayCaster>(new EmbreeRayCaster(scene, std::move(two_sided)));
+  return std::unique_ptr<EmbreeRayCaster>(new EmbreeRayCaster(scene, std::move(filter)));
 }
 
 EmbreeRayCaster::~EmbreeRayCaster() { rtcReleaseScene(scene_); }

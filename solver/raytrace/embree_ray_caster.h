@@ -3,7 +3,8 @@
 // Embree errors are routed to spdlog; construction fails with a Status, never throws.
 // Hits on the back of a two-sided patch (Patch::two_sided) are ignored by a filter
 // function, so its back-face twin is what a ray meets from behind and the twins never
-// shade each other; a mesh without two-sided patches gets no filter.
+// shade each other; the same filter skips the hits PassesThrough lets through partly
+// transparent patches. A mesh without either gets no filter.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -33,11 +34,17 @@ class EmbreeRayCaster final : public RayCaster {
 
   RTCScene scene() const { return scene_; }
 
+  // What the hit filter needs of a patch.
+  struct PatchFilter {
+    bool two_sided = false;  // Patch::two_sided: hits on its back are skipped
+    float opacity = 1;       // Patch::opacity
+  };
+
  private:
-  EmbreeRayCaster(RTCScene scene, std::vector<uint8_t> two_sided)
-      : scene_(scene), two_sided_(std::move(two_sided)) {}
+  EmbreeRayCaster(RTCScene scene, std::vector<PatchFilter> filter)
+      : scene_(scene), filter_(std::move(filter)) {}
   RTCScene scene_;
-  std::vector<uint8_t> two_sided_;  // per patch, the filter's user data (empty: no filter)
+  std::vector<PatchFilter> filter_;  // per patch, the filter's user data (empty: no filter)
 };
 
 // The process-wide Embree device (created on first use).

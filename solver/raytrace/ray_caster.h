@@ -1,5 +1,7 @@
 // RayCaster: the ray queries radflux needs, against the patches of one mesh.
-// EmbreeRayCaster is the fast one; BruteForceRayCaster checks it in tests.
+// EmbreeRayCaster is the fast one; BruteForceRayCaster checks it in tests. Both let a ray
+// through a partly transparent patch (Patch::opacity < 1) as PassesThrough decides, in
+// every query: a hit there is skipped and the ray goes on to what lies behind.
 #pragma once
 
 #include <cstdint>
@@ -71,6 +73,14 @@ struct alignas(16) StreamRay {
     return geom != kNoPatch && dir_x * ng_x + dir_y * ng_y + dir_z * ng_z < 0 ? prim : kNoPatch;
   }
 };
+
+// Whether the ray with single-precision `origin` and `direction` (as traced) passes through
+// patch `patch` of opacity `opacity` (Patch::opacity) where it meets it: true with
+// probability 1 - opacity, by a hash of the ray and the patch, never from shared random
+// state, so the same ray always decides alike (rows stay bit-identical for any partition
+// of the work) and different rays decide independently. Always false at opacity 1.
+bool PassesThrough(const float origin[3], const float direction[3], uint32_t patch,
+                   float opacity);
 
 class RayCaster {
  public:

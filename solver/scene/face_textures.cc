@@ -68,29 +68,30 @@ Rgb Times(const Rgb& a, const std::array<double, 4>& mean) {
   return {a[0] * mean[0], a[1] * mean[1], a[2] * mean[2]};
 }
 
-// Whether `face` (scene.faces[f] on entry) stays, by its mean opacity; logs what it decides.
-bool KeepByOpacity(const MaterialTextures& textures, const std::vector<TexCoord>& uv,
-                   const TextureFormat& format, const std::string& where, TextureCache& cache,
-                   ImportLog& log) {
+// The mean opacity of face f over its alpha texture's footprint (1 without one), or nullopt
+// when it is cut out (below kMinOpacity); logs what it decides.
+std::optional<double> FaceOpacity(const MaterialTextures& textures, const std::vector<TexCoord>& uv,
+                                  const TextureFormat& format, const std::string& where,
+                                  TextureCache& cache, ImportLog& log) {
   const TextureImage* opacity = cache.Opacity(textures);
-  if (opacity == nullptr || uv.empty()) return true;
-  const double alpha = TextureMean(*opacity, uv, format.v_up)[3];
+  if (opacity == nullptr || uv.empty()) return 1.0;
+  const double alpha = TextureMean(*opacity, uv, format.v_up, textures.alpha_wrap)[3];
   if (alpha < kMinOpacity) {
     log.Add("transparent_faces_dropped",
-            absl::StrCat("{face|faces} mostly transparent (mean alpha < 0.5) in {its|their} alpha "
+            absl::StrCat("{face|faces} transparent (mean alpha < 1/255) in {its|their} alpha "
                          "texture (",
                          format.alpha, ") dropped"),
             where);
-    return false;
+    return std::nullopt;
   }
   if (alpha < 1) {
-    log.Add("partly_transparent_kept",
-            absl::StrCat("{face|faces} partly transparent (mean alpha in [0.5, 1)) in {its|their} "
-                         "alpha texture (",
-                         format.alpha, ") kept opaque (no partial transmission)"),
+    log.Add("partly_transparent",
+            absl::StrCat("{face|faces} partly transparent (mean alpha in [1/255, 1)) in "
+                         "{its|their} alpha texture (",
+                         format.alpha, ") let the transparent fraction through"),
             where);
   }
-  return true;
+  return alpha;
 }
 
 }  // namespace
@@ -98,7 +99,8 @@ bool KeepByOpacity(const MaterialTextures& textures, const std::vector<TexCoord>
 void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const FaceTexCoords& uvs,
                        const TextureReader& read, const TextureFormat& format, Scene& scene) {
   TextureCache cache(read, format, scene.import_log);
-  std::map<std::tuple<uint32_t, Rgb, Rgb>, uint32_t> variants;  // (material, rho, E) -> index
+  // (material, rho, E, opacity) -> index
+  std::map<std::tuple<uint32_t, Rgb, Rgb, double>, uint32_t> variants;
   std::vector<Face> kept;
   kept.reserve(scene.faces.size());
   for (size_t f = 0; f < scene.faces.size(); ++f) {
@@ -110,14 +112,14 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
       kept.push_back(std::move(face));
       continue;
     }
-    if (!KeepByOpacity(slots, uvs(f, TextureSlot::kAlpha), format, where, cache,
-                       scene.import_log)) {
-      continue;
-    }
+    const std::optional<double> opacity =
+        FaceOpacity(slots, uvs(f, TextureSlot::kAlpha), format, where, cache, scene.import_log);
+    if (!opacity) continue;
     Material material = scene.materials[face.material];
+    material.opacity = *opacity;
     bool without_uv = false;
-    const auto apply = [&](const std::string& name, TextureSlot slot, Rgb& value,
-                           const char* kind, const std::string& message) {
+    const auto apply = [&](const std::string& name, TextureWrapping wrap, TextureSlot slot,
+                           Rgb& value, const char* kind, const std::string& message) {
       const TextureImage* image = cache.Get(name);
       if (image == nullptr) return;
       const std::vector<TexCoord>& uv = uvs(f, slot);
@@ -125,13 +127,17 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
         without_uv = true;
         return;
       }
-      value = Times(value, TextureMean(*image, uv, format.v_up));
+      value = Times(value, TextureMean(*image, uv, format.v_up, wrap));
       scene.import_log.Add(kind, message, where);
     };
-    apply(slots.diffuse, TextureSlot::kDiffuse, material.reflectance, "reflectance_from_textures",
-          absl::StrCat("{face|faces} took {its|their} reflectance from textures (", format.diffuse, ")"));
-    apply(slots.emissive, TextureSlot::kEmissive, material.emission, "emission_from_textures",
-          absl::StrCat("{face|faces} took {its|their} emission from textures (", format.emissive, ")"));
+    apply(slots.diffuse, slots.diffuse_wrap, TextureSlot::kDiffuse, material.reflectance,
+          "reflectance_from_textures",
+          absl::StrCat("{face|faces} took {its|their} reflectance from textures (", format.diffuse,
+                       ")"));
+    apply(slots.emissive, slots.emissive_wrap, TextureSlot::kEmissive, material.emission,
+          "emission_from_textures",
+          absl::StrCat("{face|faces} took {its|their} emission from textures (", format.emissive,
+                       ")"));
     if (without_uv || (!slots.alpha.empty() && uvs(f, TextureSlot::kAlpha).empty())) {
       scene.import_log.Add("textures_without_uv",
                            absl::StrCat("{face|faces} in textured materials without texture "
@@ -139,7 +145,8 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
                                         format.untextured),
                            where);
     }
-    const auto key = std::make_tuple(face.material, material.reflectance, material.emission);
+    const auto key =
+        std::make_tuple(face.material, material.reflectance, material.emission, material.opacity);
     auto [it, inserted] = variants.try_emplace(key, static_cast<uint32_t>(scene.materials.size()));
     if (inserted) scene.materials.push_back(std::move(material));
     face.material = it->second;

@@ -2,19 +2,18 @@
 // (baseColorTexture, emissiveTexture, the base colour's alpha under alphaMode MASK or BLEND):
 // a face's reflectance is its material's value times the texture's mean over the face's
 // footprint in texture space (sRGB decoded to linear, texture_image.h), its emission the
-// same with the emissive texture. Opacity is the alpha texture's mean over the footprint: a
-// face less than kMinOpacity opaque is cut out (dropped); a face at least that opaque is
-// kept whole, and when it is not fully opaque it is counted, because the solver has no
-// partial transmission (its transparent fraction blocks and reflects light like the rest).
+// same with the emissive texture. Opacity is the alpha texture's mean over the footprint
+// (Material::opacity): a face less than kMinOpacity opaque is cut out (dropped); any other
+// face is kept with that opacity, and the solver lets its transparent fraction through.
 // Faces of one material whose means differ get their own copy of it (same name; --emit
 // makes them all emitters).
 //
 // Each kind of change is one line of Scene::import_log ("map_Kd" etc. as the format names
 // its textures, TextureFormat; "1 face took its ..." when there is one):
 //   "N faces took their reflectance from textures (map_Kd)", "... emission ... (map_Ke)",
-//   "N faces mostly transparent (mean alpha < 0.5) in their alpha texture (map_d) dropped",
-//   "N faces partly transparent (mean alpha in [0.5, 1)) in their alpha texture (map_d) kept
-//   opaque (no partial transmission)", and, when a texture cannot be read, "N textures not
+//   "N faces transparent (mean alpha < 1/255) in their alpha texture (map_d) dropped",
+//   "N faces partly transparent (mean alpha in [1/255, 1)) in their alpha texture (map_d) let
+//   the transparent fraction through", and, when a texture cannot be read, "N textures not
 //   read; the materials using them keep their Kd/Ke (first at wall.png: cannot open the
 //   file)" -- the scene still loads, as it would in a viewer that shows a missing texture as
 //   its base colour. Faces without texture coordinates in a textured material keep the
@@ -31,8 +30,9 @@
 
 namespace radflux {
 
-// A face is cut out when the mean opacity over its footprint is below this.
-inline constexpr double kMinOpacity = 0.5;
+// A face is cut out when the mean opacity over its footprint is below this (one step of
+// an 8-bit alpha channel: nothing there to reflect or block).
+inline constexpr double kMinOpacity = 1.0 / 255;
 
 // The bytes of the texture named `name` (a key of MaterialTextures), or an error saying
 // why not (NOT_FOUND for a missing file).
@@ -46,6 +46,8 @@ struct MaterialTextures {
   // then 1 when at least alpha_cutoff, else 0.
   double alpha_scale = 1;
   double alpha_cutoff = -1;
+  // How each texture goes on outside [0, 1] (TextureMean).
+  TextureWrapping diffuse_wrap{}, emissive_wrap{}, alpha_wrap{};
   bool any() const { return !diffuse.empty() || !emissive.empty() || !alpha.empty(); }
 };
 

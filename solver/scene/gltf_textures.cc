@@ -58,6 +58,27 @@ absl::StatusOr<std::string> TextureKey(const tinygltf::Model& model, int index) 
   return ImageKey(model, source);
 }
 
+// One of a sampler's wrapS / wrapT (glTF's GL enums; REPEAT, the default, for any other).
+TextureWrap WrapOf(int mode) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return TextureWrap::kClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return TextureWrap::kMirroredRepeat;
+    default:
+      return TextureWrap::kRepeat;
+  }
+}
+
+// The wrap modes of texture `index`'s sampler: repeat on both axes when it has none (or
+// names one that does not exist, or there is no texture).
+TextureWrapping WrappingOf(const tinygltf::Model& model, int index) {
+  if (index < 0 || static_cast<size_t>(index) >= model.textures.size()) return {};
+  const int sampler = model.textures[index].sampler;
+  if (sampler < 0 || static_cast<size_t>(sampler) >= model.samplers.size()) return {};
+  return {WrapOf(model.samplers[sampler].wrapS), WrapOf(model.samplers[sampler].wrapT)};
+}
+
 }  // namespace
 
 absl::StatusOr<GltfMaterialTextures> ReadGltfMaterialTextures(const tinygltf::Model& model,
@@ -78,9 +99,12 @@ absl::StatusOr<GltfMaterialTextures> ReadGltfMaterialTextures(const tinygltf::Mo
     if (!s.ok()) return error(s.message());
   }
   GltfMaterialTextures out{{*diffuse, *emissive, ""}, *base_set, *emissive_set};
+  out.textures.diffuse_wrap = WrappingOf(model, base.index);
+  out.textures.emissive_wrap = WrappingOf(model, material.emissiveTexture.index);
   const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
   if (material.alphaMode == "MASK" || material.alphaMode == "BLEND") {
     out.textures.alpha = *diffuse;
+    out.textures.alpha_wrap = out.textures.diffuse_wrap;
     out.textures.alpha_scale = factor.size() > 3 && std::isfinite(factor[3]) ? factor[3] : 1;
     if (material.alphaMode == "MASK") out.textures.alpha_cutoff = material.alphaCutoff;
   }

@@ -4,8 +4,9 @@
 // (alphaCutoff) or BLEND the base colour's alpha (times baseColorFactor's alpha) opacity;
 // OPAQUE ignores alpha. Each texture reads the TEXCOORD_<texCoord> set its textureInfo
 // names, mapped by the textureInfo's KHR_texture_transform when it has one (offset,
-// rotation, scale; its texCoord override too). Samplers' wrap modes are not read: textures
-// repeat. Images come from the file's bytes (external file or data URI), from a bufferView,
+// rotation, scale; its texCoord override too). Each texture's sampler gives its wrap modes
+// (wrapS, wrapT: REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT; REPEAT without a sampler); the
+// filters do not matter to a mean over a footprint. Images come from the file's bytes (external file or data URI), from a bufferView,
 // or, when the exact external name is missing, from the `fallback` reader (case-insensitive).
 #pragma once
 

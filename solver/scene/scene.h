@@ -20,6 +20,10 @@ struct Material {
   Rgb reflectance{};  // diffuse reflectance rho per band, in [0, 1)
   Rgb emission{};     // emitted radiosity E = pi * L_e, W/m^2 per band
   bool two_sided = false;  // each face is two back-to-back patches, each lit from its side
+  // Opaque fraction of each face's area, in (0, 1] (alpha cut-outs, face_textures.h): a ray
+  // meeting the face passes through with probability 1 - opacity, and the face reflects and
+  // emits from its opaque part only (its power is opacity * area * B).
+  double opacity = 1;
 
   bool IsEmitter() const { return MaxComponent(emission) > 0; }
 };

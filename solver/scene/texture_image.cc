@@ -48,7 +48,20 @@ double Area(const Polygon& p) {
 }
 
 // Euclidean remainder: the texel index of cell `i` in an image `n` texels wide.
-int Wrap(long long i, int n) { return static_cast<int>(((i % n) + n) % n); }
+// The texel index (0..n-1) that texel cell i of an axis of n texels shows under `wrap`.
+int Wrap(long long i, int n, TextureWrap wrap) {
+  switch (wrap) {
+    case TextureWrap::kClampToEdge:
+      return static_cast<int>(std::clamp<long long>(i, 0, n - 1));
+    case TextureWrap::kMirroredRepeat: {
+      const long long m = ((i % (2LL * n)) + 2LL * n) % (2LL * n);
+      return static_cast<int>(m < n ? m : 2LL * n - 1 - m);
+    }
+    case TextureWrap::kRepeat:
+      break;
+  }
+  return static_cast<int>(((i % n) + n) % n);
+}
 
 std::array<double, 4> WholeImageMean(const TextureImage& image) {
   std::array<double, 4> sum{};
@@ -115,7 +128,7 @@ absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::
 }
 
 std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<TexCoord>& uv,
-                                  bool v_up) {
+                                  bool v_up, TextureWrapping wrap) {
   Polygon texels;  // in texel units, y down from the top row
   for (const TexCoord& c : uv) {
     texels.push_back({c[0] * image.width, (v_up ? 1 - c[1] : c[1]) * image.height});
@@ -128,9 +141,11 @@ std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<T
   const auto texel = [&](double x, double y) {
     const auto& t =
         image
-            .texels[static_cast<size_t>(Wrap(static_cast<long long>(std::floor(y)), image.height)) *
+            .texels[static_cast<size_t>(
+                        Wrap(static_cast<long long>(std::floor(y)), image.height, wrap.v)) *
                         static_cast<size_t>(image.width) +
-                    static_cast<size_t>(Wrap(static_cast<long long>(std::floor(x)), image.width))];
+                    static_cast<size_t>(
+                        Wrap(static_cast<long long>(std::floor(x)), image.width, wrap.u))];
     return std::array<double, 4>{t[0], t[1], t[2], t[3]};
   };
   const double area = Area(texels);

@@ -41,12 +41,22 @@ double SrgbToLinear(double c);
 // texture sees all of it about evenly).
 inline constexpr double kMaxFootprintTexels = double{1 << 22};
 
+// How texture space goes on outside [0, 1] along one axis (glTF's sampler wrapS / wrapT;
+// OBJ's `-clamp on`): the image repeats, its edge texels stretch on (CLAMP_TO_EDGE), or it
+// repeats mirrored every other period (MIRRORED_REPEAT).
+enum class TextureWrap { kRepeat, kClampToEdge, kMirroredRepeat };
+struct TextureWrapping {
+  TextureWrap u = TextureWrap::kRepeat, v = TextureWrap::kRepeat;
+};
+
 // The mean of `image` (linear RGB and alpha) over the polygon `uv`, each texel a constant
 // square weighted by the area of the polygon over it (exact for a polygon, up to rounding).
-// The image repeats outside [0, 1]. With `v_up` (OBJ), v = 0 is the bottom row of the image;
-// otherwise (glTF) v = 0 is the top row. A polygon of zero area in texture space takes the
-// texel under its first vertex.
+// Outside [0, 1] the image continues as `wrap` says, per axis. With `v_up` (OBJ), v = 0 is
+// the bottom row of the image; otherwise (glTF) v = 0 is the top row. A polygon of zero area
+// in texture space takes the texel under its first vertex. A footprint over more than
+// kMaxFootprintTexels texels takes the whole image's mean (exact in the limit for repeat
+// and mirrored repeat; for clamp-to-edge an approximation of such a footprint).
 std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<TexCoord>& uv,
-                                  bool v_up);
+                                  bool v_up, TextureWrapping wrap = {});
 
 }  // namespace radflux

@@ -3,6 +3,8 @@
 Usage: view_browser.py URL DIR START_CMD RESULT_CMD   (a job's view)
        view_browser.py --glb URL                     (`radflux view RESULT.glb`: the saved
                                                       result shows the box's coloured walls)
+       view_browser.py --lightmap LM_URL VC_URL      (`radflux view` of one solve's lightmapped
+                                                      GLB and of its vertex-coloured GLB)
   URL         the page of a job that is still queued;
   START_CMD   a shell command that lets the job start (cancels the job ahead of it), run once
               the page is up, so the page sees the job from its first snapshot;
@@ -84,6 +86,7 @@ def browser():
                  "--enable-unsafe-swiftshader", "--window-size=1100,700",
                  "--disable-dev-shm-usage"):
         options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
     options.binary_location = "/usr/bin/chromium"
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
 
@@ -149,7 +152,51 @@ def job_view(url, scratch, start_cmd, result_cmd):
     check(s_later < s_first, "the later screenshot is not closer to the final than the first")
 
 
+def shown_glb(driver, url):
+    """The canvas of `radflux view RESULT.glb` once loaded, how many meshes the page drew with
+    the baked lightmap and its emissive strength; fails on a load error or a console error."""
+    driver.get(url)
+    wait_for(driver, "window.radfluxView && (radfluxView.ready || radfluxView.error)", url)
+    check(not driver.execute_script("return radfluxView.error"), f"{url} did not load")
+    errors = [e["message"] for e in driver.get_log("browser") if e["level"] == "SEVERE"
+              and "/favicon.ico " not in e["message"]]  # the browser's own ask, not the page's
+    check(not errors, f"console errors at {url}: {errors}")
+    return scene_shot(driver), driver.execute_script(
+        "return [radfluxView.lightmapped, radfluxView.lightmapStrength]")
+
+
+def lightmap_against_vertex_colours(lightmap_url, vertex_url):
+    """The lightmapped GLB is drawn with its baked texture: three.js shows the same picture as
+    the vertex-coloured GLB of the same solve (the lightmap holds the same interpolated vertex
+    radiosity at the same scale) within the texture's quantisation, over all scene pixels.
+    The texture holds radiance / S (S, the emissive strength, keeps the lamp above 1), so one
+    texel code is about S^(1/2.4) codes on the screen (sRGB both ways): half of it, plus a
+    code of rounding, is the tolerance q; the median must be within q, the 95th percentile
+    within 2q. A wrong UV set or a missing emissive strength fails this by far."""
+    driver = browser()
+    try:
+        lightmap, (charts, strength) = shown_glb(driver, lightmap_url)
+        vertex, (plain, _) = shown_glb(driver, vertex_url)
+    finally:
+        driver.quit()
+    check(charts >= 1 and plain == 0, f"meshes drawn with a lightmap: {charts} and {plain}")
+    check(colour_walls(lightmap), "the lightmapped result lacks the red and green walls")
+    background = (16, 17, 20)  # 0x101114, the scene's background
+    diffs = sorted(max(abs(a - b) for a, b in zip(p, q))
+                   for p, q in zip(lightmap.getdata(), vertex.getdata())
+                   if q != background or p != background)
+    median, p95 = diffs[len(diffs) // 2], diffs[int(0.95 * len(diffs))]
+    q = 0.5 * strength ** (1 / 2.4) + 1
+    print(f"lightmap (strength {strength:.1f}, q {q:.1f} codes) vs vertex colours over "
+          f"{len(diffs)} pixels: |difference| (8-bit codes) median {median}, 95th percentile "
+          f"{p95}, max {diffs[-1]}")
+    check(median <= q and p95 <= 2 * q,
+          "the lightmapped picture differs from the vertex-coloured one beyond quantisation")
+
+
 if sys.argv[1] == "--glb":
     saved_result(sys.argv[2])
+elif sys.argv[1] == "--lightmap":
+    lightmap_against_vertex_colours(sys.argv[2], sys.argv[3])
 else:
     job_view(*sys.argv[1:5])

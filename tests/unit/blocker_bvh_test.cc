@@ -4,6 +4,7 @@
 // every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -67,6 +68,35 @@ TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
   std::vector<uint32_t> found{7};
   EXPECT_FALSE(bvh.InShaft(0, 1, found));
   EXPECT_TRUE(found.empty());
+}
+
+TEST(BlockerBvh, APartlyTransparentBlockerLetsThroughItsTransparentFraction) {
+  // 16 pairs of unit squares at z = 0 (facing up) and z = 2 (facing down), a wide plate at
+  // z = 1 of opacity 0.3 between them: of their 16 x 256 segments 0.3 (kernel-weighted) are
+  // blocked within 5 sigma, the same segments always alike, and all of them at opacity 1.
+  constexpr int kPairs = 16;
+  std::vector<SurfaceShape> shapes = {
+      MakeSurfaceShape({{-5, -5, 1}, {3 * kPairs + 5, -5, 1}, {3 * kPairs + 5, 6, 1}, {-5, 6, 1}})};
+  for (int p = 0; p < kPairs; ++p) {
+    const double x = 3.0 * p;
+    shapes.push_back(MakeSurfaceShape({{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}}));
+    shapes.push_back(MakeSurfaceShape({{x, 0, 2}, {x, 1, 2}, {x + 1, 1, 2}, {x + 1, 0, 2}}));
+  }
+  shapes[0].opacity = 0.3f;
+  const std::vector<uint32_t> plate{0};
+  double visible = 0;
+  uint64_t segments = 0;
+  for (int p = 0; p < kPairs; ++p) {
+    const SurfaceShape &a = shapes[1 + 2 * p], &b = shapes[2 + 2 * p];
+    const double here = VisibleFraction(a, b, shapes, plate, segments);
+    EXPECT_EQ(VisibleFraction(a, b, shapes, plate, segments), here);
+    visible += here / kPairs;
+  }
+  const double n = static_cast<double>(segments) / 2;
+  ASSERT_EQ(n, kPairs * 256);
+  EXPECT_NEAR(1 - visible, 0.3, 5 * std::sqrt(0.3 * 0.7 / n));
+  shapes[0].opacity = 1;
+  EXPECT_EQ(VisibleFraction(shapes[1], shapes[2], shapes, plate, segments), 0.0) << "opaque: always";
 }
 
 }  // namespace

@@ -3,9 +3,10 @@
 // glTF's v = 0 is the image's top row), its emission emissiveFactor x emissiveStrength x the
 // emissive texture's mean; under alphaMode MASK a texel is opaque when its alpha (times the
 // factor's) reaches alphaCutoff, under BLEND its alpha is its opacity, under OPAQUE alpha is
-// ignored; a face less than half opaque is dropped, one partly transparent is kept whole and
-// counted. KHR_texture_transform maps the coordinates; images come from data URIs, buffer
-// views or files (found ignoring case).
+// ignored; a face under 1/255 opaque is dropped, one partly transparent keeps its mean alpha
+// as its opacity and is counted. KHR_texture_transform maps the coordinates, the sampler's
+// wrap modes continue the image outside [0, 1]; images come from data URIs, buffer views or
+// files (found ignoring case).
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -127,11 +128,12 @@ TEST(GltfTextures, MaskDropsFacesWhoseTexelsAreBelowTheCutoff) {
   Scene s = Load(Quad(OverTexel(1), BaseColour({1, 1, 1, 1}, "MASK")));
   EXPECT_EQ(s.faces.size(), 0u);
   EXPECT_EQ(Lines(s), std::vector<std::string>{
-                          "import: 2 faces mostly transparent (mean alpha < 0.5) in their alpha "
+                          "import: 2 faces transparent (mean alpha < 1/255) in their alpha "
                           "texture (baseColor alpha) dropped (first at q.gltf (face 0 of object "
                           "'quad'))"});
   // Bottom-left texel: alpha 128/255 = 0.502. Cut out under MASK with alphaCutoff 0.6; kept
-  // (and counted as partly transparent) under BLEND; kept silently under OPAQUE.
+  // at that opacity (and counted as partly transparent) under BLEND; kept opaque and
+  // silently under OPAQUE.
   Json mask = BaseColour({1, 1, 1, 1}, "MASK");
   mask["alphaCutoff"] = 0.6;
   EXPECT_EQ(Load(Quad(OverTexel(2), mask)).faces.size(), 0u);
@@ -139,31 +141,81 @@ TEST(GltfTextures, MaskDropsFacesWhoseTexelsAreBelowTheCutoff) {
   EXPECT_EQ(Load(Quad(OverTexel(2), mask)).faces.size(), 2u) << "0.502 >= 0.5: opaque";
   s = Load(Quad(OverTexel(2), BaseColour({1, 1, 1, 1}, "BLEND")));
   EXPECT_EQ(s.faces.size(), 2u);
+  EXPECT_NEAR(MaterialOf(s, 0).opacity, 128 / 255.0, 1e-7);
   ASSERT_EQ(Lines(s).size(), 2u);
   EXPECT_EQ(Lines(s)[0],
-            "import: 2 faces partly transparent (mean alpha in [0.5, 1)) in their alpha texture "
-            "(baseColor alpha) kept opaque (no partial transmission) (first at q.gltf (face 0 "
-            "of object 'quad'))");
+            "import: 2 faces partly transparent (mean alpha in [1/255, 1)) in their alpha "
+            "texture (baseColor alpha) let the transparent fraction through (first at q.gltf "
+            "(face 0 of object 'quad'))");
   s = Load(Quad(OverTexel(1), BaseColour({1, 1, 1, 1}, "OPAQUE")));
   EXPECT_EQ(s.faces.size(), 2u) << "OPAQUE ignores alpha";
+  EXPECT_EQ(MaterialOf(s, 0).opacity, 1);
   // The factor's alpha scales the texels' before the cutoff: 0.502 x 0.9 < 0.5.
   EXPECT_EQ(Load(Quad(OverTexel(2), BaseColour({1, 1, 1, .9}, "MASK"))).faces.size(), 0u);
 }
 
-TEST(GltfTextures, AFaceHalfOverACutOutTexelGoesByItsOpaqueFraction) {
-  // The top row under MASK: triangle 0 1 2 is 1/4 over the opaque top-left texel (dropped),
-  // triangle 0 2 3 3/4 (kept whole, its reflectance the mean over all of it).
+TEST(GltfTextures, AFacePartlyOverACutOutTexelIsAsOpaqueAsItsOpaqueFraction) {
+  // The top row under MASK: triangle 0 1 2 is 1/4 over the opaque top-left texel (opacity
+  // 1/4), triangle 0 2 3 3/4 (opacity 3/4); each reflects the mean over all of it.
   const Scene s = Load(Quad({0, 0, 1, 0, 1, .5f, 0, .5f}, BaseColour({1, 1, 1, 1}, "MASK")));
-  ASSERT_EQ(s.faces.size(), 1u);
-  EXPECT_EQ(s.faces[0].vertices, (std::vector<uint32_t>{0, 2, 3}));
+  ASSERT_EQ(s.faces.size(), 2u);
+  EXPECT_EQ(s.faces[1].vertices, (std::vector<uint32_t>{0, 2, 3}));
+  EXPECT_NEAR(MaterialOf(s, 0).opacity, .25, 1e-12);
+  EXPECT_NEAR(MaterialOf(s, 1).opacity, .75, 1e-12);
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(MaterialOf(s, 0).reflectance[c], .75 * Texel(0, c) + .25 * Texel(1, c), 1e-12);
+    EXPECT_NEAR(MaterialOf(s, 0).reflectance[c], .25 * Texel(0, c) + .75 * Texel(1, c), 1e-12);
+    EXPECT_NEAR(MaterialOf(s, 1).reflectance[c], .75 * Texel(0, c) + .25 * Texel(1, c), 1e-12);
   }
   const std::vector<std::string> lines = Lines(s);
-  ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0].substr(0, 33), "import: 1 face mostly transparent");
-  EXPECT_EQ(lines[1].substr(0, 33), "import: 1 face partly transparent");
-  EXPECT_EQ(lines[2].substr(0, 36), "import: 1 face took its reflectance ");
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0].substr(0, 35), "import: 2 faces partly transparent ");
+  EXPECT_EQ(lines[1].substr(0, 40), "import: 2 faces took their reflectance f");
+}
+
+// The red reflectance over the quad with coordinates `uv` (the mean of its two triangles,
+// of equal area) under a sampler with `wrap_s`, `wrap_t` (0: no sampler).
+double RedUnder(const std::vector<float>& uv, int wrap_s, int wrap_t) {
+  GltfBuilder b = Quad(uv, BaseColour({1, 1, 1, 1}));
+  if (wrap_s != 0 || wrap_t != 0) {
+    b.json()["samplers"] = {{{"wrapS", wrap_s == 0 ? 10497 : wrap_s},
+                             {"wrapT", wrap_t == 0 ? 10497 : wrap_t}}};
+    b.json()["textures"][0]["sampler"] = 0;
+  }
+  const Scene s = Load(b);
+  EXPECT_EQ(s.faces.size(), 2u);
+  if (s.faces.size() != 2u) return -1;
+  return (MaterialOf(s, 0).reflectance[0] + MaterialOf(s, 1).reflectance[0]) / 2;
+}
+
+TEST(GltfTextures, SamplerWrapModesContinueTheImageOutsideTheUnitSquare) {
+  constexpr int kRepeat = 10497, kClamp = 33071, kMirror = 33648;
+  // u in [1.5, 2], the top row: repeat (with no sampler too) and clamp show the top-right
+  // texel, mirrored repeat the top-left one (the second period runs backwards).
+  const std::vector<float> right = {1.5f, 0, 2, 0, 2, .5f, 1.5f, .5f};
+  EXPECT_NEAR(RedUnder(right, 0, 0), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kRepeat, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kClamp, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(right, kMirror, kRepeat), Texel(0, 0), 1e-12);
+  // u in [1, 1.5]: repeat shows the top-left texel, clamp and mirror the top-right.
+  const std::vector<float> next = {1, 0, 1.5f, 0, 1.5f, .5f, 1, .5f};
+  EXPECT_NEAR(RedUnder(next, kRepeat, kRepeat), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(next, kClamp, kRepeat), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(next, kMirror, kRepeat), Texel(1, 0), 1e-12);
+  // v in [-.5, 0] and [1.5, 2] (glTF's v runs down), the left column: repeat shows the
+  // bottom-left texel, clamp (above the top) and mirror the top-left.
+  const std::vector<float> above = {0, -.5f, .5f, -.5f, .5f, 0, 0, 0};
+  const std::vector<float> below = {0, 1.5f, .5f, 1.5f, .5f, 2, 0, 2};
+  EXPECT_NEAR(RedUnder(above, kRepeat, kRepeat), Texel(2, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(above, kRepeat, kClamp), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(above, kRepeat, kMirror), Texel(0, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(below, kRepeat, kRepeat), Texel(2, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(below, kRepeat, kMirror), Texel(0, 0), 1e-12);
+  // A footprint across the edge, u in [.5, 1.5]: the mean of the top-right texel and what
+  // lies beyond it.
+  const std::vector<float> across = {.5f, 0, 1.5f, 0, 1.5f, .5f, .5f, .5f};
+  EXPECT_NEAR(RedUnder(across, kRepeat, kRepeat), (Texel(1, 0) + Texel(0, 0)) / 2, 1e-12);
+  EXPECT_NEAR(RedUnder(across, kClamp, kClamp), Texel(1, 0), 1e-12);
+  EXPECT_NEAR(RedUnder(across, kMirror, kRepeat), Texel(1, 0), 1e-12);
 }
 
 TEST(GltfTextures, TextureTransformMapsTheCoordinatesFirst) {

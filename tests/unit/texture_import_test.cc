@@ -1,6 +1,7 @@
 // OBJ textures (solver/scene/face_textures.h, texture_image.h): a face's reflectance is Kd
 // times the mean of its map_Kd texture over the face's footprint (sRGB decoded), a face
-// whose map_d alpha averages below 0.5 is dropped, a missing texture is one log line and Kd stays.
+// whose map_d alpha averages below 1/255 is dropped (any other keeps its mean as its
+// opacity), a missing texture is one log line and Kd stays.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -85,6 +86,11 @@ TEST_F(TextureImportTest, AQuadOverTheWholeTextureTakesTheMeanOfItsTexels) {
   ASSERT_TRUE(wrapped.ok());
   EXPECT_NEAR(Wall(*wrapped).reflectance[1], 0.6 * Linear(255), 1e-12)
       << "u in [-.5, -.25] repeats onto [.5, .75]: the top-right texel";
+  // Under `-clamp on` the left edge stretches on instead: the top-left texel.
+  absl::StatusOr<Scene> clamped =
+      Load("vt -.5 .5\nvt -.25 .5\nvt -.25 1\nvt -.5 1\n", "map_Kd -clamp on tex/checker.png\n");
+  ASSERT_TRUE(clamped.ok()) << clamped.status();
+  EXPECT_NEAR(Wall(*clamped).reflectance[1], 0.6 * Linear(64), 1e-12);
 }
 
 TEST_F(TextureImportTest, AMostlyTransparentFaceIsDroppedWithOneLogLine) {
@@ -95,8 +101,27 @@ TEST_F(TextureImportTest, AMostlyTransparentFaceIsDroppedWithOneLogLine) {
   EXPECT_EQ(s->faces.size(), 1u);
   const std::vector<std::string> lines = s->import_log.Lines();
   EXPECT_NE(std::find(lines.begin(), lines.end(),
-                      "import: 1 face mostly transparent (mean alpha < 0.5) in its alpha "
+                      "import: 1 face transparent (mean alpha < 1/255) in its alpha "
                       "texture (map_d) dropped (first at " +
+                          dir_ + "/s.obj:17)"),
+            lines.end());
+}
+
+TEST_F(TextureImportTest, AFaceThirtyPercentOpaqueIsKeptWithThatOpacity) {
+  // One texel, alpha 77/255 = 0.302 (alpha is linear, not sRGB): the quad over it stays,
+  // 0.302 opaque, its reflectance still Kd times the texel's colour.
+  Write("tex/veil.png", Png(1, 1, {255, 255, 255, 77}));
+  absl::StatusOr<Scene> s =
+      Load("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", "map_Kd tex/veil.png\nmap_d tex/veil.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_EQ(s->faces.size(), 2u);
+  EXPECT_NEAR(Wall(*s).opacity, 77 / 255.0, 1e-7);
+  EXPECT_NEAR(Wall(*s).reflectance[0], 0.8, 1e-7);
+  EXPECT_EQ(s->materials[s->faces.front().material].opacity, 1) << "the untextured lamp";
+  const std::vector<std::string> lines = s->import_log.Lines();
+  EXPECT_NE(std::find(lines.begin(), lines.end(),
+                      "import: 1 face partly transparent (mean alpha in [1/255, 1)) in its alpha "
+                      "texture (map_d) let the transparent fraction through (first at " +
                           dir_ + "/s.obj:17)"),
             lines.end());
 }
