@@ -44,13 +44,16 @@ def reference(build, cache, name, paths, seed):
 
 
 def radflux(build, cache, name, extra):
-    """(wall seconds, report, object -> area-weighted mean B) of one radflux solve."""
+    """(wall seconds, exit status, report, object -> area-weighted mean B) of one radflux solve;
+    exit 3 (not converged) and 4 (energy balance off) still write the outputs, and are said."""
     report, values = (os.path.join(cache, f"{name}_run.{x}") for x in ("json", "csv"))
     start = time.monotonic()
-    subprocess.run([os.path.join(build, "client", "radflux-local"), "solve",
-                    os.path.join(SHARED, SCENES[name]), "-q", "--report", report,
-                    "--patch-values", values] + extra,
-                   check=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    status = subprocess.run([os.path.join(build, "client", "radflux-local"), "solve",
+                             os.path.join(SHARED, SCENES[name]), "-q", "--report", report,
+                             "--patch-values", values] + extra,
+                            env=dict(os.environ, OMP_WAIT_POLICY="passive")).returncode
+    if status not in (0, 3, 4):
+        raise SystemExit(f"radflux solve {name}: exit {status}")
     wall = time.monotonic() - start
     acc = {}
     with open(values) as f:
@@ -60,7 +63,7 @@ def radflux(build, cache, name, extra):
             s[0] += a * (float(r["r"]) + float(r["g"]) + float(r["b"])) / 3
             s[1] += a
     with open(report) as f:
-        return wall, json.load(f), {k: v[0] / v[1] for k, v in acc.items() if v[1] > 0}
+        return wall, status, json.load(f), {k: v[0] / v[1] for k, v in acc.items() if v[1] > 0}
 
 
 def judged(ref):
@@ -87,14 +90,15 @@ def main():
     for name in opt["--scenes"].split(","):
         ref1, ref2 = (reference(opt["--build"], opt["--cache"], name, int(opt["--paths"]), s)
                       for s in (1, 2))
-        wall, report, run = radflux(opt["--build"], opt["--cache"], name, extra)
+        wall, status, report, run = radflux(opt["--build"], opt["--cache"], name, extra)
         keys = [k for k in judged(ref1) if k in run]
         mean = {k: (ref1[k][1] + ref2[k][1]) / 2 for k in keys}
         err = [run[k] / mean[k] - 1 for k in keys]
         noise = [ref1[k][1] / ref2[k][1] - 1 for k in keys]
         worst = max(keys, key=lambda k: abs(run[k] / mean[k] - 1))
         phases = " ".join(f"{k} {v:.3f}" for k, v in report["seconds"].items() if v >= 0.0005)
-        print(f"{name}: {wall:.2f} s wall (rpkCpp {RPK_SECONDS[name]} s); phases: {phases}; "
+        said = {0: "", 3: " NOT CONVERGED", 4: " ENERGY BALANCE OFF"}[status]
+        print(f"{name}{said}: {wall:.2f} s wall (rpkCpp {RPK_SECONDS[name]} s); phases: {phases}; "
               f"{len(keys)} objects: error max {percent_stats(err)[0]:.2f}% ({worst}) median "
               f"{percent_stats(err)[1]:.2f}%, {sum(abs(e) > 0.01 for e in err)} above 1%; "
               f"reference seeds differ max {percent_stats(noise)[0]:.2f}% "
