@@ -1,6 +1,7 @@
 #include "solver/output/final_gather.h"
 
 #include <algorithm>
+#include <array>
 #include <numbers>
 #include <span>
 
@@ -19,6 +20,19 @@ namespace {
 constexpr uint64_t kPixelStream = 31;
 constexpr uint64_t kLightStream = 32;
 constexpr uint64_t kGatherStream = 33;
+// Paths per visible point: a pixel's N paths go through P = max(min(N, 16), ceil(N / 2))
+// points (one primary ray each; at least 16 keep the pixel's footprint sampled as finely as
+// before), a point's light samples sharing one set-up of the light sampler. Point j takes the
+// pixel's paths j, j + P, ... (strided through the pixel's multi-jittered light and gather
+// patterns, so that a point's samples are spread, not in one row of the pattern).
+constexpr int kPathsPerPoint = 2;
+constexpr int kMinPointsPerPixel = 16;
+
+// The visible points of a pixel of N = rays paths.
+int PointsPerPixel(int rays) {
+  return std::max(std::min(rays, kMinPointsPerPixel),
+                  (rays + kPathsPerPoint - 1) / kPathsPerPoint);
+}
 
 // The row context light sampling needs for `lights` (every light patch an emitter).
 RowContext LightContext(const GatherLights& lights, const RayCaster& caster, double ray_epsilon) {
@@ -52,27 +66,28 @@ class GatherScene {
   void Row(int y, int rays, uint64_t seed, Image& image) const;
 
  private:
-  // One path of a pixel: the patch it sees, and its light sample's and gather ray's index
-  // among the row's (-1: none).
-  struct Path {
+  // One visible point of a pixel: the patch it sees, and the ranges of its paths' light
+  // samples and gather rays among the row's (light samples whose emitter cannot be seen
+  // from the point cast no ray and add nothing).
+  struct Point {
     uint32_t patch = kNoPatch;
-    int64_t light = -1, gather = -1;
+    size_t light_begin = 0, light_end = 0, gather_begin = 0, gather_end = 0;
   };
   // The row's light and gather rays, and the light samples' estimates.
   struct Secondary {
     std::vector<StreamRay> light_rays, gather_rays;
     std::vector<LightSampler::PendingSample> pending;
   };
-  // Casts the row's primary rays, one per path, into `primary`.
+  // Casts the row's primary rays, one per visible point, into `primary`.
   void CastPrimary(int y, int rays, uint64_t seed, int width,
                    std::vector<StreamRay>& primary) const;
-  // Sets up each path that sees a patch: its light sample and gather ray, into `secondary`.
+  // Sets up the paths of each point that sees a patch: their light samples and gather rays,
+  // into `secondary`.
   void StartPaths(int y, int rays, uint64_t seed, std::span<const StreamRay> primary,
-                  std::vector<Path>& paths, Secondary& secondary) const;
-  // The radiance path `path` estimates, given its traced light and gather rays.
-  Rgb PathRadiance(const Path& path, std::span<const StreamRay> light_rays,
-                   std::span<const LightSampler::PendingSample> pending,
-                   std::span<const StreamRay> gather_rays) const;
+                  std::vector<Point>& points, Secondary& secondary) const;
+  // The sum of the radiances that the paths of `point` estimate, given their traced light and
+  // gather rays.
+  Rgb PointRadiance(const Point& point, const Secondary& secondary) const;
 
   const PatchMesh& mesh_;
   const RayCaster& caster_;
@@ -86,14 +101,15 @@ class GatherScene {
 
 void GatherScene::CastPrimary(int y, int rays, uint64_t seed, int width,
                               std::vector<StreamRay>& primary) const {
-  std::vector<Point2> in_pixel(static_cast<size_t>(rays));
-  primary.assign(static_cast<size_t>(width) * rays, StreamRay{});
+  const int points = PointsPerPixel(rays);
+  std::vector<Point2> in_pixel(static_cast<size_t>(points));
+  primary.assign(static_cast<size_t>(width) * points, StreamRay{});
   for (int x = 0; x < width; ++x) {
     const uint64_t pixel = static_cast<uint64_t>(y) * width + x;
     MultiJitteredSamples(PatternSeed(seed, pixel, kPixelStream), in_pixel);
-    for (int k = 0; k < rays; ++k) {
+    for (int k = 0; k < points; ++k) {
       const Ray ray = projection_.RayThrough(x + in_pixel[k].x, y + in_pixel[k].y);
-      StreamRay& r = primary[static_cast<size_t>(x) * rays + k];
+      StreamRay& r = primary[static_cast<size_t>(x) * points + k];
       r.SetOrigin(ray.origin);
       r.SetDirection(ray.direction);
     }
@@ -101,17 +117,18 @@ void GatherScene::CastPrimary(int y, int rays, uint64_t seed, int width,
   caster_.IntersectStream(primary);
 }
 
-Rgb GatherScene::PathRadiance(const Path& path, std::span<const StreamRay> light_rays,
-                              std::span<const LightSampler::PendingSample> pending,
-                              std::span<const StreamRay> gather_rays) const {
-  Rgb irradiance{};  // H_direct + H_indirect at the path's point, W/m^2 per band
-  if (path.light >= 0 && !light_rays[path.light].Occluded()) {
-    const LightSampler::PendingSample& sample = pending[path.light];
+Rgb GatherScene::PointRadiance(const Point& point, const Secondary& secondary) const {
+  Rgb irradiance{};  // the paths' H_direct + H_indirect summed, W/m^2 per band
+  for (size_t i = point.light_begin; i < point.light_end; ++i) {
+    if (secondary.light_rays[i].Occluded()) continue;
+    const LightSampler::PendingSample& sample = secondary.pending[i];
     const Rgb& e = lights_.emission[sample.emitter];
     for (int b = 0; b < kBands; ++b) irradiance[b] += e[b] * sample.form_factor;
   }
-  const StreamRay& g = gather_rays[path.gather];
-  if (const uint32_t q = g.FrontPatch(); q != kNoPatch && q < mesh_.size()) {
+  for (size_t i = point.gather_begin; i < point.gather_end; ++i) {
+    const StreamRay& g = secondary.gather_rays[i];
+    const uint32_t q = g.FrontPatch();
+    if (q == kNoPatch || q >= mesh_.size()) continue;
     Hit hit;
     hit.patch = q;
     hit.u = g.u;
@@ -119,65 +136,78 @@ Rgb GatherScene::PathRadiance(const Path& path, std::span<const StreamRay> light
     const Rgb r = InterpolateAtHit(mesh_, reflected_at_vertex_, hit);
     for (int b = 0; b < kBands; ++b) irradiance[b] += std::max(0.0, r[b]);
   }
-  const Rgb& rho = attributes_.reflectance[path.patch];
-  const Rgb& e = attributes_.emission[path.patch];
+  const double paths = static_cast<double>(point.gather_end - point.gather_begin);
+  const Rgb& rho = attributes_.reflectance[point.patch];
+  const Rgb& e = attributes_.emission[point.patch];
   Rgb radiance;
   for (int b = 0; b < kBands; ++b) {
-    radiance[b] = (e[b] + rho[b] * irradiance[b]) * std::numbers::inv_pi;
+    radiance[b] = (paths * e[b] + rho[b] * irradiance[b]) * std::numbers::inv_pi;
   }
   return radiance;
 }
 
 void GatherScene::StartPaths(int y, int rays, uint64_t seed, std::span<const StreamRay> primary,
-                             std::vector<Path>& paths, Secondary& secondary) const {
-  const int width = static_cast<int>(primary.size()) / rays;
+                             std::vector<Point>& points, Secondary& secondary) const {
+  const int per_pixel = PointsPerPixel(rays);
+  const int width = static_cast<int>(primary.size()) / per_pixel;
   std::vector<Point2> light_points(static_cast<size_t>(rays)), gather_points(light_points);
   for (int x = 0; x < width; ++x) {
     const uint64_t pixel = static_cast<uint64_t>(y) * width + x;
     MultiJitteredSamples(PatternSeed(seed, pixel, kLightStream), light_points);
     MultiJitteredSamples(PatternSeed(seed, pixel, kGatherStream), gather_points);
-    for (int k = 0; k < rays; ++k) {
-      const size_t at = static_cast<size_t>(x) * rays + k;
+    for (int j = 0; j < per_pixel; ++j) {
+      const size_t at = static_cast<size_t>(x) * per_pixel + j;
       const StreamRay& r = primary[at];
       const uint32_t p = r.FrontPatch();
       if (p == kNoPatch || p >= mesh_.size()) continue;
       const Patch& patch = mesh_.patches[p];
       const Vec3 origin{r.org_x, r.org_y, r.org_z}, direction{r.dir_x, r.dir_y, r.dir_z};
-      Vec3 point = origin + direction * static_cast<double>(r.t_far);
-      point = point - patch.normal * Dot(point - mesh_.Vertex(p, 0), patch.normal);  // on p
-      Path& path = paths[at];
-      path.patch = p;
-      const size_t before = secondary.light_rays.size();
-      sampler_.SamplePoint(point, patch.normal, lights_.of_patch[p], seed, pixel,
-                           static_cast<uint32_t>(k),
-                           std::span<const Point2>(light_points).subspan(k, 1),
+      Vec3 x_on_p = origin + direction * static_cast<double>(r.t_far);
+      x_on_p = x_on_p - patch.normal * Dot(x_on_p - mesh_.Vertex(p, 0), patch.normal);
+      std::array<Point2, kPathsPerPoint> directions;
+      size_t paths = 0;
+      for (int k = j; k < rays; k += per_pixel) directions[paths++] = light_points[k];
+      Point& point = points[at];
+      point.patch = p;
+      point.light_begin = secondary.light_rays.size();
+      sampler_.SamplePoint(x_on_p, patch.normal, lights_.of_patch[p], seed, pixel,
+                           static_cast<uint32_t>(j * kPathsPerPoint),
+                           std::span<const Point2>(directions).first(paths),
                            secondary.light_rays, secondary.pending);
-      if (secondary.light_rays.size() > before) path.light = static_cast<int64_t>(before);
-      StreamRay g;
-      g.SetOrigin(point + patch.normal * light_context_.ray_epsilon);
-      g.SetDirection(
-          Frame::FromNormal(patch.normal).ToWorld(SampleCosineHemisphere(gather_points[k])));
-      path.gather = static_cast<int64_t>(secondary.gather_rays.size());
-      secondary.gather_rays.push_back(g);
+      point.light_end = secondary.light_rays.size();
+      point.gather_begin = secondary.gather_rays.size();
+      const Frame frame = Frame::FromNormal(patch.normal);
+      for (int k = j; k < rays; k += per_pixel) {
+        StreamRay g;
+        g.SetOrigin(x_on_p + patch.normal * light_context_.ray_epsilon);
+        g.SetDirection(frame.ToWorld(SampleCosineHemisphere(gather_points[k])));
+        secondary.gather_rays.push_back(g);
+      }
+      point.gather_end = secondary.gather_rays.size();
     }
   }
 }
 
 void GatherScene::Row(int y, int rays, uint64_t seed, Image& image) const {
-  std::vector<StreamRay> primary;
+  // Per-thread scratch, reused row to row (fresh vectors of this size cost page faults).
+  thread_local std::vector<StreamRay> primary;
+  thread_local std::vector<Point> points;
+  thread_local Secondary secondary;
   CastPrimary(y, rays, seed, image.width, primary);
-  std::vector<Path> paths(primary.size());
-  Secondary secondary;
-  StartPaths(y, rays, seed, primary, paths, secondary);
+  points.assign(primary.size(), Point{});
+  secondary.light_rays.clear();
+  secondary.gather_rays.clear();
+  secondary.pending.clear();
+  StartPaths(y, rays, seed, primary, points, secondary);
   caster_.OccludedStream(secondary.light_rays);
   caster_.IntersectStream(secondary.gather_rays);
+  const int per_pixel = PointsPerPixel(rays);
   for (int x = 0; x < image.width; ++x) {
     Rgb sum{};
-    for (int k = 0; k < rays; ++k) {
-      const Path& path = paths[static_cast<size_t>(x) * rays + k];
-      if (path.patch == kNoPatch) continue;
-      const Rgb radiance =
-          PathRadiance(path, secondary.light_rays, secondary.pending, secondary.gather_rays);
+    for (int j = 0; j < per_pixel; ++j) {
+      const Point& point = points[static_cast<size_t>(x) * per_pixel + j];
+      if (point.patch == kNoPatch) continue;
+      const Rgb radiance = PointRadiance(point, secondary);
       for (int b = 0; b < kBands; ++b) sum[b] += radiance[b];
     }
     float* out = image.Pixel(x, y);

@@ -1,6 +1,8 @@
 // Final gather: a view-dependent second pass over a radiosity solution (the two-pass method).
-// Each pixel averages N paths; path k goes through its own multi-jittered point of the pixel to
-// the visible point x on patch p (front side; a miss or a back side gives black) and estimates
+// Each pixel averages N paths through max(min(N, 16), ceil(N / 2)) multi-jittered points of the
+// pixel (a point's primary ray and light-sampler set-up shared by at most two paths); a path
+// goes to the visible point x on patch p (front side; a miss or a back side gives black) and
+// estimates
 //     L(x) = E_p / pi + rho_p / pi * (H_direct(x) + H_indirect(x))
 // with
 //   H_direct   = sum_j E_j F_j(x) V: one light sample on the emitters (LightSampler, as the

@@ -1,5 +1,6 @@
 #include "solver/scene/obj_loader.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -9,7 +10,9 @@
 #include <string_view>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "solver/scene/file_lookup.h"
+#include "solver/scene/mtl_check.h"
 #include "tiny_obj_loader.h"
 
 namespace radflux {
@@ -24,8 +27,9 @@ TextureWrapping ObjWrapping(const tinyobj::texture_option_t& option) {
 // Where each 'f' statement stands in the file and which 'o', 'g' and 'usemtl' are
 // in force there. tinyobjloader parses the geometry; this scan only recovers the
 // provenance that it does not keep, so that messages and results can name surfaces,
-// and the line of any vertex coordinate that is NaN or infinite (tinyobjloader would
-// silently read those as 0).
+// the material libraries named, and the first line tinyobjloader would misread silently:
+// a vertex coordinate that is NaN or infinite (read as 0) or a face index beyond 32 bits
+// (2^63 + 1 wraps to a valid vertex).
 struct FaceOrigin {
   int line = 0;
   std::string object, group, usemtl;
@@ -33,7 +37,9 @@ struct FaceOrigin {
 
 struct SourceScan {
   std::vector<FaceOrigin> faces;
-  int bad_vertex_line = 0;  // first 'v' line with a NaN or infinite coordinate, 0 if none
+  std::vector<std::string> libraries;  // the words of the 'mtllib' lines, in order
+  int bad_line = 0;                    // the first line misread silently, 0 if none
+  std::string bad_what;                // what is wrong on it
 };
 
 bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
@@ -61,6 +67,31 @@ bool HasNonFiniteCoordinate(std::string_view rest) {
   return false;
 }
 
+// The first index of an 'f' line's `rest` (its "v/vt/vn" words) that does not fit the
+// loader's int, as written; "" when all fit.
+std::string_view OversizedIndex(std::string_view rest) {
+  size_t at = 0;
+  while (at < rest.size()) {
+    while (at < rest.size() && (IsBlank(rest[at]) || rest[at] == '/')) ++at;
+    size_t end = at;
+    while (end < rest.size() && !IsBlank(rest[end]) && rest[end] != '/') ++end;
+    int value = 0;
+    if (std::from_chars(rest.data() + at, rest.data() + end, value).ec ==
+        std::errc::result_out_of_range) {
+      return rest.substr(at, end - at);
+    }
+    at = end;
+  }
+  return {};
+}
+
+// Notes the first line misread silently, `what` being wrong on it.
+void NoteBadLine(SourceScan& scan, int line, std::string what) {
+  if (scan.bad_line != 0) return;
+  scan.bad_line = line;
+  scan.bad_what = std::move(what);
+}
+
 SourceScan ScanSource(const std::string& text) {
   SourceScan scan;
   FaceOrigin current;
@@ -77,9 +108,18 @@ SourceScan ScanSource(const std::string& text) {
     if (keyword == "f") {
       current.line = number;
       scan.faces.push_back(current);
+      if (const std::string_view index = OversizedIndex(line.substr(word)); !index.empty()) {
+        NoteBadLine(scan, number, absl::StrCat("face index ", std::string(index), " is out of range"));
+      }
     } else if (keyword == "v") {
-      if (scan.bad_vertex_line == 0 && HasNonFiniteCoordinate(line.substr(word))) {
-        scan.bad_vertex_line = number;
+      if (HasNonFiniteCoordinate(line.substr(word))) {
+        NoteBadLine(scan, number, "vertex has a NaN or infinite coordinate");
+      }
+    } else if (keyword == "mtllib") {
+      const std::string_view names = Rest(line.substr(word));
+      for (absl::string_view name : absl::StrSplit(absl::string_view(names.data(), names.size()),
+                                                   absl::ByAnyChar(" \t"), absl::SkipEmpty())) {
+        scan.libraries.emplace_back(name);
       }
     } else if (keyword == "o") {
       current.object = Rest(line.substr(word));
@@ -126,7 +166,17 @@ std::vector<TexCoord> FaceTexCoords(const tinyobj::attrib_t& attrib, const tinyo
   return uv;
 }
 
-absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std::string& obj_text,
+// The scan of `obj_text`, or INVALID_ARGUMENT "NAME:LINE: what" for its first line that
+// tinyobjloader would misread silently.
+absl::StatusOr<SourceScan> CheckedScan(const std::string& obj_text, const std::string& name) {
+  SourceScan scan = ScanSource(obj_text);
+  if (scan.bad_line > 0) {
+    return absl::InvalidArgumentError(absl::StrCat(name, ":", scan.bad_line, ": ", scan.bad_what));
+  }
+  return scan;
+}
+
+absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const SourceScan& scan,
                                     const std::string& name, const TextureReader& textures) {
   if (!reader.Valid()) {
     return absl::InvalidArgumentError(absl::StrCat(name, ": cannot parse OBJ: ", reader.Error()));
@@ -157,11 +207,6 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const std:
     scene.materials.push_back(material);
   }
 
-  const SourceScan scan = ScanSource(obj_text);
-  if (scan.bad_vertex_line > 0) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(name, ":", scan.bad_vertex_line, ": vertex has a NaN or infinite coordinate"));
-  }
   const std::vector<FaceOrigin>& origins = scan.faces;
   std::map<std::string, uint32_t> object_index, group_index;
   uint32_t last_object = kNone, last_group = kNone;
@@ -222,20 +267,33 @@ absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
   if (!file) return absl::NotFoundError(absl::StrCat(path, ": cannot open file"));
   std::ostringstream text;
   text << file.rdbuf();
-  tinyobj::ObjReader reader;
+  absl::StatusOr<SourceScan> scan = CheckedScan(text.str(), path);
+  if (!scan.ok()) return scan.status();
   tinyobj::ObjReaderConfig config = Config();
   const size_t slash = path.find_last_of('/');
   config.mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
-  reader.ParseFromFile(path, config);
   const std::string folder = path.substr(0, slash == std::string::npos ? 0 : slash);
+  for (const std::string& library : scan->libraries) {
+    // A library that cannot be read is left to tinyobjloader's warning, as before.
+    const absl::StatusOr<std::string> mtl = ReadFoundFile(folder, library);
+    if (!mtl.ok()) continue;
+    if (absl::Status s = CheckMtlColours(*mtl, config.mtl_search_path + library); !s.ok()) return s;
+  }
+  tinyobj::ObjReader reader;
+  reader.ParseFromFile(path, config);
   const TextureReader textures = [&](const std::string& texture) {
     return ReadFoundFile(folder, texture);
   };
-  return ConvertReader(reader, text.str(), path, textures);
+  return ConvertReader(reader, *scan, path, textures);
 }
 
 absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string& mtl_text,
                                   const std::string& name, const TextureReader& textures) {
+  absl::StatusOr<SourceScan> scan = CheckedScan(obj_text, name);
+  if (!scan.ok()) return scan.status();
+  // The MTL is named as the OBJ names it (its first library; scene.mtl when none is named).
+  const std::string mtl_name = scan->libraries.empty() ? "scene.mtl" : scan->libraries[0];
+  if (absl::Status s = CheckMtlColours(mtl_text, mtl_name); !s.ok()) return s;
   tinyobj::ObjReader reader;
   // tinyobjloader reads the MTL text only when the OBJ names a material library.
   const bool names_library = obj_text.find("mtllib") != std::string::npos;
@@ -244,7 +302,7 @@ absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string
   const TextureReader none = [](const std::string&) -> absl::StatusOr<std::string> {
     return absl::NotFoundError("no texture files given with this OBJ text");
   };
-  return ConvertReader(reader, obj_text, name, textures ? textures : none);
+  return ConvertReader(reader, *scan, name, textures ? textures : none);
 }
 
 }  // namespace radflux

@@ -63,5 +63,25 @@ TEST_F(HostileTest, UploadSizesThatOverflowAreRefusedAndTheServerLives) {
   ExpectServerAlive();
 }
 
+// An MTL colour of NaN or inf and a face index past 32 bits were read as 0 and as a valid
+// vertex: an upload of either is refused with the loader's own line, and the server serves on.
+TEST_F(HostileTest, UploadedNanColourOrWrappingFaceIndexIsRefusedNamingTheLine) {
+  StartServer();
+  const std::string lamp = "o lamp\nusemtl lamp\nv 0 0 1\nv 0 1 1\nv 1 1 1\n";
+  const std::string good_mtl = "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n";
+  v1::SceneRef ref;
+  grpc::Status status = Upload(lamp + "f 1 2 3\n", "newmtl lamp\nKd nan 0.5 0.5\nKe 1 1 1\n", &ref);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(status.error_message(), "scene.mtl:2: Kd value 'nan' is not a finite number");
+  status = Upload(lamp + "f 1 2 3\n", "newmtl lamp\nKd 0.5 0.5 0.5\nKe inf 1 1\n", &ref);
+  EXPECT_EQ(status.error_message(), "scene.mtl:3: Ke value 'inf' is not a finite number");
+  status = Upload(lamp + "f 1 2 9223372036854775809\n", good_mtl, &ref);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(status.error_message(),
+            "cornell_box.obj:6: face index 9223372036854775809 is out of range");
+  EXPECT_TRUE(Upload(lamp + "f 1 2 3\n", good_mtl, &ref).ok());
+  ExpectServerAlive();
+}
+
 }  // namespace
 }  // namespace radflux
