@@ -3,7 +3,10 @@
 // at its position of the plane fitted by area-weighted least squares to its patches'
 // values at their centroids: the patches around it for an interior vertex, those and
 // their neighbours for a boundary vertex (so the value there is extrapolated from the
-// inside, not averaged: a linear field is reproduced exactly everywhere). A T-junction
+// inside, not averaged: a linear field is reproduced exactly everywhere). The fit smooths,
+// so a peaked field's Gouraud picture would lose light; each patch's deficit (its value
+// minus its corners' mean) is fitted the same way and added once, which leaves a deficit
+// second order in the smoothing (Cornell back wall's picture mean: -2.3% -> -0.15%). A T-junction
 // vertex then takes the linear interpolation along the edge it lies on, so both sides of
 // that edge interpolate the same values.
 #pragma once

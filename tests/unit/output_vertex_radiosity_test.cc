@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "solver/output/vertex_radiosity.h"
 #include "tests/unit/output_test_meshes.h"
 
@@ -50,6 +54,42 @@ TEST(OutputVertexRadiosity, LinearFieldAcrossFacesWithTJunctionsIsExact) {
   PatchMesh wall;
   AddTJunctionWall(wall);
   ExpectLinearAtEveryVertex(wall);
+}
+
+// The exact mean over [a, b] of sin(pi t).
+double MeanOfSine(double a, double b) {
+  return (std::cos(std::numbers::pi * a) - std::cos(std::numbers::pi * b)) /
+         (std::numbers::pi * (b - a));
+}
+
+TEST(OutputVertexRadiosity, GouraudShadingKeepsTheMeanOfAPeakedField) {
+  // B = 0.2 + sin(pi x) sin(pi y) on the unit square in 8 x 8 patches, each given its exact mean:
+  // a lit wall's bump. Gouraud means (a quad's corner mean) must carry the patches' power;
+  // the fit alone lost 5.6% of the total here and up to 6.2% of an inner patch's value
+  // (now 0.12% and 0.6%; the boundary's extrapolated patches stay within 8%).
+  const int n = 8;
+  PatchMesh grid;
+  AddQuadGridFace(grid, 0, 1, n, 0, 1, n);
+  std::vector<Rgb> b;
+  for (const Patch& patch : grid.patches) {
+    const double h = 1.0 / n, x = patch.centroid.x - h / 2, y = patch.centroid.y - h / 2;
+    const double mean = 0.2 + MeanOfSine(x, x + h) * MeanOfSine(y, y + h);
+    b.push_back({mean, mean, mean});
+  }
+  auto v = VertexRadiosity(grid, ShadeOneMaterial(grid), b);
+  ASSERT_TRUE(v.ok()) << v.status();
+  double patches = 0, gouraud = 0;
+  for (size_t p = 0; p < grid.size(); ++p) {
+    double corners = 0;
+    for (int c = 0; c < 4; ++c) corners += (*v)[grid.patches[p].v[c]][0] / 4;
+    patches += b[p][0], gouraud += corners;
+    const Vec3 at = grid.patches[p].centroid;
+    const bool inside = std::min({at.x, at.y, 1 - at.x, 1 - at.y}) > 1.0 / n;
+    if (inside) {
+      EXPECT_NEAR(corners / b[p][0], 1, 0.01) << "patch " << p;
+    }
+  }
+  EXPECT_NEAR(gouraud / patches, 1, 0.002);
 }
 
 TEST(OutputVertexRadiosity, ARowOfPatchesGetsNoSlopeAcrossIt) {
