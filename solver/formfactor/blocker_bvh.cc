@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "solver/formfactor/shaft_cull.h"
+#include "solver/formfactor/shaft_visibility.h"
+#include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -15,7 +17,12 @@ constexpr double kRelativeTolerance = 1e-9;  // shaft_cull.cc's margin, relative
 
 BlockerBvh::BlockerBvh(const std::vector<SurfaceShape>& shapes, std::vector<uint32_t> blockers)
     : shapes_(shapes), order_(std::move(blockers)) {
-  for (uint32_t k : order_) max_diameter_ = std::max(max_diameter_, shapes_[k].diameter);
+  double extent = 0;
+  for (uint32_t k : order_) {
+    max_diameter_ = std::max(max_diameter_, shapes_[k].diameter);
+    for (int c = 0; c < 3; ++c) extent = std::max({extent, std::abs(shapes_[k].lo[c]), std::abs(shapes_[k].hi[c])});
+  }
+  pad_ = kRelativeTolerance * extent;
   if (!order_.empty()) Build(0, static_cast<uint32_t>(order_.size()));
 }
 
@@ -43,37 +50,75 @@ uint32_t BlockerBvh::Build(uint32_t begin, uint32_t end) {
   const uint32_t right = Build(mid, end);
   nodes_[index].first = right;
   nodes_[index].count = 0;
+  nodes_[index].axis = static_cast<uint8_t>(axis);
   return index;
 }
 
-bool BlockerBvh::InShaft(uint32_t i, uint32_t j, std::vector<uint32_t>& out) const {
-  out.clear();
+template <class MeetsBox, class RightFirst, class Blocks>
+bool BlockerBvh::AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box,
+                            const RightFirst& right_first, const Blocks& blocks) const {
   if (nodes_.empty()) return false;
-  const SurfaceShape& si = shapes_[i];
-  const SurfaceShape& sj = shapes_[j];
-  const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const uint32_t index = stack[--top];
     const Node& node = nodes_[index];
-    if (!shaft.MayMeetBox(node.center, node.half)) continue;
+    if (!meets_box(node)) continue;
     if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = index + 1;
+      const bool right = right_first(node);  // the child popped first is pushed last
+      stack[top++] = right ? index + 1 : node.first;
+      stack[top++] = right ? node.first : index + 1;
       continue;
     }
     for (uint32_t k = node.first; k < node.first + node.count; ++k) {
       const uint32_t b = order_[k];
-      const SurfaceShape& s = shapes_[b];
-      if (b != i && b != j && shaft.MayMeetBounds(s.lo, s.hi) &&
-          MayBlockPair(si, sj, s)) {
-        out.push_back(b);
-      }
+      if (b != i && b != j && blocks(shapes_[b])) return true;
     }
   }
-  return std::any_of(out.begin(), out.end(), [&](uint32_t b) { return shaft.MayHold(shapes_[b]); });
+  return false;
+}
+
+bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
+  const SurfaceShape& si = shapes_[i];
+  const SurfaceShape& sj = shapes_[j];
+  const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
+  return AnyBlocker(
+      i, j, [&](const Node& node) { return shaft.MayMeetBox(node.center, node.half); },
+      [](const Node&) { return false; },
+      [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); });
+}
+
+bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
+  const Vec3 d = b - a;
+  const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};  // +-inf along an axis the segment does not move
+  const float origin[3] = {static_cast<float>(a.x), static_cast<float>(a.y),
+                           static_cast<float>(a.z)};
+  const float direction[3] = {static_cast<float>(d.x), static_cast<float>(d.y),
+                              static_cast<float>(d.z)};
+  // Slab test of the segment a + t d, t in [0, 1], against the box (widened a little).
+  const auto meets_box = [&](const Node& node) {
+    double t0 = 0, t1 = 1;
+    for (int c = 0; c < 3; ++c) {
+      const double lo = node.center[c] - node.half[c] - pad_, hi = node.center[c] + node.half[c] + pad_;
+      if (d[c] == 0) {
+        if (a[c] < lo || a[c] > hi) return false;
+        continue;
+      }
+      const double ta = (lo - a[c]) * inv[c], tb = (hi - a[c]) * inv[c];
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
+    }
+    return t0 <= t1;
+  };
+  // The child nearer a along the split axis first: a blocked segment stops sooner.
+  return AnyBlocker(
+      i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; },
+      [&](const SurfaceShape& blocker) {
+        return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker) &&
+               !PassesThrough(origin, direction, static_cast<uint32_t>(&blocker - shapes_.data()),
+                              blocker.opacity);
+      });
 }
 
 }  // namespace radflux

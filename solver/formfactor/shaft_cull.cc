@@ -77,13 +77,6 @@ void Shaft::Complete() const {
   complete_ = true;
 }
 
-bool Shaft::MayMeetBounds(const Vec3& lo, const Vec3& hi) const {
-  for (int a = 0; a < 3; ++a) {
-    if (hi[a] < lo_[a] || lo[a] > hi_[a]) return false;
-  }
-  return true;
-}
-
 bool Shaft::MayMeetBox(const Vec3& center, const Vec3& half) const {
   for (int a = 0; a < 3; ++a) {
     if (center[a] + half[a] < lo_[a] || center[a] - half[a] > hi_[a]) return false;
@@ -108,7 +101,9 @@ bool Shaft::Separates(const Vec3& axis, const SurfaceShape& k) const {
 }
 
 bool Shaft::MayHold(const SurfaceShape& k) const {
-  if (!MayMeetBounds(k.lo, k.hi)) return false;
+  for (int a = 0; a < 3; ++a) {  // the coordinate axes: bounding boxes
+    if (k.hi[a] < lo_[a] || k.lo[a] > hi_[a]) return false;
+  }
   if (!complete_) Complete();
   for (int a = 3; a < kAxes; ++a) {  // the normals of i and j, d x axes: k's polygon
     double klo = std::numeric_limits<double>::infinity(), khi = -klo;

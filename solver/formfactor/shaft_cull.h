@@ -37,10 +37,6 @@ class Shaft {
   // counts as meeting. i and j must outlive it.
   Shaft(const SurfaceShape& i, const SurfaceShape& j, double margin);
 
-  // False when the box [lo, hi] lies outside the shaft's own bounding box (the coordinate
-  // axes alone: the cheapest, weakest of the tests).
-  bool MayMeetBounds(const Vec3& lo, const Vec3& hi) const;
-
   // False when an axis provably separates the box (centre, half extents) from the shaft.
   bool MayMeetBox(const Vec3& center, const Vec3& half) const;
 

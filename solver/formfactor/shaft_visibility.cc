@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <tuple>
-#include <utility>
 #include <vector>
 
 #include "solver/formfactor/polygon_form_factor.h"
-#include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
 namespace {
@@ -20,7 +17,7 @@ namespace {
 // side: 0.8%) and the grid room's at 0.7%, with about a third fewer segments there.
 constexpr int kMinSide = 1, kMaxSide = 4;
 constexpr double kSideDensity = 6;
-constexpr size_t kMaxSamplePoints = 64;  // at most the bits of a uint64_t (SidedBlocker)
+constexpr size_t kMaxSamplePoints = 64;
 
 struct SamplePoints {
   Vec3 point[kMaxSamplePoints];
@@ -98,77 +95,11 @@ bool SegmentHitsSurface(const Vec3& from, const Vec3& to, const SurfaceShape& k)
   return true;
 }
 
-namespace {
-
-// A candidate blocker k with the sides of the pair's sample points: bit p of front_i is set
-// when point p of i lies strictly in front of k's plane, of back_i strictly behind it; the
-// same for j. The same arithmetic as SegmentHitsSurface's plane test, so that a segment whose
-// ends the bits put on one side is one SegmentHitsSurface rejects.
-struct SidedBlocker {
-  const SurfaceShape* k;
-  uint64_t front_i, back_i, front_j, back_j;
-};
-
-void Sides(const SamplePoints& s, const SurfaceShape& k, uint64_t& front, uint64_t& back) {
-  front = back = 0;
-  for (size_t p = 0; p < s.count; ++p) {
-    const double d = Dot(s.point[p] - k.centroid, k.normal);
-    front |= static_cast<uint64_t>(d > 0) << p;
-    back |= static_cast<uint64_t>(d < 0) << p;
-  }
-}
-
-// The candidates some segment from pi to pj crosses the plane of, with their sides.
-void SideBlockers(const SamplePoints& pi, const SamplePoints& pj,
-                  const std::vector<SurfaceShape>& shapes, const std::vector<uint32_t>& candidates,
-                  std::vector<SidedBlocker>& out) {
-  out.clear();
-  for (uint32_t c : candidates) {
-    SidedBlocker b{&shapes[c], 0, 0, 0, 0};
-    Sides(pi, *b.k, b.front_i, b.back_i);
-    Sides(pj, *b.k, b.front_j, b.back_j);
-    if ((b.front_i && b.back_j) || (b.back_i && b.front_j)) out.push_back(b);
-  }
-}
-
-// Whether the segment from point a of pi to point b of pj crosses a blocker of `shapes` that
-// does not let it through (a partly transparent one lets it through as PassesThrough,
-// ray_caster.h, decides for the segment as a ray from a); the one that blocks moves to the
-// front.
-bool SegmentBlocked(const SamplePoints& pi, size_t a, const SamplePoints& pj, size_t b,
-                    const std::vector<SurfaceShape>& shapes, std::vector<SidedBlocker>& blockers) {
-  const Vec3 &from = pi.point[a], &to = pj.point[b];
-  for (size_t c = 0; c < blockers.size(); ++c) {
-    const SidedBlocker& k = blockers[c];
-    const uint64_t crosses = ((k.front_i >> a) & (k.back_j >> b)) | ((k.back_i >> a) & (k.front_j >> b));
-    if (!(crosses & 1) || !SegmentHitsSurface(from, to, *k.k)) continue;
-    if (k.k->opacity < 1) {
-      const Vec3 d = to - from;
-      const float origin[3] = {static_cast<float>(from.x), static_cast<float>(from.y),
-                               static_cast<float>(from.z)};
-      const float direction[3] = {static_cast<float>(d.x), static_cast<float>(d.y),
-                                  static_cast<float>(d.z)};
-      if (PassesThrough(origin, direction, static_cast<uint32_t>(k.k - shapes.data()),
-                        k.k->opacity)) {
-        continue;
-      }
-    }
-    std::swap(blockers[0], blockers[c]);
-    return true;
-  }
-  return false;
-}
-
-}  // namespace
-
-double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
-                       const std::vector<SurfaceShape>& shapes,
-                       const std::vector<uint32_t>& candidates, uint64_t& segments) {
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
+                       uint64_t& segments) {
   SamplePoints pi, pj;
   Sample(i, j, pi);
   Sample(j, i, pj);
-  thread_local std::vector<SidedBlocker> blockers;
-  SideBlockers(pi, pj, shapes, candidates, blockers);
   double seen = 0, total = 0;
   for (size_t a = 0; a < pi.count; ++a) {
     for (size_t b = 0; b < pj.count; ++b) {
@@ -180,7 +111,7 @@ double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
       if (w <= 0) continue;
       ++segments;
       total += w;
-      if (!SegmentBlocked(pi, a, pj, b, shapes, blockers)) seen += w;
+      if (!blocked(pi.point[a], pj.point[b])) seen += w;
     }
   }
   return total > 0 ? seen / total : 1.0;

@@ -9,7 +9,8 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+
+#include "absl/functional/function_ref.h"
 
 #include "solver/formfactor/surface_pair_integrator.h"
 
@@ -19,14 +20,12 @@ namespace radflux {
 // for (b, a).
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);
 
-// The kernel-weighted fraction of segments from i to j that cross no shapes[k] for k in
-// `candidates` (or cross only ones that let them through: a partly transparent blocker,
-// SurfaceShape::opacity < 1, as PassesThrough in ray_caster.h decides), in [0, 1]; adds the segments tested to `segments`. `candidates` must hold
-// every blocker that may hide part of the pair (BlockerBvh::InShaft: MayBlockPair holds for
-// each); those with all the sample points of i, or all of j, on one side of their plane are
-// set aside before any segment, and a segment tries the blocker that hid the last one first.
-double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
-                       const std::vector<SurfaceShape>& shapes,
-                       const std::vector<uint32_t>& candidates, uint64_t& segments);
+// blocked(a, b): whether something crosses the open segment from a to b.
+using SegmentTest = absl::FunctionRef<bool(const Vec3& a, const Vec3& b)>;
+
+// The kernel-weighted fraction of segments from i to j that are not `blocked`, in [0, 1];
+// adds the segments tested to `segments`.
+double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
+                       uint64_t& segments);
 
 }  // namespace radflux

@@ -32,7 +32,7 @@ struct SurfaceShape {
                               // rules' planarity tolerance for a rounded quadrilateral
   Vec3 lo, hi;                // bounding box
   float opacity = 1;          // Material::opacity: as a blocker, a segment crosses it with
-                              // probability 1 - opacity (VisibleFraction)
+                              // probability 1 - opacity (BlockerBvh::SegmentBlocked)
 };
 
 // The shape of a convex polygon (at least 3 vertices, non-degenerate).

@@ -24,10 +24,12 @@ double SecondsSince(Clock::time_point start) {
 double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
                   uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
   const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-  thread_local std::vector<uint32_t> candidates;
-  if (f == 0 || !blockers.InShaft(i, j, candidates)) return f;
+  if (f == 0 || !blockers.AnyInShaft(i, j)) return f;
   ++stats.traced_pairs;
-  return f * VisibleFraction(shapes[i], shapes[j], shapes, candidates, stats.segments);
+  return f * VisibleFraction(
+                 shapes[i], shapes[j],
+                 [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
+                 stats.segments);
 }
 
 // Row i into `row` (size radiating).

@@ -100,21 +100,23 @@ TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
   EXPECT_FALSE(ShaftMayHold(a, b, aside));
   EXPECT_TRUE(SegmentHitsSurface({0.5, 0.5, 0}, {0.5, 0.5, 2}, middle));
   EXPECT_FALSE(SegmentHitsSurface({0.1, 0.1, 0}, {0.1, 0.1, 2}, middle));
-  const std::vector<uint32_t> first{0};  // the blocker: shapes[0] of the vectors below
+  const auto crosses = [](const SurfaceShape& k) {
+    return [&k](const Vec3& p, const Vec3& q) { return SegmentHitsSurface(p, q, k); };
+  };
   // Near (distance 2 for a diameter of 1.4): 4 x 4 points a side. The middle square hides
   // the middle of the view only; a square covering the shaft hides all of it.
   uint64_t segments = 0;
-  const double partly = VisibleFraction(a, b, {middle}, first, segments);
+  const double partly = VisibleFraction(a, b, crosses(middle), segments);
   EXPECT_EQ(segments, 256u);
   EXPECT_GT(partly, 0.1);
   EXPECT_LT(partly, 0.9);
   const SurfaceShape cover = Square({-1, -1, 1}, {3, 0, 0}, {0, 3, 0});
-  EXPECT_EQ(VisibleFraction(a, b, {cover}, first, segments), 0.0);
+  EXPECT_EQ(VisibleFraction(a, b, crosses(cover), segments), 0.0);
   // Far (distance 20): one point a side, the centroids, and the middle square hides it.
   const SurfaceShape far = Square({0, 0, 20}, {0, 1, 0}, {1, 0, 0});
   const SurfaceShape middle_far = Square({0.25, 0.25, 10}, {0.5, 0, 0}, {0, 0.5, 0});
   segments = 0;
-  EXPECT_EQ(VisibleFraction(a, far, {middle_far}, first, segments), 0.0);
+  EXPECT_EQ(VisibleFraction(a, far, crosses(middle_far), segments), 0.0);
   EXPECT_EQ(segments, 1u);
 }
 
@@ -126,7 +128,7 @@ TEST(ShaftCull, CrossingSurfacesWithOneCentroidTakeTheMostPoints) {
   const SurfaceShape b = Square({0, -0.5, -0.5}, {0, 1, 0}, {0, 0, 1});  // faces +x
   ASSERT_EQ(Length(a.centroid - b.centroid), 0.0);
   uint64_t segments = 0;
-  EXPECT_EQ(VisibleFraction(a, b, {}, {}, segments), 1.0);
+  EXPECT_EQ(VisibleFraction(a, b, [](const Vec3&, const Vec3&) { return false; }, segments), 1.0);
   EXPECT_EQ(segments, 256u);
 }
 
