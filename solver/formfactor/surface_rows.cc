@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "solver/core/parallel.h"
+#include "solver/core/physical_memory.h"
 #include "solver/formfactor/blocker_bvh.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
@@ -116,6 +117,15 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
 
 }  // namespace
 
+uint64_t SurfaceRowsBudget(uint64_t memory_limit) {
+  if (memory_limit > 0) return memory_limit;
+  const uint64_t physical = PhysicalMemoryBytes();
+  return physical > 0 ? static_cast<uint64_t>(kDefaultMemoryFraction * static_cast<double>(physical))
+                      : kFallbackBudget;
+}
+
+uint64_t TriangleBytes(size_t n) { return TriangleSize(n) * sizeof(double); }
+
 void SurfaceRowsStats::Merge(const SurfaceRowsStats& o) {
   pairs.Merge(o.pairs);
   traced_pairs += o.traced_pairs;
@@ -129,8 +139,9 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   const BlockerBvh blockers(shapes, PotentialBlockers(shapes));
   stats.blockers = blockers.size();
   stats.cull_seconds = SecondsSince(start);
-  const uint64_t budget = options.memory_limit > 0 ? options.memory_limit : kReciprocalBytes;
-  stats.reciprocal = radiating > 1 && TriangleSize(radiating) * sizeof(double) <= budget;
+  stats.budget = SurfaceRowsBudget(options.memory_limit);
+  stats.triangle = TriangleBytes(radiating);
+  stats.reciprocal = radiating > 1 && stats.triangle <= stats.budget;
   if (stats.reciprocal) return BuildReciprocalRows(shapes, radiating, blockers, options, sink, stats);
   start = Clock::now();
   const size_t block = BlockRows(radiating, options);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "howell_closed_forms.h"
+#include "solver/core/physical_memory.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
 #include "solver/formfactor/surface_rows.h"
@@ -206,6 +207,32 @@ TEST(SurfaceRows, ReciprocalRowsMatchRowByRow) {
       EXPECT_NEAR(f[i][j], g[i][j], 5e-3 * g[i][j] + 1e-7) << i << " " << j;
     }
   }
+}
+
+// The memory budget: --memory-limit when given (a hard bound: a triangle one byte over it is
+// not held), else a quarter of physical memory; the 15,006-surface grid room's triangle
+// (about 859 MiB) fits the default of any machine with 4 GB or more.
+TEST(SurfaceRows, TheDefaultBudgetIsAQuarterOfPhysicalMemory) {
+  EXPECT_EQ(TriangleBytes(4), 6 * sizeof(double));
+  EXPECT_EQ(TriangleBytes(15006), uint64_t{15006} * 15005 / 2 * 8);
+  EXPECT_EQ(SurfaceRowsBudget(12345), 12345u);
+  const uint64_t physical = PhysicalMemoryBytes();
+  ASSERT_GT(physical, uint64_t{1} << 30);
+  EXPECT_NEAR(static_cast<double>(SurfaceRowsBudget(0)), 0.25 * static_cast<double>(physical), 1.0);
+  const std::vector<SurfaceShape> shapes = CubeRoom(2);  // 24 surfaces: 276 pairs
+  SurfaceRowsOptions options;
+  SurfaceRowsStats fits, over;
+  options.memory_limit = TriangleBytes(24);
+  Rows(shapes, options, fits);
+  options.memory_limit = TriangleBytes(24) - 1;
+  Rows(shapes, options, over);
+  EXPECT_TRUE(fits.reciprocal);
+  EXPECT_FALSE(over.reciprocal);
+  EXPECT_EQ(fits.triangle, TriangleBytes(24));
+  EXPECT_EQ(over.budget, TriangleBytes(24) - 1);
+  EXPECT_EQ(fits.pairs.culled + fits.pairs.one_point + fits.pairs.middle + fits.pairs.adaptive, 276u);
+  EXPECT_EQ(over.pairs.culled + over.pairs.one_point + over.pairs.middle + over.pairs.adaptive,
+            2 * 276u);
 }
 
 }  // namespace
