@@ -27,6 +27,9 @@ struct HalfPlane {
 struct ConvexPart {
   std::vector<HalfPlane> sides;
   Vec3 lo, hi;
+  // A contact line's: the slab between its segment's ends. It cuts only pieces that reach
+  // into the slab, so a cut runs on past the segment's end only within a piece it crosses.
+  std::vector<HalfPlane> span;
 };
 
 bool IsConvex(const Polygon& p, const Vec3& normal) {
@@ -40,7 +43,7 @@ bool IsConvex(const Polygon& p, const Vec3& normal) {
 }
 
 ConvexPart MakePart(const Polygon& p, const Vec3& normal) {
-  ConvexPart part{{}, p[0], p[0]};
+  ConvexPart part{{}, p[0], p[0], {}};
   for (size_t i = 0; i < p.size(); ++i) {
     const Vec3& b = p[(i + 1) % p.size()];
     const Vec3 left = Cross(normal, b - p[i]);
@@ -66,6 +69,13 @@ std::vector<Polygon> ConvexPolygons(const std::vector<Footprint>& footprints, co
     }
   }
   return polygons;
+}
+
+// The rectangle around segment a-b grown by `width` on every side, counter-clockwise about
+// `normal`.
+Polygon AroundSegment(const Vec3& a, const Vec3& b, const Vec3& normal, double width) {
+  const Vec3 along = Normalize(b - a) * width, across = Cross(normal, along);
+  return {a - along - across, b + along - across, b + along + across, a - along + across};
 }
 
 // Convex `p` grown by `width` on every side (mitred corners).
@@ -114,11 +124,19 @@ Polygon ClipSide(const Polygon& poly, const HalfPlane& h, double sign, double ep
   return out;
 }
 
+// Whether all of `p` lies outside `h` (beyond eps).
+bool AllOutside(const Polygon& p, const HalfPlane& h, double eps) {
+  return std::none_of(p.begin(), p.end(),
+                      [&](const Vec3& q) { return Dot(q - h.a, h.inward) > -eps; });
+}
+
 // Splits convex `piece` by `part`: its convex pieces outside `part` go to `outside`, the
 // piece inside to `inside` when given (else it is left out).
 void Split(const Polygon& piece, const ConvexPart& part, const Vec3& normal, double eps,
            double min_area, std::vector<Polygon>& outside, std::vector<Polygon>* inside) {
-  if (Disjoint(piece, part, eps)) {
+  if (Disjoint(piece, part, eps) ||
+      std::any_of(part.span.begin(), part.span.end(),
+                  [&](const HalfPlane& h) { return AllOutside(piece, h, eps); })) {
     outside.push_back(piece);
     return;
   }
@@ -135,13 +153,8 @@ void Split(const Polygon& piece, const ConvexPart& part, const Vec3& normal, dou
 // Whether convex `p` may overlap `part`: no side of `part` has all of `p` outside it.
 bool MayOverlap(const Polygon& p, const ConvexPart& part, double eps) {
   if (Disjoint(p, part, eps)) return false;
-  for (const HalfPlane& h : part.sides) {
-    if (std::none_of(p.begin(), p.end(),
-                     [&](const Vec3& q) { return Dot(q - h.a, h.inward) > -eps; })) {
-      return false;
-    }
-  }
-  return true;
+  return std::none_of(part.sides.begin(), part.sides.end(),
+                      [&](const HalfPlane& h) { return AllOutside(p, h, eps); });
 }
 
 // `p` (a triangle or a quad) split into 4 by its edges' midpoints (and its centre for a quad).
@@ -226,31 +239,61 @@ class PieceEmitter {
 // What a face's patches are cut by, in its plane.
 struct Cuts {
   std::vector<ConvexPart> feet;   // left out
-  std::vector<ConvexPart> lines;  // each side of a foot as a line, both sides kept,
-                                  // for patches near the foot (its box grown by the reach)
+  std::vector<ConvexPart> lines;  // each side of a foot as a line, both sides kept, for
+                                  // patches near the foot (its box grown by the reach); each
+                                  // contact line, for patches over its bounding box
   // Per level k: the feet grown by reach / 2^k; pieces there are split in four again.
   std::vector<std::vector<ConvexPart>> near;
   double eps = 0;  // points this close to a line are on it
 };
 
-Cuts MakeCuts(const std::vector<Footprint>& footprints, const Vec3& normal, double reach) {
+// Adds grown(reach / 2^k), a convex polygon, to cuts.near[k] for each level k.
+template <typename Grown>
+void AddNear(Grown grown, const Vec3& normal, double reach, Cuts& cuts) {
+  cuts.near.resize(kSplitLevels);
+  for (int k = 0; k < kSplitLevels; ++k) {
+    cuts.near[k].push_back(MakePart(grown(reach / (1 << k)), normal));
+  }
+}
+
+// Adds the contact lines to `cuts`: each a cut along its line for the patches over its
+// bounding box, refined beside it when it is at least 3 patches long.
+void AddLines(const std::vector<ContactSegment>& lines, const Vec3& normal, double reach,
+              Cuts& cuts, double& size) {
+  for (const ContactSegment& line : lines) {
+    const double length = Length(line.b - line.a);
+    if (length == 0) continue;
+    const Vec3& a = line.a;
+    const Vec3& b = line.b;
+    const Vec3 along = (b - a) / length;
+    cuts.lines.push_back({{{a, Normalize(Cross(normal, along))}},
+                          {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)},
+                          {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)},
+                          {{a, along}, {b, -along}}});
+    if (reach > 0 && length >= 3 * reach) {
+      AddNear([&](double width) { return AroundSegment(a, b, normal, width); }, normal, reach,
+              cuts);
+    }
+    size = std::max(size, length);
+  }
+}
+
+Cuts MakeCuts(const FaceContacts& contacts, const Vec3& normal, double reach) {
   Cuts cuts;
   double size = 0;
-  for (const Polygon& p : ConvexPolygons(footprints, normal)) {
+  for (const Polygon& p : ConvexPolygons(contacts.footprints, normal)) {
     const ConvexPart& foot = cuts.feet.emplace_back(MakePart(p, normal));
     const Vec3 grow = Vec3{1, 1, 1} * reach;
     // Refining spends patches: only where the foot is at least 3 patches across.
     if (reach > 0 && Length(PolygonNewellNormal(p)) / 2 >= 9 * reach * reach) {
       for (const HalfPlane& h : foot.sides) {
-        cuts.lines.push_back({{h}, foot.lo - grow, foot.hi + grow});
+        cuts.lines.push_back({{h}, foot.lo - grow, foot.hi + grow, {}});
       }
-      cuts.near.resize(kSplitLevels);
-      for (int k = 0; k < kSplitLevels; ++k) {
-        cuts.near[k].push_back(MakePart(Inflated(p, normal, reach / (1 << k)), normal));
-      }
+      AddNear([&](double width) { return Inflated(p, normal, width); }, normal, reach, cuts);
     }
     size = std::max(size, Length(foot.hi - foot.lo));
   }
+  AddLines(contacts.lines, normal, reach, cuts, size);
   cuts.eps = 1e-9 * size;
   return cuts;
 }
@@ -304,10 +347,10 @@ std::vector<Piece> PatchPieces(const Polygon& corners, double area, const Cuts& 
 
 }  // namespace
 
-void ClipFacePatches(const std::vector<Footprint>& footprints, const Vec3& normal, double reach,
+void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double reach,
                      uint32_t first_patch, uint32_t first_vertex, PatchMesh& mesh) {
-  const Cuts cuts = MakeCuts(footprints, normal, reach);
-  if (cuts.feet.empty()) return;
+  const Cuts cuts = MakeCuts(contacts, normal, reach);
+  if (cuts.feet.empty() && cuts.lines.empty()) return;
   const std::vector<Patch> patches(mesh.patches.begin() + first_patch, mesh.patches.end());
   const std::vector<Vec3> positions(mesh.positions.begin() + first_vertex, mesh.positions.end());
   mesh.patches.resize(first_patch);

@@ -41,7 +41,8 @@ class FaceGrid {
   FaceGrid(const std::vector<FaceGeometry>& faces, const Box& scene)
       : faces_(faces), lo_(scene.lo), seen_(faces.size(), 0) {
     const Vec3 extent = scene.hi - scene.lo;
-    n_ = std::clamp(static_cast<int64_t>(2 * std::cbrt(double(faces.size()))), int64_t{1}, int64_t{256});
+    n_ = std::clamp(static_cast<int64_t>(2 * std::cbrt(double(faces.size()))), int64_t{1},
+                    int64_t{256});
     cell_ = std::max({extent.x, extent.y, extent.z, 1e-300}) / double(n_);
     for (uint32_t f = 0; f < faces.size(); ++f) {
       if (CellCount(faces[f].box) > kMaxCells) {
@@ -148,32 +149,58 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
   }
 }
 
-// Closed loops of `edges` (chained end to start within tol), as the loops' edge lists.
-std::vector<std::vector<ContactEdge>> ChainLoops(const std::vector<ContactEdge>& edges,
-                                                 double tol) {
-  std::vector<std::vector<ContactEdge>> loops;
+// Closed loops of `edges` (chained end to start within tol), as the loops' edges' indices.
+std::vector<std::vector<size_t>> ChainLoops(const std::vector<ContactEdge>& edges, double tol) {
+  std::vector<std::vector<size_t>> loops;
   std::vector<bool> used(edges.size(), false);
   for (size_t s = 0; s < edges.size(); ++s) {
     if (used[s]) continue;
     used[s] = true;
-    std::vector<ContactEdge> loop{edges[s]};
-    while (Length(loop.back().b - loop.front().a) > tol) {
+    std::vector<size_t> loop{s};
+    while (Length(edges[loop.back()].b - edges[loop.front()].a) > tol) {
+      const ContactEdge& last = edges[loop.back()];
       size_t next = edges.size();
       for (size_t e = 0; e < edges.size() && next == edges.size(); ++e) {
         // The next edge starts where this one ends and does not run straight back (a
         // two-sided solid's back-face twins give every edge its reverse).
-        if (!used[e] && Length(edges[e].a - loop.back().b) <= tol &&
-            Length(edges[e].b - loop.back().a) > tol) {
+        if (!used[e] && Length(edges[e].a - last.b) <= tol && Length(edges[e].b - last.a) > tol) {
           next = e;
         }
       }
       if (next == edges.size()) break;
       used[next] = true;
-      loop.push_back(edges[next]);
+      loop.push_back(next);
     }
-    if (loop.size() >= 3 && Length(loop.back().b - loop.front().a) <= tol) loops.push_back(loop);
+    if (loop.size() >= 3 && Length(edges[loop.back()].b - edges[loop.front()].a) <= tol) {
+      loops.push_back(loop);
+    }
   }
   return loops;
+}
+
+// Whether segment a-b is `s` either way round, within tol.
+bool SameSegment(const ContactSegment& s, const Vec3& a, const Vec3& b, double tol) {
+  return (Length(s.a - a) <= tol && Length(s.b - b) <= tol) ||
+         (Length(s.a - b) <= tol && Length(s.b - a) <= tol);
+}
+
+// The contact edges of `edges` outside the footprints (`in_foot` per edge), each segment once
+// and none that is a footprint's edge (`foot_edges`).
+std::vector<ContactSegment> OpenLines(const std::vector<ContactEdge>& edges,
+                                      const std::vector<bool>& in_foot,
+                                      const std::vector<ContactSegment>& foot_edges, double tol) {
+  std::vector<ContactSegment> lines;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    auto same = [&](const ContactSegment& s) {
+      return SameSegment(s, edges[e].a, edges[e].b, tol);
+    };
+    if (in_foot[e] || std::any_of(foot_edges.begin(), foot_edges.end(), same) ||
+        std::any_of(lines.begin(), lines.end(), same)) {
+      continue;
+    }
+    lines.push_back({edges[e].a, edges[e].b});
+  }
+  return lines;
 }
 
 // Whether a face of `object` facing away from `receiver` and above it covers `point`.
@@ -205,9 +232,9 @@ bool HasLid(const Scene& scene, const std::vector<FaceGeometry>& faces, FaceGrid
 
 }  // namespace
 
-std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene) {
-  std::vector<std::vector<Footprint>> footprints(scene.faces.size());
-  if (scene.faces.empty()) return footprints;
+std::vector<FaceContacts> FindContacts(const Scene& scene) {
+  std::vector<FaceContacts> contacts(scene.faces.size());
+  if (scene.faces.empty()) return contacts;
   std::vector<FaceGeometry> faces(scene.faces.size());
   Box scene_box;
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -230,23 +257,31 @@ std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene) {
     }
   }
   for (uint32_t r = 0; r < faces.size(); ++r) {
-    for (const std::vector<ContactEdge>& loop : ChainLoops(edges[r], tol)) {
+    std::vector<bool> in_foot(edges[r].size(), false);
+    std::vector<ContactSegment> foot_edges;
+    for (const std::vector<size_t>& loop : ChainLoops(edges[r], tol)) {
+      const uint32_t object = scene.faces[edges[r][loop[0]].face].object;
       Footprint polygon;
       Vec3 centroid;
       bool one_object = true;
-      for (const ContactEdge& e : loop) {
-        polygon.push_back(e.a);
-        centroid += e.a / double(loop.size());
-        one_object &= scene.faces[e.face].object == scene.faces[loop[0].face].object;
+      for (size_t e : loop) {
+        polygon.push_back(edges[r][e].a);
+        centroid += edges[r][e].a / double(loop.size());
+        one_object &= scene.faces[edges[r][e].face].object == object;
       }
-      if (!one_object || Dot(PolygonNewellNormal(polygon), faces[r].normal) <= tol * tol) continue;
-      if (HasLid(scene, faces, grid, faces[r], scene.faces[loop[0].face].object, centroid, diagonal,
-                 tol)) {
-        footprints[r].push_back(std::move(polygon));
+      if (!one_object || Dot(PolygonNewellNormal(polygon), faces[r].normal) <= tol * tol ||
+          !HasLid(scene, faces, grid, faces[r], object, centroid, diagonal, tol)) {
+        continue;
       }
+      for (size_t e : loop) {
+        in_foot[e] = true;
+        foot_edges.push_back({edges[r][e].a, edges[r][e].b});
+      }
+      contacts[r].footprints.push_back(std::move(polygon));
     }
+    contacts[r].lines = OpenLines(edges[r], in_foot, foot_edges, tol);
   }
-  return footprints;
+  return contacts;
 }
 
 }  // namespace radflux

@@ -1,7 +1,9 @@
-// Contact footprints (the classic D0 discontinuities): where a closed solid rests on a face,
-// e.g. a block on the floor, the region of the face under it gets no light and its outline
-// is a discontinuity of the light. The mesher cuts patches along the outline and leaves the
-// region out (contact_clip.h), so no patch straddles light and dark.
+// Contact footprints and lines (the classic D0 discontinuities): where a closed solid rests on
+// a face, e.g. a block on the floor, the region of the face under it gets no light and its
+// outline is a discontinuity of the light; where a face stands on it without closing a loop,
+// e.g. a partition or a panel, the light on the two sides of its foot differs. The mesher
+// cuts patches along the outlines and lines and leaves the footprints out (contact_clip.h),
+// so no patch straddles light and dark.
 #pragma once
 
 #include <vector>
@@ -15,17 +17,31 @@ namespace radflux {
 // seen from the face's front, which may extend beyond the face.
 using Footprint = std::vector<Vec3>;
 
-// Footprints per scene face (one list per face, most empty). A footprint is a closed loop of
-// other faces' edges lying in the receiver's plane (within 1e-5 of the scene's bounding-box
-// diagonal), where:
-// - no edge of the loop lies along the receiver's border (a neighbouring face of a
-//   tessellated surface meets it there; it does not stand on it);
-// - every face of the loop stands on the receiver's front side, is not parallel to it, and
-//   has its normal pointing out of the loop (the loop is the foot of a solid, not a room's
-//   walls around an inner floor, whose normals point in);
+// An open contact line on a receiving face: an edge a-b of a face standing on it, in its plane.
+struct ContactSegment {
+  Vec3 a, b;
+};
+
+// The contacts of one receiving face.
+struct FaceContacts {
+  std::vector<Footprint> footprints;  // feet of solids: cut along and left out
+  std::vector<ContactSegment> lines;  // the other contact edges: cut along, both sides kept
+  bool empty() const { return footprints.empty() && lines.empty(); }
+};
+
+// Contacts per scene face (most empty). A contact edge is an edge of another face lying in
+// the receiver's plane (within 1e-5 of the scene's bounding-box diagonal), where that face
+// stands on the receiver's front side (no corner behind it), is not parallel to it, and the
+// edge does not lie along the receiver's border (a neighbouring face of a tessellated surface
+// meets it there; it does not stand on it). A footprint is a closed loop of contact edges
+// where:
+// - every face of the loop has its normal pointing out of the loop (the loop is the foot of a
+//   solid, not a room's walls around an inner floor, whose normals point in);
 // - the loop's faces are of one object, and a face of that object facing away from the
 //   receiver lies above the loop's centroid (a lid: an open tube's inside stays lit).
+// Every other contact edge (a partition's foot, an open polyline of panels, a loop that is no
+// foot) is a line, once however many faces share it, and none along a footprint's edge.
 // Edges are found through a uniform grid of face bounding boxes, not all pairs.
-std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene);
+std::vector<FaceContacts> FindContacts(const Scene& scene);
 
 }  // namespace radflux

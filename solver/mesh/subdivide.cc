@@ -201,10 +201,9 @@ double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOption
 }
 
 // Meshes face f at edge length h into `mesh` (its patches and positions appended), cut
-// along its contact footprints.
+// along its contacts.
 void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
-              const FaceExtent& extent, double h, const std::vector<Footprint>& footprints,
-              PatchMesh& mesh) {
+              const FaceExtent& extent, double h, const FaceContacts& contacts, PatchMesh& mesh) {
   const uint32_t first_patch = static_cast<uint32_t>(mesh.patches.size());
   const uint32_t first_vertex = static_cast<uint32_t>(mesh.positions.size());
   const auto [nu, nv] = FaceSteps(extent, h);
@@ -215,8 +214,8 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
   } else {
     mesher.Fan(polygon, nu);
   }
-  if (!footprints.empty()) {
-    ClipFacePatches(footprints, normal, FaceEdgeLength(extent, h), first_patch, first_vertex, mesh);
+  if (!contacts.empty()) {
+    ClipFacePatches(contacts, normal, FaceEdgeLength(extent, h), first_patch, first_vertex, mesh);
   }
 }
 
@@ -224,12 +223,12 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
 // under solids: h is re-chosen (between h and 4h, 8 steps: each meshes the cut faces) from the
 // counts of the faces as meshed.
 double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>& extents,
-                              const std::vector<std::vector<Footprint>>& footprints,
+                              const std::vector<FaceContacts>& contacts,
                               const MeshOptions& options, double h) {
   if (options.max_edge > 0 || options.target_patches <= 0) return h;
   std::vector<uint32_t> touched;
-  for (uint32_t f = 0; f < footprints.size(); ++f) {
-    if (!footprints[f].empty()) touched.push_back(f);
+  for (uint32_t f = 0; f < contacts.size(); ++f) {
+    if (!contacts[f].empty()) touched.push_back(f);
   }
   if (touched.empty()) return h;
   std::vector<Vec3> polygon;
@@ -239,7 +238,7 @@ double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>&
     for (uint32_t f : touched) {
       PatchMesh face_mesh;
       FacePolygonInto(scene, scene.faces[f], polygon);
-      MeshFace(scene, f, polygon, extents[f], edge, footprints[f], face_mesh);
+      MeshFace(scene, f, polygon, extents[f], edge, contacts[f], face_mesh);
       total += static_cast<int64_t>(face_mesh.size()) - FacePatchCount(extents[f], edge);
     }
     return total;
@@ -261,13 +260,12 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
-  const bool contacts = options.follow_contacts &&
-                        (options.target_patches <= 0 ||
-                         static_cast<int64_t>(scene.faces.size()) < options.target_patches);
-  const std::vector<std::vector<Footprint>> footprints =
-      contacts ? FindContactFootprints(scene)
-               : std::vector<std::vector<Footprint>>(scene.faces.size());
-  const double h = ContactAwareEdgeLength(scene, extents, footprints, options,
+  const bool follow = options.follow_contacts &&
+                      (options.target_patches <= 0 ||
+                       static_cast<int64_t>(scene.faces.size()) < options.target_patches);
+  const std::vector<FaceContacts> contacts =
+      follow ? FindContacts(scene) : std::vector<FaceContacts>(scene.faces.size());
+  const double h = ContactAwareEdgeLength(scene, extents, contacts, options,
                                           ChooseEdgeLength(extents, options));
   PatchMesh mesh;
   mesh.face_first_patch.reserve(scene.faces.size() + 1);
@@ -281,7 +279,7 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
           absl::StrCat(scene.DescribeFace(f), ": subdivision would exceed 2^31 patches"));
     }
     FacePolygonInto(scene, scene.faces[f], polygon);
-    MeshFace(scene, f, polygon, extents[f], h, footprints[f], mesh);
+    MeshFace(scene, f, polygon, extents[f], h, contacts[f], mesh);
   }
   mesh.face_first_patch.push_back(static_cast<uint32_t>(mesh.patches.size()));
   mesh.face_first_vertex.push_back(static_cast<uint32_t>(mesh.positions.size()));

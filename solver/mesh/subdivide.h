@@ -26,7 +26,8 @@ struct MeshOptions {
 // Subdivides every face: triangles into n^2 triangles, quads into a nu x nv grid,
 // larger convex polygons into a fan of subdivided triangles around their centroid. Where a
 // closed solid rests on a face (contact_footprints.h), the face's patches are cut along the
-// solid's outline and the part under it is left out (contact_clip.h): with follow_contacts,
+// solid's outline and the part under it is left out, and along the foot of a face standing on
+// it that closes no such loop (a partition) (contact_clip.h): with follow_contacts,
 // when faces are split into patches (fewer faces than target_patches, or no target). A scene
 // of more faces than the target has its unknowns made of groups of faces (face_grouping.h),
 // which no outline can follow, and finding contacts costs there more than meshing.

@@ -1,6 +1,6 @@
 // Meshing that follows contact: a closed block resting on a floor cuts the floor's patches
 // along its outline and leaves the floor under it out; open or lifted blocks and a room's
-// walls standing on the floor do not.
+// walls standing on the floor do not; a partition's open foot cuts the floor, both sides kept.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 
 #include "solver/mesh/contact_footprints.h"
 #include "solver/mesh/subdivide.h"
+#include "solver/pipeline.h"
 #include "tests/unit/test_scenes.h"
 
 namespace radflux {
@@ -53,19 +54,27 @@ std::string FloorAndBlock(const BlockShape& shape, bool room_walls) {
   return obj;
 }
 
-size_t CountFootprints(const std::vector<std::vector<Footprint>>& footprints) {
+size_t CountFootprints(const std::vector<FaceContacts>& contacts) {
   size_t n = 0;
-  for (const auto& f : footprints) n += f.size();
+  for (const FaceContacts& f : contacts) n += f.footprints.size();
+  return n;
+}
+
+size_t CountLines(const std::vector<FaceContacts>& contacts) {
+  size_t n = 0;
+  for (const FaceContacts& f : contacts) n += f.lines.size();
   return n;
 }
 
 TEST(ContactFootprints, AClosedBlockOnTheFloorIsOneFootprintOnTheFloorOnly) {
   const Scene scene = testing::SceneFromObj(FloorAndBlock({}, /*room_walls=*/true));
-  const std::vector<std::vector<Footprint>> footprints = FindContactFootprints(scene);
-  ASSERT_EQ(footprints.size(), scene.faces.size());
-  ASSERT_EQ(CountFootprints(footprints), 1u);  // the walls' loop faces inwards: not a foot
-  ASSERT_EQ(footprints[0].size(), 1u);         // face 0 is the floor
-  const Footprint& foot = footprints[0][0];
+  const std::vector<FaceContacts> contacts = FindContacts(scene);
+  ASSERT_EQ(contacts.size(), scene.faces.size());
+  ASSERT_EQ(CountFootprints(contacts), 1u);      // the walls' loop faces inwards: not a foot
+  ASSERT_EQ(contacts[0].footprints.size(), 1u);  // face 0 is the floor
+  // The walls stand on the floor's border and the block's edges are its footprint: no lines.
+  EXPECT_EQ(CountLines(contacts), 0u);
+  const Footprint& foot = contacts[0].footprints[0];
   ASSERT_EQ(foot.size(), 4u);
   for (const Vec3& corner : kDiamond) {
     EXPECT_TRUE(std::any_of(foot.begin(), foot.end(),
@@ -74,14 +83,19 @@ TEST(ContactFootprints, AClosedBlockOnTheFloorIsOneFootprintOnTheFloorOnly) {
   EXPECT_NEAR(Dot(PolygonNewellNormal(foot), Vec3{0, 1, 0}) / 2, kDiamondArea, 1e-9);
 }
 
-TEST(ContactFootprints, AnOpenTubeOrALiftedBlockHasNone) {
-  EXPECT_EQ(CountFootprints(FindContactFootprints(
-                testing::SceneFromObj(FloorAndBlock({.lift = 0, .lid = false}, false)))),
-            0u);
+// An open tube's foot is no footprint (its inside is lit) but four contact lines; a lifted
+// block touches nothing.
+TEST(ContactFootprints, AnOpenTubeHasLinesOnlyALiftedBlockNothing) {
+  const std::vector<FaceContacts> tube =
+      FindContacts(testing::SceneFromObj(FloorAndBlock({.lift = 0, .lid = false}, false)));
+  EXPECT_EQ(CountFootprints(tube), 0u);
+  EXPECT_EQ(CountLines(tube), 4u);
+  EXPECT_EQ(tube[0].lines.size(), 4u);
   // 0.01 is above the tolerance (1e-5 of the diagonal, ~1.4e-4 here).
-  EXPECT_EQ(CountFootprints(FindContactFootprints(
-                testing::SceneFromObj(FloorAndBlock({.lift = 0.01, .lid = true}, false)))),
-            0u);
+  const std::vector<FaceContacts> lifted =
+      FindContacts(testing::SceneFromObj(FloorAndBlock({.lift = 0.01, .lid = true}, false)));
+  EXPECT_EQ(CountFootprints(lifted), 0u);
+  EXPECT_EQ(CountLines(lifted), 0u);
 }
 
 bool InsideDiamond(const Vec3& p, double margin) {
@@ -122,6 +136,82 @@ TEST(ContactMeshing, FloorPatchesFollowTheBlocksOutlineAndLeaveItsFootOut) {
     bool found = false;
     for (uint32_t v = mesh->face_first_vertex[0]; v < mesh->face_first_vertex[1]; ++v) {
       found |= Length(mesh->positions[v] - corner) < 1e-12;
+    }
+    EXPECT_TRUE(found) << corner.x << " " << corner.z;
+  }
+}
+
+// A 10 x 10 floor (rho 0.5) split by a zero-thickness black partition 10 high standing on it
+// along the open polyline kPartition (two panels, from the floor's near border to its far
+// one, not along the floor's 1 x 1 patch grid), and a small black lamp 2 above the floor on
+// the -x side, facing down. No light reaches the +x side: a ray from the lamp down to it
+// crosses the partition below the lamp's height, the partition and the lamp reflect nothing,
+// and floor patches do not see each other. So a floor patch wholly on the +x side has B = 0
+// exactly, whatever the sampling; one straddling the foot would take light from its -x part.
+const std::vector<Vec3> kPartition = {{5.3, 0, 0}, {4.6, 0, 5.2}, {5.7, 0, 10}};
+
+std::string FloorPartitionAndLamp() {
+  int next = 1;
+  std::string obj =
+      ObjQuad("floor", "white", {{0, 0, 0}, {0, 0, 10}, {10, 0, 10}, {10, 0, 0}}, next);
+  const Vec3 up{0, 10, 0};
+  for (size_t i = 0; i + 1 < kPartition.size(); ++i) {  // facing the lamp (-x)
+    const Vec3 a = kPartition[i], b = kPartition[i + 1];
+    obj += ObjQuad("partition", "dark", {b, a, a + up, b + up}, next);
+  }
+  obj += ObjQuad("lamp", "black", {{1, 2, 4}, {2, 2, 4}, {2, 2, 6}, {1, 2, 6}}, next);
+  return obj;
+}
+
+// Signed distance of floor point p from the partition's foot, > 0 on the dark (+x) side.
+double DarkSide(const Vec3& p) {
+  const size_t i = p.z <= kPartition[1].z ? 0 : 1;
+  const Vec3 a = kPartition[i], along = Normalize(kPartition[i + 1] - a);
+  return Dot(Cross(along, p - a), Vec3{0, 1, 0});
+}
+
+TEST(ContactMeshing, FloorPatchesFollowAPartitionsOpenFootAndItsDarkSideGetsNoLight) {
+  const std::string mtl = std::string(testing::kTestMtl) + "newmtl dark\nKd 0 0 0\n";
+  const Scene scene = testing::SceneFromObj(FloorPartitionAndLamp(), mtl);
+  const std::vector<FaceContacts> contacts = FindContacts(scene);
+  ASSERT_EQ(CountFootprints(contacts), 0u);
+  ASSERT_EQ(contacts[0].lines.size(), 2u);  // the two panels' feet, on the floor only
+  EXPECT_EQ(CountLines(contacts), 2u);
+  JobOptions options;
+  options.mesh.max_edge = 1;
+  options.form_factors.rays = 64;
+  absl::StatusOr<JobResult> result = RunJob(scene, options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PatchMesh& mesh = result->job->mesh;
+  double floor_area = 0;
+  int dark = 0, lit = 0;
+  for (uint32_t p = mesh.face_first_patch[0]; p < mesh.face_first_patch[1]; ++p) {
+    const Patch& patch = mesh.patches[p];
+    // No patch crosses the foot: all corners on one side of it (or on it).
+    double lo = 0, hi = 0;
+    for (int k = 0; k < patch.VertexCount(); ++k) {
+      lo = std::min(lo, DarkSide(mesh.Vertex(p, k)));
+      hi = std::max(hi, DarkSide(mesh.Vertex(p, k)));
+    }
+    EXPECT_TRUE(lo > -1e-9 || hi < 1e-9) << "patch " << p << " straddles: " << lo << " " << hi;
+    const Rgb& b = result->solve.radiosity[p];
+    if (DarkSide(patch.centroid) > 0) {
+      EXPECT_EQ(b, (Rgb{0, 0, 0})) << "patch " << p;
+      ++dark;
+    } else {
+      EXPECT_GT(b[0], 0) << "patch " << p;
+      ++lit;
+    }
+    floor_area += patch.area;
+  }
+  EXPECT_NEAR(floor_area, 100, 1e-9);  // both sides kept
+  EXPECT_GT(dark, 40);
+  EXPECT_GT(lit, 40);
+  // The polyline's corners are patch corners: the foot is meshed, not approximated.
+  for (const Vec3& corner : kPartition) {
+    bool found = false;
+    for (uint32_t v = mesh.face_first_vertex[0]; v < mesh.face_first_vertex[1]; ++v) {
+      found |= Length(mesh.positions[v] - corner) < 1e-9;
     }
     EXPECT_TRUE(found) << corner.x << " " << corner.z;
   }

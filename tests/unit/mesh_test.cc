@@ -44,7 +44,7 @@ TEST(Subdivide, SameCountGivesTheSameMesh) {
 TEST(Subdivide, PatchAreasSumToFaceAreasLessFootprintsAndKeepTheirFace) {
   const Scene scene = Cornell();
   const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{3000, 0});
-  const std::vector<std::vector<Footprint>> footprints = FindContactFootprints(scene);
+  const std::vector<FaceContacts> contacts = FindContacts(scene);
   std::vector<double> sum(scene.faces.size(), 0.0);
   for (const Patch& p : mesh.patches) {
     sum[p.face] += p.area;
@@ -53,8 +53,11 @@ TEST(Subdivide, PatchAreasSumToFaceAreasLessFootprintsAndKeepTheirFace) {
   size_t feet = 0;
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     double area = FaceArea(scene, f);
-    for (const Footprint& foot : footprints[f]) area -= Length(PolygonNewellNormal(foot)) / 2;
-    feet += footprints[f].size();
+    for (const Footprint& foot : contacts[f].footprints) {
+      area -= Length(PolygonNewellNormal(foot)) / 2;
+    }
+    feet += contacts[f].footprints.size();
+    EXPECT_TRUE(contacts[f].lines.empty()) << f;  // walls meet the floor along its border
     EXPECT_NEAR(sum[f], area, 1e-9 * FaceArea(scene, f)) << f;
   }
   EXPECT_EQ(feet, 2u);  // the two blocks on the floor
