@@ -59,6 +59,32 @@ TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
   EXPECT_GT(blocked, 1000);
 }
 
+// SegmentBlocked with a remembered blocker (`last`, kept across a pair's segments) answers as
+// without it; after a blocked segment it names a blocker that blocks that segment.
+TEST(BlockerBvh, TheRememberedBlockerChangesNoAnswer) {
+  const std::vector<SurfaceShape> shapes = RandomSquares(120, 11);
+  const BlockerBvh bvh(shapes, PotentialBlockers(shapes));
+  int reused = 0;
+  for (uint32_t i = 0; i < shapes.size(); i += 3) {
+    for (uint32_t j = 1; j < shapes.size(); j += 2) {
+      if (i == j) continue;
+      uint32_t last = BlockerBvh::kNoBlocker;
+      for (int s = 0; s < 16; ++s) {  // 4 x 4 segments between points near each centroid
+        const Vec3 a = shapes[i].centroid + (shapes[i].polygon[s % 4] - shapes[i].centroid) / 3;
+        const Vec3 b = shapes[j].centroid + (shapes[j].polygon[s / 4] - shapes[j].centroid) / 4;
+        const uint32_t before = last;
+        const bool hit = bvh.SegmentBlocked(a, b, i, j, last);
+        ASSERT_EQ(hit, bvh.SegmentBlocked(a, b, i, j)) << "pair " << i << " " << j;
+        if (!hit) continue;
+        ASSERT_NE(last, BlockerBvh::kNoBlocker);
+        EXPECT_TRUE(SegmentHitsSurface(a, b, shapes[last]));
+        reused += last == before;
+      }
+    }
+  }
+  EXPECT_GT(reused, 500) << "a pair's segments are often hidden by the same blocker";
+}
+
 TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
   const std::vector<SurfaceShape> shapes = RandomSquares(3, 1);
   const BlockerBvh bvh(shapes, {});
