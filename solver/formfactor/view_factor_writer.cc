@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -24,6 +26,26 @@ void AppendNumber(std::string& out, double v, std::chars_format format, int prec
   char buffer[64];
   const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), v, format, precision);
   out.append(buffer, r.ptr);
+}
+
+// Appends `v` as AppendNumber(out, v, fixed, 6) does, the same characters, faster for the
+// values a view-factor row holds: for 0 <= v < 1000, round(v 10^6) from the product v * 10^6
+// (within 6e-8 of the exact one), unless its fraction is within 1e-6 of one half, where the
+// exact value decides and to_chars is asked.
+void AppendFixed6(std::string& out, double v) {
+  const double scaled = v * 1e6;
+  const double whole = std::floor(scaled);
+  if (std::signbit(v) || !(v < 1000) || std::abs(scaled - whole - 0.5) < 1e-6) {
+    AppendNumber(out, v, std::chars_format::fixed, 6);
+    return;
+  }
+  const uint64_t q = static_cast<uint64_t>(whole) + (scaled - whole > 0.5 ? 1 : 0);
+  char buffer[16];
+  char* end = std::to_chars(buffer, buffer + sizeof(buffer), q / 1000000).ptr;
+  *end++ = '.';
+  uint64_t fraction = q % 1000000;
+  for (int k = 5; k >= 0; --k, fraction /= 10) end[k] = static_cast<char>('0' + fraction % 10);
+  out.append(buffer, end + 6);
 }
 
 absl::StatusOr<std::FILE*> OpenFile(const std::string& path, const char* kind) {
@@ -138,7 +160,7 @@ absl::Status ViewFactorWriter::WriteRow(std::span<const double> row) {
       line_.clear();
       for (size_t j = 0; j < n; ++j) {
         if (j > 0) line_ += ' ';
-        AppendNumber(line_, row[j], std::chars_format::fixed, 6);
+        AppendFixed6(line_, row[j]);
       }
       break;
   }
