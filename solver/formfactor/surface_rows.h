@@ -1,7 +1,8 @@
 // View-factor rows between whole surfaces, one face each (issue 23's per-pair integration):
 // each pair is integrated as it needs (surface_pair_integrator.h); only pairs whose shaft may
 // hold a blocker (shaft_cull.h) are tested for visibility (shaft_visibility.h), so an
-// unobstructed pair costs no segment at all. When the upper triangle of A_i F_ij fits in the
+// unobstructed pair costs no segment at all (a far pair's one segment is traced without the
+// shaft: its walk costs no more). When the upper triangle of A_i F_ij fits in the
 // memory budget (SurfaceRowsBudget) each pair is integrated once, over its smaller
 // surface, and reciprocity gives the other factor (exactly reciprocal rows, half the work);
 // otherwise rows are computed in parallel, a block at a time, and handed to the sink in
@@ -39,7 +40,8 @@ uint64_t TriangleBytes(size_t n);
 struct SurfaceRowsStats {
   PairCounts pairs;
   uint64_t blockers = 0;          // surfaces that can block anything (shaft_cull.h filter 1)
-  uint64_t traced_pairs = 0;      // pairs whose shaft may hold a blocker
+  uint64_t traced_pairs = 0;      // pairs that tested segments (one-segment pairs, and
+                                  // others whose shaft may hold a blocker)
   uint64_t segments = 0;          // visibility segments tested
   bool reciprocal = false;        // each pair integrated once (the triangle fit the budget)
   uint64_t budget = 0;            // bytes: SurfaceRowsBudget(options.memory_limit)

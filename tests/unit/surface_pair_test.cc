@@ -119,6 +119,21 @@ TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
   segments = 0;
   EXPECT_EQ(VisibleFraction(a, far, crosses(middle_far), segments), 0.0);
   EXPECT_EQ(segments, 1u);
+  // The one-segment shortcut gives the same answers for the far pair, tests nothing for the
+  // near one.
+  EXPECT_EQ(OneSegmentVisibleFraction(a, far, crosses(middle_far), segments), 0.0);
+  EXPECT_EQ(OneSegmentVisibleFraction(a, far, crosses(aside), segments), 1.0);
+  EXPECT_EQ(segments, 3u);
+  EXPECT_FALSE(OneSegmentVisibleFraction(a, b, crosses(middle), segments).has_value());
+  EXPECT_EQ(segments, 3u);
+  const SurfaceShape far_triangle = MakeSurfaceShape({{0, 0, 20}, {0, 1, 20}, {1, 0, 20}});
+  const SurfaceShape beside = Square({0.3, 0.3, 10}, {0.1, 0, 0}, {0, 0.1, 0});
+  for (const SurfaceShape* k : {&middle_far, &beside}) {
+    uint64_t one = 0, all = 0;
+    EXPECT_EQ(OneSegmentVisibleFraction(a, far_triangle, crosses(*k), one),
+              VisibleFraction(a, far_triangle, crosses(*k), all));
+    EXPECT_EQ(one, all);
+  }
 }
 
 // Two squares crossing through their common centroid (a fuzzer's find: the points-a-side ratio
