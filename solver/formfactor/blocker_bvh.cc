@@ -89,6 +89,19 @@ bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
              [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); }) != kNoBlocker;
 }
 
+bool BlockerBvh::PairMayMeetBlockers(uint32_t i, uint32_t j) const {
+  if (nodes_.empty()) return false;
+  const SurfaceShape& si = shapes_[i];
+  const SurfaceShape& sj = shapes_[j];
+  const double margin = pad_ + kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_);
+  const Node& root = nodes_[0];
+  for (int c = 0; c < 3; ++c) {
+    const double lo = std::min(si.lo[c], sj.lo[c]) - margin, hi = std::max(si.hi[c], sj.hi[c]) + margin;
+    if (hi < root.center[c] - root.half[c] || lo > root.center[c] + root.half[c]) return false;
+  }
+  return true;
+}
+
 bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
   uint32_t last = kNoBlocker;
   return SegmentBlocked(a, b, i, j, last);

@@ -28,6 +28,10 @@ class BlockerBvh {
   // (ShaftMayHold(shapes[i], shapes[j], shapes[k]) for some k).
   bool AnyInShaft(uint32_t i, uint32_t j) const;
 
+  // False when the bounding box of i and j (widened by both tests' margins) misses the box of
+  // all blockers: then neither AnyInShaft(i, j) nor a segment between them finds one.
+  bool PairMayMeetBlockers(uint32_t i, uint32_t j) const;
+
   // Whether the open segment from a to b crosses a blocker other than i and j that may block
   // the pair (SegmentHitsSurface, shaft_visibility.h, and MayBlockPair, shaft_cull.h: i's
   // back-face twin, or a face in i's or j's plane, never blocks the segments between them),

@@ -30,7 +30,7 @@ double SecondsSince(Clock::time_point start) {
 double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
                   uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
   const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-  if (f == 0 || blockers.size() == 0) return f;
+  if (f == 0 || !blockers.PairMayMeetBlockers(i, j)) return f;
   uint32_t last = BlockerBvh::kNoBlocker;
   const auto blocked = [&](const Vec3& a, const Vec3& b) {
     return blockers.SegmentBlocked(a, b, i, j, last);

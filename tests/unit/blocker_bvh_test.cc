@@ -2,6 +2,8 @@
 // SegmentHitsSurface with MayBlockPair), for every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -83,6 +85,38 @@ TEST(BlockerBvh, TheRememberedBlockerChangesNoAnswer) {
     }
   }
   EXPECT_GT(reused, 500) << "a pair's segments are often hidden by the same blocker";
+}
+
+// PotentialBlockers (with its quick rule: the scene's box in front of the plane) finds exactly
+// the surfaces with some vertex behind them: random squares in a closed room, whose walls,
+// 1e-7 off flat, block nothing, plus a square just inside the floor, whose plane has the
+// floor within the coplanar band, and one 1e-3 above it, which has the floor behind.
+TEST(BlockerBvh, PotentialBlockersAreTheSurfacesWithSomethingBehind) {
+  std::vector<SurfaceShape> shapes = RandomSquares(60, 5);
+  const double lo = -2, hi = 13, w = hi - lo;  // the squares reach -1.5 and 11.5
+  const Vec3 x{w, 0, 0}, y{0, w, 0}, z{0, 0, w}, o{lo, lo, lo}, t = o + x + y + z;
+  for (const auto& [origin, u, v] : {std::array{o, x, y}, std::array{o, z, x}, std::array{o, y, z},
+                                     std::array{t, -y, -x}, std::array{t, -x, -z},
+                                     std::array{t, -z, -y}}) {
+    const Vec3 off = Normalize(Cross(u, v)) * 1e-7;  // one corner a little into the room
+    shapes.push_back(MakeSurfaceShape({origin, origin + u, origin + u + v + off, origin + v}));
+  }
+  const size_t walls = shapes.size();
+  shapes.push_back(MakeSurfaceShape({{0, 0, lo + 1e-9}, {1, 0, lo}, {1, 1, lo + 1e-9}, {0, 1, lo}}));
+  shapes.push_back(MakeSurfaceShape({{0, 0, lo + 1e-3}, {1, 0, lo + 1e-3}, {1, 1, lo + 1e-3},
+                                     {0, 1, lo + 1e-3}}));
+  std::vector<uint32_t> brute;
+  for (uint32_t k = 0; k < shapes.size(); ++k) {
+    bool behind = false;
+    for (const SurfaceShape& other : shapes) behind = behind || PartlyBehind(shapes[k], other);
+    if (behind) brute.push_back(k);
+  }
+  EXPECT_EQ(PotentialBlockers(shapes), brute);
+  for (size_t k = walls - 6; k < walls + 1; ++k) {
+    EXPECT_FALSE(std::binary_search(brute.begin(), brute.end(), k)) << "wall or floor tile " << k;
+  }
+  EXPECT_TRUE(std::binary_search(brute.begin(), brute.end(), walls + 1));
+  EXPECT_GT(brute.size(), 40u);
 }
 
 TEST(BlockerBvh, EmptyHierarchyFindsNothing) {
