@@ -64,36 +64,54 @@ std::string NewJobId() {
 
 }  // namespace
 
+absl::StatusOr<std::unique_ptr<SceneUpload>> JobManager::StartUpload(
+    const v1::SceneHeader& header) {
+  absl::StatusOr<uint64_t> size = ScenePayloadSize(header);
+  if (!size.ok()) return size.status();
+  if (*size > options_.max_upload) {
+    return absl::ResourceExhaustedError(absl::StrCat("scene of ", *size,
+                                                     " bytes exceeds the upload limit of ",
+                                                     options_.max_upload, " bytes (--max-upload)"));
+  }
+  return store_.StartUpload(header);
+}
+
 absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
-                                                  StoredScene scene, const Principal& caller) {
-  const std::string sha = StoredSceneHash(scene);
-  if (!header.sha256().empty() && header.sha256() != sha) {
-    return absl::DataLossError(
-        absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
-  }
-  if (scene.name.empty()) {
-    scene.name = !scene.files.empty() ? scene.files[0].path
-                 : scene.mesh.empty() ? "scene.obj"
-                                      : "mesh";
-  }
-  // Checked with the default import rules; a job's own (--strict, --emit, ...) are applied
-  // when it is submitted, so a scene lit only by --emit uploads without an emitter.
-  absl::StatusOr<Scene> loaded = LoadStoredScene(scene, ImportOptions{});
-  if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
-  if (absl::Status s = ValidateScene(*loaded, /*require_emitter=*/false); !s.ok()) {
-    return absl::InvalidArgumentError(s.message());
-  }
+                                                  SceneUpload& upload, const Principal& caller) {
+  std::string sha;
   v1::SceneRef ref;
+  std::string name;
+  {  // the scene is in memory in this block only: it is stored from its files
+    absl::StatusOr<StoredScene> scene = upload.Finish(&sha);
+    if (!scene.ok()) return scene.status();
+    if (!header.sha256().empty() && header.sha256() != sha) {
+      return absl::DataLossError(
+          absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
+    }
+    if (scene->name.empty()) {
+      scene->name = !scene->files.empty() ? scene->files[0].path
+                    : scene->mesh.empty() ? "scene.obj"
+                                          : "mesh";
+    }
+    name = scene->name;
+    // Checked with the default import rules; a job's own (--strict, --emit, ...) are applied
+    // when it is submitted, so a scene lit only by --emit uploads without an emitter.
+    absl::StatusOr<Scene> loaded = LoadStoredScene(*std::move(scene), ImportOptions{});
+    if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
+    if (absl::Status s = ValidateScene(*loaded, /*require_emitter=*/false); !s.ok()) {
+      return absl::InvalidArgumentError(s.message());
+    }
+    ref.set_faces(loaded->faces.size());
+    ref.set_materials(loaded->materials.size());
+  }
   ref.set_sha256(sha);
-  ref.set_faces(loaded->faces.size());
-  ref.set_materials(loaded->materials.size());
   // already_stored tells the caller of its own uploads only: whether another principal
   // uploaded the same bytes stays unsaid.
   const bool stored = store_.HasScene(sha);
   ref.set_already_stored(stored && store_.SceneOwnedBy(sha, caller.name));
   if (!stored) {
-    if (absl::Status s = store_.PutScene(sha, scene); !s.ok()) return s;
-    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), scene.name, ref.faces());
+    if (absl::Status s = store_.PutScene(sha, name, upload); !s.ok()) return s;
+    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), name, ref.faces());
   }
   if (absl::Status s = store_.AddSceneOwner(sha, caller.name); !s.ok()) return s;
   return ref;

@@ -72,10 +72,14 @@ class JobManager {
   // another principal's job or scene is NOT_FOUND exactly as a job or scene that does not
   // exist (ids do not leak); an admin sees all.
 
-  // Parses and stores an uploaded scene, OBJ + MTL or Mesh, as one of the caller's
-  // (INVALID_ARGUMENT with the loader's message; DATA_LOSS when it does not hash to
-  // header.sha256()). already_stored: the caller had uploaded it before.
-  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene,
+  // An upload of the scene `header` declares, streamed to disk (SceneUpload): INVALID_ARGUMENT
+  // for a header ScenePayloadSize refuses, RESOURCE_EXHAUSTED past --max-upload.
+  absl::StatusOr<std::unique_ptr<SceneUpload>> StartUpload(const v1::SceneHeader& header);
+  // Finishes `upload` (all its bytes written), checks and parses the scene and stores it as
+  // one of the caller's (INVALID_ARGUMENT with the loader's message; DATA_LOSS when it was
+  // cut short or does not hash to header.sha256()). already_stored: the caller had uploaded
+  // it before.
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, SceneUpload& upload,
                                         const Principal& caller);
   // Validates and queues a job of the caller (RESOURCE_EXHAUSTED "disk full ..." while the
   // data directory cannot hold the store's space reserve; RESOURCE_EXHAUSTED naming the limit

@@ -4,9 +4,11 @@
 // directory whose database is gone while scenes or jobs remain refuses to start.
 #include <stdio.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -82,6 +84,90 @@ TEST_F(StoreRepairTest, CorruptStoredSceneIsMarkedMissingAndAnUploadRepairsIt) {
   const absl::StatusOr<StoredScene> repaired = GetScene(ref.sha256());
   ASSERT_TRUE(repaired.ok()) << repaired.status();
   EXPECT_TRUE(repaired->obj == kObj && repaired->mtl == kMtl);
+}
+
+// The temp files of uploads in progress under scenes/ (SceneUpload: "upload.*").
+std::vector<std::string> UploadTempFiles(const std::string& data_dir) {
+  std::vector<std::string> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(data_dir + "/scenes")) {
+    if (e.path().filename().string().starts_with("upload.")) files.push_back(e.path().string());
+  }
+  return files;
+}
+
+// Polls (every 10 ms, for at most 60 s: a bound, not a timing the test relies on) until
+// `done()`; returns done().
+bool Eventually(const std::function<bool()>& done) {
+  for (int i = 0; i < 6000 && !done(); ++i) usleep(10'000);
+  return done();
+}
+
+// An upload's bytes go to a temp file in the data directory as they arrive (the whole
+// upload was held in memory before: no file appeared until it had ended); an upload
+// cancelled mid-stream, or cut by kill -9 of the server, leaves no file behind.
+TEST_F(StoreRepairTest, AnUploadStreamsToDiskAndOneCutShortLeavesNoFile) {
+  StartServer();
+  for (const bool kill_server : {false, true}) {
+    SCOPED_TRACE(kill_server ? "server killed" : "upload cancelled");
+    v1::SceneRef ref;
+    auto context = Context();
+    auto writer = stub_->UploadScene(context.get(), &ref);
+    v1::SceneChunk chunk;
+    chunk.mutable_header()->set_name("cornell_box.obj");
+    chunk.mutable_header()->set_obj_size(kObj.size());
+    chunk.mutable_header()->set_mtl_size(kMtl.size());
+    chunk.set_data(kObj.substr(0, kObj.size() / 2));
+    ASSERT_TRUE(writer->Write(chunk));
+    ASSERT_TRUE(Eventually([&] { return UploadTempFiles(data_dir_).size() == 2; }))
+        << "no temp files (OBJ and MTL) while the upload is open";
+    if (kill_server) {
+      server_->Kill();
+      EXPECT_EQ(UploadTempFiles(data_dir_).size(), 2u);
+      StartServer();  // removes them before it listens
+      EXPECT_EQ(UploadTempFiles(data_dir_), std::vector<std::string>{});
+    } else {
+      context->TryCancel();
+      EXPECT_EQ(writer->Finish().error_code(), grpc::StatusCode::CANCELLED);
+      EXPECT_TRUE(Eventually([&] { return UploadTempFiles(data_dir_).empty(); }))
+          << UploadTempFiles(data_dir_)[0];
+    }
+  }
+  EXPECT_TRUE(fs::is_empty(data_dir_ + "/scenes")) << "no scene was stored";
+}
+
+// A scene uploaded in pieces that straddle its OBJ/MTL boundary gets the content address
+// it got when uploads were held in memory (pinned: SHA-256 of "radflux-scene-v1\n71\n" +
+// OBJ + MTL), and is stored with exactly its bytes.
+TEST_F(StoreRepairTest, AStreamedUploadKeepsItsContentAddress) {
+  const std::string obj =
+      "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl white\nf 1 2 3 4\n";
+  const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\n";
+  const std::string kPinned = "2021ab16334b732ac890633679ba073bc7f8dd76fc71f2fe48d74321189ced19";
+  ASSERT_EQ(SceneContentHash(obj, mtl), kPinned);
+  StartServer();
+  v1::SceneRef ref;
+  auto context = Context();
+  auto writer = stub_->UploadScene(context.get(), &ref);
+  v1::SceneChunk chunk;
+  chunk.mutable_header()->set_name("quad.obj");
+  chunk.mutable_header()->set_obj_size(obj.size());
+  chunk.mutable_header()->set_mtl_size(mtl.size());
+  const std::string data = obj + mtl;
+  for (size_t at = 0; at < data.size(); at += 7) {  // 71 = 10 * 7 + 1: a chunk straddles
+    chunk.set_data(data.substr(at, 7));
+    ASSERT_TRUE(writer->Write(chunk));
+    chunk.clear_header();
+  }
+  writer->WritesDone();
+  const grpc::Status status = writer->Finish();
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(ref.sha256(), kPinned);
+  EXPECT_EQ(ref.faces(), 1u);
+  const absl::StatusOr<StoredScene> stored = GetScene(kPinned);
+  ASSERT_TRUE(stored.ok()) << stored.status();
+  EXPECT_EQ(stored->obj, obj);
+  EXPECT_EQ(stored->mtl, mtl);
+  EXPECT_EQ(UploadTempFiles(data_dir_), std::vector<std::string>{});
 }
 
 // A result file corrupted on disk after it was marked durable is reported without the
