@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -170,14 +171,18 @@ TEST_F(StoreRepairTest, AStreamedUploadKeepsItsContentAddress) {
   EXPECT_EQ(UploadTempFiles(data_dir_), std::vector<std::string>{});
 }
 
-// A result file corrupted on disk after it was marked durable is reported without the
-// server's paths (it is not computed again: see issue 22).
-TEST_F(StoreRepairTest, CorruptResultIsReportedWithoutServerPaths) {
+// A result file corrupted on disk after it was marked durable is computed again when it is
+// asked for (it was only reported, DATA_LOSS): the call answers UNAVAILABLE without the
+// server's paths, the job runs again, and its new result is bit-identical to the first.
+TEST_F(StoreRepairTest, CorruptResultIsComputedAgainBitIdentical) {
   StartServer();
   const std::string sha = UploadCornell();
   v1::Job job;
   ASSERT_TRUE(Submit(testing::SmallOptions(100, "jacobi"), &job, sha).ok());
   ASSERT_EQ(Watch(job.job_id()).back().state(), v1::JOB_STATE_SUCCEEDED);
+  std::vector<double> original;
+  ASSERT_TRUE(Result(job.job_id(), &original).ok());
+  ASSERT_GT(original.size(), 50u);
   ASSERT_EQ(server_->Stop(), 0);  // the result is read from its file after a restart
   const std::string result = data_dir_ + "/jobs/" + job.job_id() + "/result.rfb";
   {
@@ -186,12 +191,22 @@ TEST_F(StoreRepairTest, CorruptResultIsReportedWithoutServerPaths) {
     file.put('\x5a').put('\xa5').put('\x5a');
   }
   StartServer();
-  std::vector<double> radiosity;
-  const grpc::Status read = Result(job.job_id(), &radiosity);
-  EXPECT_EQ(read.error_code(), grpc::StatusCode::DATA_LOSS) << read.error_message();
-  EXPECT_NE(read.error_message().find("stored result is corrupt"), std::string::npos)
+  std::vector<double> none;
+  const grpc::Status read = Result(job.job_id(), &none);
+  EXPECT_EQ(read.error_code(), grpc::StatusCode::UNAVAILABLE) << read.error_message();
+  EXPECT_NE(read.error_message().find("being computed again"), std::string::npos)
       << read.error_message();
   EXPECT_EQ(read.error_message().find(data_dir_), std::string::npos) << read.error_message();
+
+  const std::vector<v1::JobEvent> rerun = Watch(job.job_id());
+  EXPECT_EQ(rerun.front().state(), v1::JOB_STATE_QUEUED) << rerun.front().message();
+  ASSERT_EQ(rerun.back().state(), v1::JOB_STATE_SUCCEEDED) << rerun.back().message();
+  std::vector<double> again;
+  const grpc::Status reread = Result(job.job_id(), &again);
+  ASSERT_TRUE(reread.ok()) << reread.error_message();
+  ASSERT_EQ(again.size(), original.size());
+  EXPECT_EQ(std::memcmp(again.data(), original.data(), again.size() * sizeof(double)), 0)
+      << "the recomputed B differs from the first";
 }
 
 // radfluxd's exit status and everything it printed (stdout and stderr), on `data_dir`.
