@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The conference room (issue 21) against Cycles: clean the scene, render the Cycles reference
 # (two seeds; slow: ~12 min a seed at 2,048 samples on a loaded 2-core machine; skipped when
-# present), solve with radflux at its defaults and at each extra --patches given, and print the
-# issue's region means for each.
+# present), solve with radflux at its defaults and at each extra --patches given, once per job
+# seed of SEEDS (default "1"), with EXTRA flags added (e.g. EXTRA="--gather 16"), and print the
+# issue's region means for each, the phases' seconds from the report, and wall and CPU
+# (user + sys) seconds. A cleaned scene and references are kept in /work/notes/cluster.
 #
-#   bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
+#   [SEEDS="1 2 3"] [EXTRA="..."] bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -22,11 +24,21 @@ for seed in 1 2; do
     --pos 1550,400,-300 --look 0,200,-200 --up 0,1,0 --fov 60 --size 160x120 --samples 2048 \
     --seed $seed --max-refl 0.98 --threads 2 > "$out/render_seed$seed.log" 2>&1
 done
+read -r -a extra <<< "${EXTRA:-}"
 for patches in default "$@"; do
   flags=()
   [ "$patches" = default ] || flags=(--patches "$patches")
-  /usr/bin/time -f "patches $patches: wall %e s, max RSS %M KB" "$radflux" solve "$out/conf.obj" -q \
-    "${flags[@]}" "${cam[@]}" --report "$out/r_$patches.json" --render "$out/conf_$patches.pfm"
-  /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$patches.pfm" \
-    "$out/conf_ref_seed1.npy" "$out/conf_ref_seed2.npy"
+  for job_seed in ${SEEDS:-1}; do
+    run="${patches}_seed$job_seed"
+    # Exit 4 (energy balance off) still writes the outputs; it is said on stderr.
+    OMP_WAIT_POLICY=passive /usr/bin/time \
+      -f "patches $patches, seed $job_seed: wall %e s, cpu %U + %S s, max RSS %M KB" \
+      "$radflux" solve "$out/conf.obj" -q --seed "$job_seed" "${flags[@]}" "${extra[@]}" \
+      "${cam[@]}" --report "$out/r_$run.json" --render "$out/conf_$run.pfm" || [ $? = 4 ]
+    /usr/bin/python3 -c 'import json, sys
+print("phases (s):", ", ".join(f"{k} {v:.2f}" for k, v in json.load(open(sys.argv[1]))["seconds"].items()))' \
+      "$out/r_$run.json"
+    /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$run.pfm" \
+      "$out/conf_ref_seed1.npy" "$out/conf_ref_seed2.npy"
+  done
 done

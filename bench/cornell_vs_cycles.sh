@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Cornell box's defaults against an independent path tracer (Blender's Cycles):
-# per-surface mean radiance of radflux's linear picture against Cycles' picture from the same
-# camera, and the whole process's time (median of RUNS runs).
+# per-surface mean radiance of radflux's linear pictures against Cycles' picture from the same
+# camera, over several radflux seeds (the mean difference is the bias, their spread the noise,
+# so that one lucky seed cannot decide), and the whole process's time (median of RUNS runs).
 #
 # Needs Blender (a bench tool, not a build dependency; not in scripts/setup.sh):
 #   apt-get install -y --no-install-recommends blender python3-numpy
@@ -9,14 +10,16 @@
 #
 # Usage: bench/cornell_vs_cycles.sh [extra radflux solve flags...]
 #   OUT=dir (default /tmp/radflux-cycles), SIZE=128x128, SPP=4096 (Cycles samples per pixel),
-#   RUNS=20, BIN=build/ci/client/radflux. The two Cycles renders (seeds 1 and 2, ~6-9 min each
-#   here) are reused when OUT already has them for the same SIZE and SPP.
+#   RUNS=20 (0: no timing), BIN=build/ci/client/radflux, SEEDS="1 2 3 4 5 6" (radflux --seed
+#   per picture; one seed, e.g. SEEDS=1, is the single-run mode). The two Cycles renders (seeds
+#   1 and 2, ~6-9 min each here) are reused when OUT already has them for the same SIZE and SPP.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-/tmp/radflux-cycles}
 size=${SIZE:-128x128}
 spp=${SPP:-4096}
 runs=${RUNS:-20}
+read -r -a seeds <<< "${SEEDS:-1 2 3 4 5 6}"
 bin=${BIN:-build/ci/client/radflux}
 scene=scenes/cornell_box.obj
 mkdir -p "$out"
@@ -61,14 +64,20 @@ with open(flat + ".mtl", "w") as f:
 EOF
 "$bin" solve "$out/flat.obj" --render "$out/mask.pfm" "${camera[@]}" -q
 
-# radflux's picture at the defaults (plus any flags given), and the comparison.
-"$bin" solve "$scene" --render "$out/radflux.pfm" "${camera[@]}" -q "$@"
-/usr/bin/python3 bench/cornell_vs_cycles.py "$out/mask.pfm" "$out/radflux.pfm" \
+# radflux's pictures at the defaults (plus any flags given), one per seed, and the comparison.
+pictures=()
+for seed in "${seeds[@]}"; do
+  pictures+=("$out/radflux_seed$seed.pfm")
+  "$bin" solve "$scene" --render "${pictures[-1]}" "${camera[@]}" -q --seed "$seed" "$@"
+done
+/usr/bin/python3 bench/cornell_vs_cycles.py "$out/mask.pfm" \
   "$out/cycles_${size}_${spp}_seed1.npy" "$out/cycles_${size}_${spp}_seed2.npy" \
-  --json "$out/compare.json"
+  "${pictures[@]}" --json "$out/compare.json"
 
 # The whole process at the defaults, no outputs: median of RUNS runs.
-if command -v hyperfine > /dev/null; then
+if [ "$runs" -eq 0 ]; then
+  exit 0
+elif command -v hyperfine > /dev/null; then
   hyperfine -N -w 2 -r "$runs" --export-json "$out/time.json" \
     "$bin solve $scene -q $*" | grep -E "Time|Range"
   /usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['results'][0]; \

@@ -11,7 +11,10 @@ bands; blocks the reference sees as black (below 1e-3 of the image's mean: outsi
 are left out and counted. Prints the fraction of blocks within TOL and the error percentiles;
 the reference's own noise per block (sigma of the combined reference, from the two renders'
 difference: sigma = |h1 - h2| sqrt(n1 n2) / (n1 + n2), as a fraction, its RMS over blocks);
-and the final gather's and the solve's seconds from REPORT.
+the fraction within TOL against each render alone and against their mean (n1, n2 and n1 + n2
+samples), and its straight-line fit in 1/n taken to n = 16,384 (the goal's reference: noise in
+the reference only spreads the errors, so the fraction rises as 1/n falls); and the final
+gather's and the solve's seconds from REPORT.
 """
 import json
 import sys
@@ -29,6 +32,16 @@ def block_means(image, block):
 
 def errors(test, ref, keep):
     return np.abs(test[keep] - ref[keep]) / ref[keep]
+
+
+def fraction_at_16k(test, halves, weights, keep, block, tol):
+    """Fraction of blocks within tol against references of n samples, n in weights and their
+    sum, and its linear fit in 1/n evaluated at 16,384 samples."""
+    refs = {n: block_means(h, block) for n, h in zip(weights, halves)}
+    refs[sum(weights)] = (weights[0] * refs[weights[0]] + weights[1] * refs[weights[1]]) / sum(weights)
+    within = {n: np.mean(errors(test, r, keep) <= tol) for n, r in refs.items()}
+    slope, at_infinity = np.polyfit([1 / n for n in within], list(within.values()), 1)
+    return within, slope / 16384 + at_infinity
 
 
 def summary(name, e, tol):
@@ -64,6 +77,9 @@ def main():
     print(f"reference: {n1} + {n2} samples per pixel; its own noise per block (sigma) RMS "
           f"{np.sqrt(np.mean(sigma ** 2)) * 100:.2f}%, 90th percentile "
           f"{np.percentile(sigma, 90) * 100:.2f}%")
+    within, at_16k = fraction_at_16k(t, halves, (n1, n2), keep, block, tol)
+    print("within " + ", ".join(f"{v * 100:.2f}% at {n} spp" for n, v in within.items()) +
+          f" of the reference; fit in 1/n at 16384 spp: {at_16k * 100:.2f}%")
     seconds = json.load(open(args[1]))["seconds"]
     print(f"final gather {seconds.get('gather', 0):.3f} s; rows {seconds['rows']:.3f} s, "
           f"solve {seconds['solve']:.3f} s")

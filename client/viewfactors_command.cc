@@ -112,13 +112,27 @@ absl::Status CheckFlagsApply(const ViewFactorArgs& args, ViewFactorIntegration i
   return absl::OkStatus();
 }
 
+// How the rows fit the memory budget: each pair once, or twice when the triangle does not fit.
+std::string MemoryLine(const SurfaceRowsStats& s) {
+  const double triangle = static_cast<double>(s.triangle) / (1 << 20);
+  const double budget = static_cast<double>(s.budget) / (1 << 20);
+  if (s.triangle > s.budget) {
+    return absl::StrFormat("rows one by one, each pair twice (the pair triangle's %.0f MiB is "
+                           "over the %.0f MiB budget, --memory-limit)",
+                           triangle, budget);
+  }
+  return absl::StrFormat("each pair once (reciprocity: the pair triangle's %.0f MiB within the "
+                         "%.0f MiB budget)",
+                         triangle, budget);
+}
+
 void PrintReport(const ViewFactorReport& r) {
   if (r.adaptive) {
     const SurfaceRowsStats& s = *r.adaptive;
     std::fprintf(stderr,
                  "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
                  "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
-                 "pairs traced with %llu segments%s; cull %.2f s, rows %.2f s\n",
+                 "pairs traced with %llu segments; %s; cull %.2f s, rows %.2f s\n",
                  static_cast<unsigned long long>(s.pairs.culled),
                  static_cast<unsigned long long>(s.pairs.one_point),
                  static_cast<unsigned long long>(s.pairs.middle),
@@ -127,7 +141,7 @@ void PrintReport(const ViewFactorReport& r) {
                  static_cast<unsigned long long>(s.blockers),
                  static_cast<unsigned long long>(s.traced_pairs),
                  static_cast<unsigned long long>(s.segments),
-                 s.reciprocal ? "; each pair once (reciprocity)" : "", s.cull_seconds,
+                 MemoryLine(s).c_str(), s.cull_seconds,
                  s.rows_seconds);
   }
   std::fprintf(stderr,
@@ -229,8 +243,9 @@ void AddViewFactorsCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   cmd->add_option("--memory-limit", args->memory_limit,
-                  "adaptive: at most this many bytes of rows in flight (e.g. 64M); rows are "
-                  "written as they finish")
+                  "adaptive: at most this many bytes of rows in flight (e.g. 64M; default a "
+                  "quarter of physical memory): when the triangle of pairs fits, each pair is "
+                  "computed once, else rows are computed and written one block at a time")
       ->transform(CLI::AsSizeValue(false));
   cmd->add_flag("--quiet,-q", args->quiet, "no progress output");
   AddJobFlags(*cmd, args->job);

@@ -1,17 +1,14 @@
 #include "server/jobs/row_budget.h"
 
-#include <unistd.h>
-
 #include "absl/strings/str_cat.h"
+#include "solver/core/physical_memory.h"
 
 namespace radflux {
 
 uint64_t PerJobMemoryLimit(uint64_t configured) {
   if (configured > 0) return configured;
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) / 2
-                               : 8ull << 30;
+  const uint64_t physical = PhysicalMemoryBytes();
+  return physical > 0 ? physical / 2 : 8ull << 30;
 }
 
 absl::StatusOr<uint64_t> RowMemoryBudget(uint64_t patches, const JobOptions& options,

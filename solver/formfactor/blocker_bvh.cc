@@ -55,9 +55,9 @@ uint32_t BlockerBvh::Build(uint32_t begin, uint32_t end) {
 }
 
 template <class MeetsBox, class RightFirst, class Blocks>
-bool BlockerBvh::AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box,
-                            const RightFirst& right_first, const Blocks& blocks) const {
-  if (nodes_.empty()) return false;
+uint32_t BlockerBvh::AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box,
+                                const RightFirst& right_first, const Blocks& blocks) const {
+  if (nodes_.empty()) return kNoBlocker;
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
@@ -73,10 +73,10 @@ bool BlockerBvh::AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box,
     }
     for (uint32_t k = node.first; k < node.first + node.count; ++k) {
       const uint32_t b = order_[k];
-      if (b != i && b != j && blocks(shapes_[b])) return true;
+      if (b != i && b != j && blocks(shapes_[b])) return b;
     }
   }
-  return false;
+  return kNoBlocker;
 }
 
 bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
@@ -84,12 +84,31 @@ bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
   const SurfaceShape& sj = shapes_[j];
   const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
   return AnyBlocker(
-      i, j, [&](const Node& node) { return shaft.MayMeetBox(node.center, node.half); },
-      [](const Node&) { return false; },
-      [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); });
+             i, j, [&](const Node& node) { return shaft.MayMeetBox(node.center, node.half); },
+             [](const Node&) { return false; },
+             [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); }) != kNoBlocker;
+}
+
+bool BlockerBvh::PairMayMeetBlockers(uint32_t i, uint32_t j) const {
+  if (nodes_.empty()) return false;
+  const SurfaceShape& si = shapes_[i];
+  const SurfaceShape& sj = shapes_[j];
+  const double margin = pad_ + kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_);
+  const Node& root = nodes_[0];
+  for (int c = 0; c < 3; ++c) {
+    const double lo = std::min(si.lo[c], sj.lo[c]) - margin, hi = std::max(si.hi[c], sj.hi[c]) + margin;
+    if (hi < root.center[c] - root.half[c] || lo > root.center[c] + root.half[c]) return false;
+  }
+  return true;
 }
 
 bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const {
+  uint32_t last = kNoBlocker;
+  return SegmentBlocked(a, b, i, j, last);
+}
+
+bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j,
+                                uint32_t& last) const {
   const Vec3 d = b - a;
   const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};  // +-inf along an axis the segment does not move
   const float origin[3] = {static_cast<float>(a.x), static_cast<float>(a.y),
@@ -111,14 +130,18 @@ bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32
     }
     return t0 <= t1;
   };
+  const auto blocks = [&](const SurfaceShape& blocker) {
+    return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker) &&
+           !PassesThrough(origin, direction, static_cast<uint32_t>(&blocker - shapes_.data()),
+                          blocker.opacity);
+  };
+  if (last != kNoBlocker && last != i && last != j && blocks(shapes_[last])) return true;
   // The child nearer a along the split axis first: a blocked segment stops sooner.
-  return AnyBlocker(
-      i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; },
-      [&](const SurfaceShape& blocker) {
-        return SegmentHitsSurface(a, b, blocker) && MayBlockPair(shapes_[i], shapes_[j], blocker) &&
-               !PassesThrough(origin, direction, static_cast<uint32_t>(&blocker - shapes_.data()),
-                              blocker.opacity);
-      });
+  const uint32_t found =
+      AnyBlocker(i, j, meets_box, [&](const Node& node) { return d[node.axis] < 0; }, blocks);
+  if (found == kNoBlocker) return false;
+  last = found;
+  return true;
 }
 
 }  // namespace radflux

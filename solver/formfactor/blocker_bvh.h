@@ -28,12 +28,22 @@ class BlockerBvh {
   // (ShaftMayHold(shapes[i], shapes[j], shapes[k]) for some k).
   bool AnyInShaft(uint32_t i, uint32_t j) const;
 
+  // False when the bounding box of i and j (widened by both tests' margins) misses the box of
+  // all blockers: then neither AnyInShaft(i, j) nor a segment between them finds one.
+  bool PairMayMeetBlockers(uint32_t i, uint32_t j) const;
+
   // Whether the open segment from a to b crosses a blocker other than i and j that may block
   // the pair (SegmentHitsSurface, shaft_visibility.h, and MayBlockPair, shaft_cull.h: i's
   // back-face twin, or a face in i's or j's plane, never blocks the segments between them),
   // and that does not let it through: a partly transparent blocker (SurfaceShape::opacity)
   // lets it through as PassesThrough (ray_caster.h) decides for the segment as a ray.
   bool SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j) const;
+
+  // The same answer, testing `last` first when it names a blocker (kNoBlocker: none), and
+  // setting it to the blocker found: the segments of one pair are coherent, and the blocker
+  // that hid the previous one often hides the next, which then costs no hierarchy walk.
+  static constexpr uint32_t kNoBlocker = UINT32_MAX;
+  bool SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32_t j, uint32_t& last) const;
 
   // Number of blockers held.
   size_t size() const { return order_.size(); }
@@ -47,9 +57,10 @@ class BlockerBvh {
   };
   uint32_t Build(uint32_t begin, uint32_t end);
   // Walks the nodes whose box `meets_box(node)` accepts, the children in the order
-  // `right_first(node)` says, until `blocks(b)` holds for a blocker b other than i and j.
+  // `right_first(node)` says, until `blocks(b)` holds for a blocker b other than i and j;
+  // returns b, or kNoBlocker.
   template <class MeetsBox, class RightFirst, class Blocks>
-  bool AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box, const RightFirst& right_first,
+  uint32_t AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box, const RightFirst& right_first,
                   const Blocks& blocks) const;
 
   const std::vector<SurfaceShape>& shapes_;

@@ -101,49 +101,6 @@ int SetNearFieldFactor(const PatchMesh& mesh, uint32_t first, std::span<const ui
 LightSampler::LightSampler(const RowContext& context)
     : context_(context), tree_(EmitterShapes(context)) {}
 
-// Chooses emitters for one receiver point x: among up to kExactEmitters emitters in
-// proportion to their exact unoccluded contributions, computed once per point (a bounded
-// cost: beyond that count the tree walks instead, whose cost grows as log(emitters)).
-class LightSampler::PointChooser {
- public:
-  static constexpr size_t kExactEmitters = 16;
-
-  PointChooser(const LightTree& tree, const Vec3& x, const Vec3& n) : tree_(tree), x_(x), n_(n) {
-    if (tree.size() > kExactEmitters) return;
-    exact_ = true;
-    for (uint32_t k = 0; k < tree.size(); ++k) {
-      form_factor_[k] = EmitterFormFactor(tree.Emitter(k), x, n);
-      total_ += EmitterImportance(tree.Emitter(k), form_factor_[k]);
-      cdf_[k] = total_;
-    }
-  }
-
-  // EmitterFormFactor of emitter k from the point: kept from the choice's own computation
-  // when the choice was exact (the point's samples then never compute it again).
-  double FormFactor(uint32_t k) const {
-    return exact_ ? form_factor_[k] : EmitterFormFactor(tree_.Emitter(k), x_, n_);
-  }
-
-  std::optional<LightTree::Choice> operator()(double u) const {
-    if (!exact_) return tree_.Choose(x_, n_, u);
-    if (!(total_ > 0)) return std::nullopt;
-    const double target = u * total_;
-    uint32_t k = 0;
-    while (k + 1 < tree_.size() && !(target < cdf_[k])) ++k;
-    const double importance = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0);
-    if (!(importance > 0)) return std::nullopt;
-    return LightTree::Choice{k, importance / total_};
-  }
-
- private:
-  const LightTree& tree_;
-  Vec3 x_, n_;
-  bool exact_ = false;
-  double total_ = 0;
-  std::array<double, kExactEmitters> cdf_{};
-  std::array<double, kExactEmitters> form_factor_{};
-};
-
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
@@ -205,7 +162,7 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
   const uint32_t per_point = static_cast<uint32_t>(directions.size());
   const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
   const Frame frame = Frame::FromNormal(n);
-  const PointChooser choose(tree_, x, n);
+  const LightTree::Cut cut = tree_.CutAt(x, n);
   // The point's emitter samplers, set up once per emitter its samples choose.
   std::array<std::optional<EmitterPointSampler>, kLightSamplesPerPoint> samplers;
   std::array<uint32_t, kLightSamplesPerPoint> sampler_emitter{};
@@ -223,11 +180,12 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
     const uint32_t s = first + k;
     const uint32_t stratum = PermuteIndex(k, per_point, choice_pattern + s);
     const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
-    const auto choice = choose(std::min(u, 0x1.fffffffffffffp-1));
+    const auto choice = tree_.Choose(cut, x, n, std::min(u, 0x1.fffffffffffffp-1));
     if (!choice) continue;
     const EmitterShape& emitter = tree_.Emitter(choice->emitter);
     if (emitter.patch == receiver) continue;
-    const double form_factor = choose.FormFactor(choice->emitter);
+    const double form_factor = choice->form_factor >= 0 ? choice->form_factor
+                                                        : EmitterFormFactor(emitter, x, n);
     if (!(form_factor > 0)) continue;
     Vec3 target;
     double value;  // the sample's F_j(x) estimate, if its ray is unoccluded

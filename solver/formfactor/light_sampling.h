@@ -1,8 +1,8 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
 // patch a few samples share each point, on a group each takes its own), one emitter j chosen with
-// probability P(j | x) (by the LightTree, or among at most 16 emitters by their exact unoccluded
-// contributions), a direction in the solid angle Omega_j that j subtends at x with pdf (uniform, 1
+// probability P(j | x) (by the LightTree from x's cut: near x, or among at most 16 emitters,
+// in proportion to their exact unoccluded contributions), a direction in the solid angle Omega_j that j subtends at x with pdf (uniform, 1
 // / Omega_j, warped towards the receiver's cosine: SampleEmitterSolidAngle), and one shadow ray.
 // The sample adds
 //     cos(theta_x) V / (pi pdf P(j | x) budget)
@@ -67,8 +67,6 @@ class LightSampler {
                    std::vector<PendingSample>& pending) const;
 
  private:
-  class PointChooser;
-
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
   // `receiver` (never its own emitter), patterns seeded from (seed, index).
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,

@@ -167,11 +167,62 @@ double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) con
   return node.power * receiver * emitter / distance2;
 }
 
-std::optional<LightTree::Choice> LightTree::Choose(const Vec3& x, const Vec3& n, double u) const {
-  if (nodes_.empty()) return std::nullopt;
-  uint32_t at = 0;
-  double probability = 1;
-  if (nodes_[0].emitter >= 0 && !(Importance(nodes_[0], x, n) > 0)) return std::nullopt;
+bool LightTree::Opens(uint32_t index, const Vec3& x) const {
+  const Node& node = nodes_[index];
+  if (node.emitter >= 0) return false;
+  if (size() <= kExactEmitters) return true;
+  const Vec3 d = node.centre - x;
+  return Dot(d, d) < kNearField * kNearField * node.radius * node.radius;
+}
+
+LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
+  Cut cut;
+  if (nodes_.empty()) return cut;
+  // Level by level: `level` holds the nodes met at one depth, opened ones give the next.
+  std::array<uint32_t, kMaxCut> level{}, next{};
+  size_t level_size = 1, kept = 0;  // kept: nodes already final in `cut`
+  level[0] = 0;
+  while (level_size > 0) {
+    size_t next_size = 0;
+    for (size_t k = 0; k < level_size; ++k) {
+      const uint32_t index = level[k];
+      // Opening adds one node to the cut; the rest of this level and the next take room.
+      if (Opens(index, x) && kept + (level_size - k) + next_size + 1 <= kMaxCut) {
+        next[next_size++] = nodes_[index].left;
+        next[next_size++] = nodes_[index].right;
+        continue;
+      }
+      const Node& node = nodes_[index];
+      CutNode entry{index, 0, -1};
+      if (node.emitter >= 0) {
+        entry.form_factor = EmitterFormFactor(emitters_[node.emitter], x, n);
+        entry.importance = EmitterImportance(emitters_[node.emitter], entry.form_factor);
+      } else {
+        entry.importance = Importance(node, x, n);
+      }
+      ++kept;
+      if (!(entry.importance > 0)) continue;
+      cut.nodes[cut.size++] = entry;
+      cut.total += entry.importance;
+    }
+    level = next;
+    level_size = next_size;
+  }
+  return cut;
+}
+
+std::optional<LightTree::Choice> LightTree::Choose(const Cut& cut, const Vec3& x, const Vec3& n,
+                                                   double u) const {
+  if (cut.size == 0 || !(cut.total > 0)) return std::nullopt;
+  const double target = u * cut.total;
+  size_t pick = 0;
+  double below = cut.nodes[0].importance;
+  while (pick + 1 < cut.size && !(target < below)) below += cut.nodes[++pick].importance;
+  const CutNode& entry = cut.nodes[pick];
+  double probability = entry.importance / cut.total;
+  u = std::clamp((target - (below - entry.importance)) / entry.importance, 0.0,
+                 0x1.fffffffffffffp-1);
+  uint32_t at = entry.node;
   while (nodes_[at].emitter < 0) {
     const Node& node = nodes_[at];
     const double left = Importance(nodes_[node.left], x, n);
@@ -189,22 +240,23 @@ std::optional<LightTree::Choice> LightTree::Choose(const Vec3& x, const Vec3& n,
     }
   }
   if (!(probability > 0)) return std::nullopt;
-  return Choice{static_cast<uint32_t>(nodes_[at].emitter), probability};
+  return Choice{static_cast<uint32_t>(nodes_[at].emitter), probability,
+                at == entry.node ? entry.form_factor : -1.0};
 }
 
-double LightTree::Probability(const Vec3& x, const Vec3& n, uint32_t k) const {
-  uint32_t at = leaf_of_[k];
-  if (at == 0) return Importance(nodes_[0], x, n) > 0 ? 1 : 0;
+double LightTree::Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint32_t k) const {
   double probability = 1;
-  while (at != 0) {
+  for (uint32_t at = leaf_of_[k];; at = nodes_[at].parent) {
+    for (size_t c = 0; c < cut.size; ++c) {
+      if (cut.nodes[c].node == at) return probability * cut.nodes[c].importance / cut.total;
+    }
+    if (at == 0) return 0;
     const Node& parent = nodes_[nodes_[at].parent];
     const double left = Importance(nodes_[parent.left], x, n);
     const double right = Importance(nodes_[parent.right], x, n);
     if (!(left + right > 0)) return 0;
     probability *= (at == parent.left ? left : right) / (left + right);
-    at = nodes_[at].parent;
   }
-  return probability;
 }
 
 double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {

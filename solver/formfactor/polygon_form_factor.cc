@@ -40,10 +40,16 @@ std::vector<Vec3> ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Ve
 
 double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
                                          std::span<const Vec3> polygon) {
+  // Each vertex relative to x once, and no index wrap-around in the loop.
+  const Vec3 first = polygon[0] - x;
+  Vec3 a = first;
   double sum = 0;
-  for (size_t k = 0; k < polygon.size(); ++k) {
-    sum += ContourEdgeTerm(polygon[k] - x, polygon[(k + 1) % polygon.size()] - x, n);
+  for (size_t k = 1; k < polygon.size(); ++k) {
+    const Vec3 b = polygon[k] - x;
+    sum += ContourEdgeTerm(a, b, n);
+    a = b;
   }
+  sum += ContourEdgeTerm(a, first, n);
   return FormFactorFromContourSum(sum);
 }
 

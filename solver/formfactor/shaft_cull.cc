@@ -22,13 +22,35 @@ void Extend(const SurfaceShape& s, const Vec3& axis, double& lo, double& hi) {
 
 Vec3 Abs(const Vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
 
+// Whether the box [lo, hi] lies in front of s's plane beyond the narrowest coplanar band s
+// can have with any surface (2 s.flatness + kCoplanarRelative s.diameter), with room for the
+// rounding of the per-vertex tests (kRelativeTolerance of the box's scale): then no vertex in
+// the box is behind s as PartlyBehind counts it, and s blocks nothing. Its lowest point on
+// the normal is the box corner taking lo where the normal is positive, hi elsewhere.
+bool BoxInFront(const SurfaceShape& s, const Vec3& lo, const Vec3& hi) {
+  double lowest = 0, scale = 0;
+  for (int c = 0; c < 3; ++c) {
+    lowest += ((s.normal[c] >= 0 ? lo[c] : hi[c]) - s.centroid[c]) * s.normal[c];
+    scale += std::abs(lo[c]) + std::abs(hi[c]) + std::abs(s.centroid[c]);
+  }
+  const double band = 2 * s.flatness + kCoplanarRelative * s.diameter;
+  return lowest >= -band + kRelativeTolerance * scale;
+}
+
 }  // namespace
 
 std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes) {
   std::vector<uint8_t> blocks(shapes.size(), 0);
+  if (shapes.empty()) return {};
+  Vec3 lo = shapes[0].lo, hi = shapes[0].hi;
+  for (const SurfaceShape& s : shapes) {
+    lo = {std::min(lo.x, s.lo.x), std::min(lo.y, s.lo.y), std::min(lo.z, s.lo.z)};
+    hi = {std::max(hi.x, s.hi.x), std::max(hi.y, s.hi.y), std::max(hi.z, s.hi.z)};
+  }
   ParallelFor(static_cast<int64_t>(shapes.size()), 256, 0, [&](int64_t begin, int64_t end) {
     for (int64_t k = begin; k < end; ++k) {
       const SurfaceShape& s = shapes[k];
+      if (BoxInFront(s, lo, hi)) continue;  // the scene's box in front: nothing behind
       for (const SurfaceShape& other : shapes) {
         if (PartlyBehind(s, other)) {
           blocks[k] = 1;

@@ -20,7 +20,9 @@
 namespace radflux {
 
 // The surfaces of `shapes` that some other geometry lies strictly behind (filter 1, beyond
-// the coplanar band: a back-face twin is not "behind"), ascending.
+// the coplanar band: a back-face twin is not "behind"), ascending. A surface with the whole
+// scene's bounding box in front of its plane (a room's walls, the ground) is ruled out at
+// once; the others are tested against every vertex until one lies behind.
 std::vector<uint32_t> PotentialBlockers(const std::vector<SurfaceShape>& shapes);
 
 // Filter 2: whether k has a vertex in front of i's plane and one in front of j's, beyond the

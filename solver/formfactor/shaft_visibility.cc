@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -18,6 +19,16 @@ namespace {
 constexpr int kMinSide = 1, kMaxSide = 4;
 constexpr double kSideDensity = 6;
 constexpr size_t kMaxSamplePoints = 64;
+
+// Midpoint-rule points: (a + 1/2, b + 1/2) / side on a quadrilateral's bilinear map, and the
+// centroids of a triangle's side^2 equal triangles (p0 + e1 (a + 1/3) + e2 (b + 1/3), upright,
+// or + 2/3 inverted, e1 and e2 its edges from p0 over side).
+Vec3 QuadPoint(const Vec3 (&c)[4], double u, double v) {
+  return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v);
+}
+Vec3 TrianglePoint(const Vec3& p0, const Vec3& e1, const Vec3& e2, double a, double b) {
+  return p0 + e1 * a + e2 * b;
+}
 
 struct SamplePoints {
   Vec3 point[kMaxSamplePoints];
@@ -36,8 +47,7 @@ struct SamplePoints {
         const double u = (a + 0.5) / side, v = (b + 0.5) / side;
         const Vec3 du = (c[1] - c[0]) * (1 - v) + (c[2] - c[3]) * v;
         const Vec3 dv = (c[3] - c[0]) * (1 - u) + (c[2] - c[1]) * u;
-        Add(c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v),
-            Length(Cross(du, dv)) / (side * side));
+        Add(QuadPoint(c, u, v), Length(Cross(du, dv)) / (side * side));
       }
     }
   }
@@ -46,27 +56,39 @@ struct SamplePoints {
     const double w = 0.5 * Length(Cross(p1 - p0, p2 - p0)) / (side * side);
     for (int a = 0; a < side; ++a) {
       for (int b = 0; a + b < side; ++b) {
-        Add(p0 + e1 * (a + 1.0 / 3) + e2 * (b + 1.0 / 3), w);  // upright small triangle
-        if (a + b + 1 < side) Add(p0 + e1 * (a + 2.0 / 3) + e2 * (b + 2.0 / 3), w);  // inverted
+        Add(TrianglePoint(p0, e1, e2, a + 1.0 / 3, b + 1.0 / 3), w);  // upright small triangle
+        if (a + b + 1 < side) Add(TrianglePoint(p0, e1, e2, a + 2.0 / 3, b + 2.0 / 3), w);
       }
     }
   }
 };
 
-// Sample points on the part of s in front of `other`'s plane (the part that can see it; s's
-// own polygon when it is all in front, as for most pairs).
-void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out) {
+// Whether all of s lies in front of (or on) `other`'s plane.
+bool WhollyInFront(const SurfaceShape& s, const SurfaceShape& other) {
   bool whole = true;
   for (const Vec3& p : s.polygon) whole = whole && Dot(p - other.centroid, other.normal) >= 0;
-  std::vector<Vec3> clipped;
-  if (!whole) clipped = ClipPolygonToHalfSpace(s.polygon, other.centroid, other.normal);
-  const std::vector<Vec3>& part = whole || clipped.size() < 3 ? s.polygon : clipped;
+  return whole;
+}
+
+// Points a side of each cell of s's part seen by `other` (`cells` of them).
+int PointsASide(const SurfaceShape& s, const SurfaceShape& other, size_t cells) {
   // Clamped as a double: centroids that (nearly) coincide give an unbounded ratio.
   const double distance = Length(other.centroid - s.centroid);
   const double ratio = distance > 0 ? std::ceil(kSideDensity * s.diameter / distance) : kMaxSide;
   int side = static_cast<int>(std::clamp<double>(ratio, kMinSide, kMaxSide));
-  const size_t cells = part.size() == 4 ? 1 : part.size() - 2;
   while (side > 1 && cells * side * side > kMaxSamplePoints) --side;
+  return side;
+}
+
+// Sample points on the part of s in front of `other`'s plane (the part that can see it; s's
+// own polygon when it is all in front, as for most pairs).
+void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out) {
+  const bool whole = WhollyInFront(s, other);
+  std::vector<Vec3> clipped;
+  if (!whole) clipped = ClipPolygonToHalfSpace(s.polygon, other.centroid, other.normal);
+  const std::vector<Vec3>& part = whole || clipped.size() < 3 ? s.polygon : clipped;
+  const size_t cells = part.size() == 4 ? 1 : part.size() - 2;
+  const int side = PointsASide(s, other, cells);
   if (part.size() == 4) {
     out.AddQuad({part[0], part[1], part[2], part[3]}, side);
     return;
@@ -74,6 +96,17 @@ void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out)
   for (size_t k = 1; k + 1 < part.size() && out.count + side * side <= kMaxSamplePoints; ++k) {
     out.AddTriangle(part[0], part[k], part[k + 1], side);
   }
+}
+
+// The one point Sample takes on s (a triangle or quadrilateral wholly in front of `other`,
+// one point a side): true and `point`, else false (Sample takes several, or clips).
+bool OnePoint(const SurfaceShape& s, const SurfaceShape& other, Vec3& point) {
+  const size_t n = s.polygon.size();
+  if ((n != 3 && n != 4) || PointsASide(s, other, 1) != 1 || !WhollyInFront(s, other)) return false;
+  const std::vector<Vec3>& p = s.polygon;
+  point = n == 4 ? QuadPoint({p[0], p[1], p[2], p[3]}, 0.5, 0.5)
+                 : TrianglePoint(p[0], p[1] - p[0], p[2] - p[0], 1.0 / 3, 1.0 / 3);
+  return true;
 }
 
 }  // namespace
@@ -93,6 +126,17 @@ bool SegmentHitsSurface(const Vec3& from, const Vec3& to, const SurfaceShape& k)
     if (Dot(Cross(k.polygon[(e + 1) % n] - p, q - p), k.normal) < 0) return false;
   }
   return true;
+}
+
+std::optional<double> OneSegmentVisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
+                                                SegmentTest blocked, uint64_t& segments) {
+  Vec3 a, b;
+  if (!OnePoint(i, j, a) || !OnePoint(j, i, b)) return std::nullopt;
+  const Vec3 d = b - a;
+  // VisibleFraction's weight is positive (else it tests nothing and returns 1).
+  if (!(Dot(d, d) > 0 && Dot(d, i.normal) > 0 && Dot(d, j.normal) < 0)) return 1.0;
+  ++segments;
+  return blocked(a, b) ? 0.0 : 1.0;
 }
 
 double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,

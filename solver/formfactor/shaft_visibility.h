@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "absl/functional/function_ref.h"
 
@@ -27,5 +28,11 @@ using SegmentTest = absl::FunctionRef<bool(const Vec3& a, const Vec3& b)>;
 // adds the segments tested to `segments`.
 double VisibleFraction(const SurfaceShape& i, const SurfaceShape& j, SegmentTest blocked,
                        uint64_t& segments);
+
+// VisibleFraction(i, j, blocked, segments), 0 or 1, when it takes one point a side on whole
+// triangles or quadrilaterals (a pair far for its size: one segment), found without its
+// sample arrays; nullopt (nothing tested) when it takes more.
+std::optional<double> OneSegmentVisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
+                                                SegmentTest blocked, uint64_t& segments);
 
 }  // namespace radflux

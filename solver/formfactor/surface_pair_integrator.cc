@@ -181,16 +181,35 @@ bool CanSeeEachOther(const SurfaceShape& i, const SurfaceShape& j) {
   return PartlyInFront(i, j) && PartlyInFront(j, i);
 }
 
+namespace {
+
+// Where b lies for a's plane, beyond the band: partly in front (some vertex above +band), and
+// wholly in front (no vertex below -band). One pass for CanSeeEachOther's test and the
+// integration's choice.
+struct Side {
+  bool partly = false, wholly = true;
+};
+Side SideOf(const SurfaceShape& a, const SurfaceShape& b, double band) {
+  Side side;
+  for (const Vec3& p : b.polygon) {
+    const double d = Dot(p - a.centroid, a.normal);
+    side.partly = side.partly || d > band;
+    side.wholly = side.wholly && d >= -band;
+  }
+  return side;
+}
+
+}  // namespace
+
 double UnoccludedViewFactor(const SurfaceShape& i, const SurfaceShape& j,
                             const PairIntegration& options, PairCounts& counts) {
-  if (!CanSeeEachOther(i, j)) {
+  const double band = CoplanarBand(i, j);
+  const Side j_side = SideOf(i, j, band), i_side = SideOf(j, i, band);
+  if (!j_side.partly || !i_side.partly) {  // !CanSeeEachOther(i, j)
     ++counts.culled;
     return 0;
   }
-  const double band = CoplanarBand(i, j);
-  bool j_in_front = true, i_in_front = true;
-  for (const Vec3& p : j.polygon) j_in_front = j_in_front && Dot(p - i.centroid, i.normal) >= -band;
-  for (const Vec3& p : i.polygon) i_in_front = i_in_front && Dot(p - j.centroid, j.normal) >= -band;
+  const bool j_in_front = j_side.wholly, i_in_front = i_side.wholly;
   const Integrand f{i, j, j_in_front, counts.evaluations};
   const double gap = std::max(Length(j.centroid - i.centroid) - 0.5 * j.diameter, 0.0);
   if (i_in_front && gap >= options.far_ratio * i.diameter) {

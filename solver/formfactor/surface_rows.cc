@@ -4,8 +4,10 @@
 #include <cstdint>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "solver/core/parallel.h"
+#include "solver/core/physical_memory.h"
 #include "solver/formfactor/blocker_bvh.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
@@ -20,16 +22,27 @@ double SecondsSince(Clock::time_point start) {
 }
 
 // F_ij with occlusion: the unoccluded factor, times the visible fraction when the pair's
-// shaft may hold a blocker.
+// segments may meet a blocker. A pair taking one segment (far for its size) traces it at
+// once: its walk through the hierarchy visits no more nodes than the shaft's would (the
+// segment lies in the shaft) and an empty shaft leaves it unblocked, so F is the same. Other
+// pairs are traced only when their shaft may hold a blocker. The segments of a pair test the
+// blocker that hid the previous one first (BlockerBvh::SegmentBlocked's `last`).
 double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
                   uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
   const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
-  if (f == 0 || !blockers.AnyInShaft(i, j)) return f;
-  ++stats.traced_pairs;
-  return f * VisibleFraction(
-                 shapes[i], shapes[j],
-                 [&](const Vec3& a, const Vec3& b) { return blockers.SegmentBlocked(a, b, i, j); },
-                 stats.segments);
+  if (f == 0 || !blockers.PairMayMeetBlockers(i, j)) return f;
+  uint32_t last = BlockerBvh::kNoBlocker;
+  const auto blocked = [&](const Vec3& a, const Vec3& b) {
+    return blockers.SegmentBlocked(a, b, i, j, last);
+  };
+  const uint64_t before = stats.segments;
+  std::optional<double> seen = OneSegmentVisibleFraction(shapes[i], shapes[j], blocked, stats.segments);
+  if (!seen) {
+    if (!blockers.AnyInShaft(i, j)) return f;
+    seen = VisibleFraction(shapes[i], shapes[j], blocked, stats.segments);
+  }
+  if (stats.segments > before) ++stats.traced_pairs;
+  return f * *seen;
 }
 
 // Row i into `row` (size radiating).
@@ -116,6 +129,15 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
 
 }  // namespace
 
+uint64_t SurfaceRowsBudget(uint64_t memory_limit) {
+  if (memory_limit > 0) return memory_limit;
+  const uint64_t physical = PhysicalMemoryBytes();
+  return physical > 0 ? static_cast<uint64_t>(kDefaultMemoryFraction * static_cast<double>(physical))
+                      : kFallbackBudget;
+}
+
+uint64_t TriangleBytes(size_t n) { return TriangleSize(n) * sizeof(double); }
+
 void SurfaceRowsStats::Merge(const SurfaceRowsStats& o) {
   pairs.Merge(o.pairs);
   traced_pairs += o.traced_pairs;
@@ -129,8 +151,9 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   const BlockerBvh blockers(shapes, PotentialBlockers(shapes));
   stats.blockers = blockers.size();
   stats.cull_seconds = SecondsSince(start);
-  const uint64_t budget = options.memory_limit > 0 ? options.memory_limit : kReciprocalBytes;
-  stats.reciprocal = radiating > 1 && TriangleSize(radiating) * sizeof(double) <= budget;
+  stats.budget = SurfaceRowsBudget(options.memory_limit);
+  stats.triangle = TriangleBytes(radiating);
+  stats.reciprocal = radiating > 1 && stats.triangle <= stats.budget;
   if (stats.reciprocal) return BuildReciprocalRows(shapes, radiating, blockers, options, sink, stats);
   start = Clock::now();
   const size_t block = BlockRows(radiating, options);

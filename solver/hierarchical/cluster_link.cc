@@ -111,11 +111,12 @@ bool EstimateClusterLink(const ElementTree& tree, std::span<const float> exposur
   double f = 0;
   for (uint32_t s : FacesOf(q)) {
     const Element& source = tree.nodes[s];
+    const double sending = exposure[s] * source.opacity;  // its exposed opaque share
     if (p_cluster) {
-      f += ProjectedArea(source, exposure[s], p.center);
+      f += ProjectedArea(source, sending, p.center);
     } else {
       const Element& e = tree.nodes[p.id];
-      f += PointTransfer(ProjectedArea(source, exposure[s], e.centroid), e.centroid, e.normal,
+      f += PointTransfer(ProjectedArea(source, sending, e.centroid), e.centroid, e.normal,
                          source.centroid);
     }
   }

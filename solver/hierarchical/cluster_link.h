@@ -33,8 +33,9 @@ double ClusterFormFactorBound(const LinkEnd& p, const LinkEnd& q);
 double PointTransfer(double k, const Vec3& x, const Vec3& n, const Vec3& center);
 
 // Estimates link p <- q (p or q a cluster; `exposure` per element, ExposedFraction). For an
-// element receiver, ff is F_pq: the sum over q's faces of A_f e_f cos cos / (pi r^2) between
-// centroids; for a cluster receiver, ff is k = sum over q's faces of A_f e_f cos_f / pi toward
+// element receiver, ff is F_pq: the sum over q's faces of A_f e_f a_f cos cos / (pi r^2)
+// between centroids (a_f the face's opacity: only its opaque part sends); for a cluster
+// receiver, ff is k = sum over q's faces of A_f e_f a_f cos_f / pi toward
 // p's center, which the gather turns into F per receiving face with PointTransfer. Both are
 // times a visibility from `sampling.samples` shadow rays between points of faces of p and q
 // picked by projected exposed area toward each other (1 when no picked pair faces). spread is

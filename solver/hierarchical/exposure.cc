@@ -17,7 +17,12 @@ double ExposedFraction(const Element& e, const PatchMesh& mesh, const RayCaster&
     const Vec3 x = SampleElementPoint(e, points[m]);
     const Vec3 d = frame.ToWorld(SampleCosineHemisphere(directions[m]));
     const Hit hit = caster.Intersect({x + e.normal * ray_epsilon, d});
-    if (hit.patch == kNoPatch || Dot(mesh.patches[hit.patch].normal, d) < 0) ++exposed;
+    if (hit.patch == kNoPatch) {
+      ++exposed;
+      continue;
+    }
+    const Patch& patch = mesh.patches[hit.patch];
+    if (Dot(patch.normal, d) < 0 || patch.opacity < 1) ++exposed;
   }
   return static_cast<double>(exposed) / samples;
 }

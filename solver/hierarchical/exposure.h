@@ -15,7 +15,8 @@ namespace radflux {
 
 // Fraction of `samples` stratified points of `e` whose cosine-distributed ray (offset by
 // ray_epsilon along the normal) escapes or first hits the front of a patch of `mesh` (the
-// mesh `caster` was built on); a ray hitting a back side starts inside a solid. In [0, 1].
+// mesh `caster` was built on); a ray hitting a back side starts inside a solid, unless that
+// patch is partly transparent (an alpha cut-out is a sheet, not a solid's wall). In [0, 1].
 double ExposedFraction(const Element& e, const PatchMesh& mesh, const RayCaster& caster,
                        int samples, uint32_t pattern, double ray_epsilon);
 

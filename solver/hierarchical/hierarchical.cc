@@ -94,7 +94,7 @@ void GatherThroughClusters(const Context& c, const ElementTree& tree, const Link
 }
 
 // One gathering sweep (Jacobi over links, then push-pull, then the clusters' pull); returns
-// the area-weighted relative change of B over the leaves, max over bands.
+// the opaque-area-weighted relative change of B over the leaves, max over bands.
 double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& links,
                    const std::vector<uint32_t>& leaves, const Rgb& e_norm, NodeState& state) {
   std::vector<Rgb> gathered(tree.nodes.size(), Rgb{});
@@ -119,7 +119,7 @@ double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& lin
                   double lo = 0, hi = 0;
                   const uint32_t root = tree.roots[r];
                   const double exposed = PushPull(c, tree, gathered, root, Rgb{}, state, lo, hi);
-                  faces[root] = FacePulled(state.b[root], exposed);
+                  faces[root] = FacePulled(state.b[root], exposed * tree.nodes[root].opacity);
                   faces[root].lo = lo;
                   faces[root].hi = hi;
                 }
@@ -127,7 +127,7 @@ double GatherSweep(const Context& c, const ElementTree& tree, const LinkSet& lin
   PullClusters(c, faces, state);
   Rgb diff{};
   for (size_t i = 0; i < leaves.size(); ++i) {
-    const double a = tree.nodes[leaves[i]].area;
+    const double a = tree.nodes[leaves[i]].area * tree.nodes[leaves[i]].opacity;
     for (int k = 0; k < kBands; ++k) {
       const double d = LeafRadiosity(state, leaves[i])[k] - old[i][k];
       diff[k] += a * d * d;
@@ -171,8 +171,9 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   for (const Element& e : tree.nodes) {
     const Material& m = c.MaterialOf(e);
     total_area += e.area;
-    power += e.area * MaxComponent(m.emission);
-    for (int k = 0; k < kBands; ++k) e_norm[k] += e.area * m.emission[k] * m.emission[k];
+    const double opaque = e.area * e.opacity;  // only the opaque part emits
+    power += opaque * MaxComponent(m.emission);
+    for (int k = 0; k < kBands; ++k) e_norm[k] += opaque * m.emission[k] * m.emission[k];
   }
   for (double& v : e_norm) v = std::sqrt(v);
   c.min_area = options.min_area_fraction * total_area;
@@ -189,8 +190,10 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   NodeState state;
   AddNodes(c, tree, 0, state);
   std::vector<Pulled> faces;
-  for (uint32_t r : tree.roots)
-    faces.push_back(FacePulled(state.b[r], tree.nodes[r].area * state.exposure[r]));
+  for (uint32_t r : tree.roots) {
+    const Element& e = tree.nodes[r];
+    faces.push_back(FacePulled(state.b[r], e.area * e.opacity * state.exposure[r]));
+  }
   PullClusters(c, faces, state);
   LinkSet links = InitialLinks(c, tree, state, stats.rays);
   stats.initial_links = links.size();

@@ -25,6 +25,10 @@
 // element tree by push-pull.
 // Radiosity is kept per exposed area (ExposedFraction): what is buried inside a solid neither
 // receives nor sends light, and outputs show the area mean (zero where buried).
+// Partly transparent faces (Material::opacity < 1) as in the uniform solver: shadow rays pass
+// through them as the caster decides, and a node sends, reflects and emits from its opaque
+// part only (link form factors to it, rho A and emitted power are times its opacity; B is the
+// opaque part's radiosity).
 #pragma once
 
 #include <cstdint>
@@ -97,8 +101,8 @@ struct HierarchicalResult {
   HierarchicalStats stats;
 };
 
-// Solves a validated scene. `solver` supplies tolerance (on the area-weighted relative change
-// of B per gathering sweep), max_iterations, threads, snapshot_every and cancel. The callback
+// Solves a validated scene. `solver` supplies tolerance (on the opaque-area-weighted relative
+// change of B per gathering sweep), max_iterations, threads, snapshot_every and cancel. The callback
 // gets every sweep; snapshots hold one entry per current leaf in depth-first order (the leaf
 // set grows between refinement passes; the final one maps to mesh patches by patch_leaf).
 absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,

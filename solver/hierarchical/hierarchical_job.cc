@@ -1,7 +1,5 @@
 #include "solver/hierarchical/hierarchical_job.h"
 
-#include <spdlog/spdlog.h>
-
 #include <chrono>
 
 #include "solver/formfactor/row_context.h"
@@ -34,26 +32,6 @@ absl::Status Validate(const Scene& scene, const JobOptions& options) {
   return ValidateScene(scene);
 }
 
-// Makes every partly transparent face of `scene` opaque, with one import-log line and one
-// warning when there is any.
-void MakeTransparentFacesOpaque(Scene& scene) {
-  uint64_t faces = 0;
-  for (size_t f = 0; f < scene.faces.size(); ++f) {
-    if (!(scene.materials[scene.faces[f].material].opacity < 1)) continue;
-    scene.import_log.Add("partly_transparent_opaque",
-                         "{face|faces} partly transparent solved opaque (--solver hierarchical "
-                         "has no partial transmission)",
-                         scene.FaceLocation(f));
-    ++faces;
-  }
-  for (Material& m : scene.materials) m.opacity = 1;
-  if (faces > 0) {
-    spdlog::warn("{} partly transparent {} solved opaque: --solver hierarchical has no "
-                 "partial transmission",
-                 faces, faces == 1 ? "face" : "faces");
-  }
-}
-
 SolverOptions WithThreads(const JobOptions& options) {
   SolverOptions s = options.solver;
   if (s.threads == 0) s.threads = options.form_factors.threads;
@@ -65,7 +43,6 @@ SolverOptions WithThreads(const JobOptions& options) {
 absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& options,
                                              const JobCallbacks& callbacks) {
   if (absl::Status s = Validate(scene, options); !s.ok()) return s;
-  MakeTransparentFacesOpaque(scene);
   HierarchicalOptions h = options.hierarchical;
   h.samples = options.form_factors.samples;
   h.seed = options.form_factors.seed;

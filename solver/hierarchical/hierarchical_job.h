@@ -9,9 +9,8 @@ namespace radflux {
 
 // options.hierarchical.enabled: form_factors in the result is n x n with EMPTY rows (the
 // link set is not expanded to patches), so the report's energy balance does not apply.
-// The hierarchical solver has no partial transmission: partly transparent faces
-// (Material::opacity < 1) are solved opaque, counted in the scene's import log and in one
-// warning line.
+// Partly transparent faces (Material::opacity < 1) let light through as in a uniform job
+// (hierarchical.h).
 absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& options,
                                              const JobCallbacks& callbacks);
 

@@ -35,11 +35,12 @@ struct Context {
   const Material& MaterialOf(const Element& e) const {
     return scene->materials[scene->faces[e.face].material];
   }
-  // rho A of a node (max band; a cluster: summed over its faces).
+  // rho A of a node's opaque part, what it reflects per unit of gathered radiosity (max
+  // band; a cluster: summed over its faces).
   double RhoArea(const ElementTree& tree, uint32_t node) const {
     if (IsCluster(node)) return cluster_rho_area[ClusterIndex(node)];
     const Element& e = tree.nodes[node];
-    return MaxComponent(MaterialOf(e).reflectance) * e.area;
+    return MaxComponent(MaterialOf(e).reflectance) * e.area * e.opacity;
   }
   bool CanSplit(const ElementTree& tree, uint32_t node) const {
     return IsCluster(node) || tree.nodes[node].area / 4 >= min_area;
@@ -61,7 +62,8 @@ struct Context {
 
 // Per element: radiosity of its exposed part (what links carry), W/m^2 per band; the range
 // of MaxComponent of that over its exposed leaves; its exposed fraction (ExposedFraction).
-// Per cluster: the exposed-area mean of its faces' b, and the range over their leaves.
+// Per cluster: the mean of its faces' b weighted by their exposed opaque area (what each
+// sends), and the range over their leaves.
 struct NodeState {
   std::vector<Rgb> b;
   std::vector<float> range;
@@ -97,7 +99,7 @@ struct Pulled {
   }
 };
 
-// A face's Pulled from its b and an exposed area.
+// A face's Pulled from its b and its exposed opaque area (exposed area times opacity).
 Pulled FacePulled(const Rgb& b, double exposed);
 
 // Sets every cluster's b and range from its faces' (`faces`, by root element), bottom-up.

@@ -126,8 +126,10 @@ bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint
     unoccluded_hi = std::max(unoccluded_hi, f);
   }
   const double visibility = kernel > 0 ? kernel_seen / kernel : (visible > 0 ? 1.0 : 0.0);
-  estimate.ff = static_cast<float>(unoccluded / s * visibility);
-  estimate.spread = static_cast<float>(blocked > 0 ? unoccluded_hi : hi - lo);
+  // Only q's opaque part (Element::opacity) sends and receives: light meets it, and it
+  // meets light, with that probability.
+  estimate.ff = static_cast<float>(unoccluded / s * visibility * q.opacity);
+  estimate.spread = static_cast<float>((blocked > 0 ? unoccluded_hi : hi - lo) * q.opacity);
   return true;
 }
 

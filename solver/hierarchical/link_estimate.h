@@ -33,7 +33,9 @@ bool AnyCornerInFront(const Element& of, const Element& plane);
 // the spread, so the choice to refine a link (which keeps it or replaces it) is independent
 // of its value and the kept values stay unbiased. spread covers the samples and p's corners
 // (unoccluded at corners), and is the largest unoccluded F when any decision ray is blocked
-// (a shadow edge may cross p, or q may be hidden). Returns false when p and q cannot exchange
+// (a shadow edge may cross p, or q may be hidden). ff and spread are times q's opacity (the
+// share of light from p that meets q's opaque part; the shadow rays pass through partly
+// transparent patches as the caster decides). Returns false when p and q cannot exchange
 // light (no part of either in front of the other). `p_id`/`q_id` seed the patterns.
 bool EstimateElementLink(const Element& p, const Element& q, uint32_t p_id, uint32_t q_id,
                          const LinkSampling& sampling, const RayCaster& caster,

@@ -148,6 +148,27 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
   }
 }
 
+// The gap under a face lying against a receiver that still hides it: 1% of the face's size
+// (the square root of its area). Light reaches into such a gap only through the slit around
+// it, whose angle is about gap / depth.
+constexpr double kCoverGap = 0.01;
+
+// `cover`'s polygon projected onto `receiver`'s plane when `cover` lies in front of the
+// receiver with its back to it (facing the same way, every corner more than tol and at most
+// kCoverGap x its size in front): a light hung just below a ceiling, a poster on a wall.
+// Empty otherwise.
+Footprint CoverFootprint(const FaceGeometry& receiver, const FaceGeometry& cover, double tol) {
+  if (Dot(receiver.normal, cover.normal) <= 0) return {};
+  const double gap = kCoverGap * std::sqrt(Length(PolygonNewellNormal(cover.polygon)) / 2);
+  Footprint polygon;
+  for (const Vec3& q : cover.polygon) {
+    const double d = PlaneDistance(receiver, q);
+    if (d <= tol || d > gap) return {};
+    polygon.push_back(q - receiver.normal * d);
+  }
+  return polygon;
+}
+
 // Closed loops of `edges` (chained end to start within tol), as the loops' edge lists.
 std::vector<std::vector<ContactEdge>> ChainLoops(const std::vector<ContactEdge>& edges,
                                                  double tol) {
@@ -224,9 +245,14 @@ std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene) {
   std::vector<uint32_t> near;
   for (uint32_t s = 0; s < faces.size(); ++s) {
     near.clear();
-    grid.ForBox(faces[s].box.Padded(tol), [&](uint32_t r) { near.push_back(r); });
+    const double area = Length(PolygonNewellNormal(faces[s].polygon)) / 2;
+    grid.ForBox(faces[s].box.Padded(std::max(tol, kCoverGap * std::sqrt(area))),
+                [&](uint32_t r) { near.push_back(r); });
     for (uint32_t r : near) {
-      if (r != s) AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
+      if (r == s) continue;
+      AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
+      Footprint cover = CoverFootprint(faces[r], faces[s], tol);
+      if (!cover.empty()) footprints[r].push_back(std::move(cover));
     }
   }
   for (uint32_t r = 0; r < faces.size(); ++r) {

@@ -25,6 +25,11 @@ using Footprint = std::vector<Vec3>;
 //   walls around an inner floor, whose normals point in);
 // - the loop's faces are of one object, and a face of that object facing away from the
 //   receiver lies above the loop's centroid (a lid: an open tube's inside stays lit).
+// A face lying in front of the receiver with its back to it (facing the same way, every
+// corner in front by more than that tolerance and at most 1% of the face's size, the square
+// root of its area) also gives a footprint: its outline projected onto the receiver (a light
+// hung 0.5 mm below a ceiling hides the ceiling above it; without the cut, the ceiling's
+// patches under its edge averaged the dark and the lit parts and shaded the lit part dark).
 // Edges are found through a uniform grid of face bounding boxes, not all pairs.
 std::vector<std::vector<Footprint>> FindContactFootprints(const Scene& scene);
 

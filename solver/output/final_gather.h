@@ -1,17 +1,17 @@
 // Final gather: a view-dependent second pass over a radiosity solution (the two-pass method).
-// Each pixel averages N paths through max(min(N, 16), ceil(N / 2)) multi-jittered points of the
-// pixel (a point's primary ray and light-sampler set-up shared by at most two paths); a path
-// goes to the visible point x on patch p (front side; a miss or a back side gives black) and
-// estimates
+// Each pixel averages P = min(N, max(16, N / 8)) multi-jittered points of the pixel, N the
+// gather rays per pixel: a point's primary ray goes to the visible point x on patch p (front
+// side; a miss or a back side gives black), which estimates
 //     L(x) = E_p / pi + rho_p / pi * (H_direct(x) + H_indirect(x))
 // with
 //   H_direct   = sum_j E_j F_j(x) V: one light sample on the emitters (LightSampler, as the
 //                emitter columns of monte_carlo's rows are sampled, over the emitting faces
 //                merged by MakeGatherLights), shadow ray included;
-//   H_indirect = the reflected radiosity R = B - E (Gouraud-interpolated, at least 0) where one
-//                cosine-weighted ray from x meets a front side (0 on a miss or a back side):
-//                its expectation is the irradiance from everything but the emitters' own
-//                emission, which H_direct already counts, so nothing is counted twice.
+//   H_indirect = the mean, over the point's N / P gather rays (cosine-weighted from x), of the
+//                reflected radiosity R = B - E (Gouraud-interpolated, at least 0) where the ray
+//                meets a front side (0 on a miss or a back side): its expectation is the
+//                irradiance from everything but the emitters' own emission, which H_direct
+//                already counts, so nothing is counted twice.
 // In a closed enclosure with B the exact solution, the expectation of L(x) is B_p / pi.
 // Seeds are per pixel (seed, y * width + x): the image does not depend on the thread count.
 #pragma once
@@ -31,7 +31,7 @@
 namespace radflux {
 
 struct GatherOptions {
-  int rays = 16;      // N: paths per pixel, each with one gather ray and one light sample
+  int rays = 16;      // N: gather rays per pixel (P points of the pixel with a light sample each)
   int threads = 0;    // 0 = all cores; the image does not depend on it
   uint64_t seed = 1;  // the pixels' sample patterns are seeded from (seed, pixel index)
 };

@@ -68,6 +68,15 @@ std::pair<double, double> InverseBilinear(const PatchMesh& mesh, uint32_t p, con
   return {s, std::clamp(t, 0.0, 1.0)};
 }
 
+// Whether quad p is a parallelogram (v0 - v1 + v2 - v3 = 0 within 1e-6 of its edges): its
+// bilinear map is affine, and Embree's (u, v) are its parameters (s, t) on both triangles.
+bool IsParallelogram(const PatchMesh& mesh, uint32_t p) {
+  const Vec3 v0 = mesh.Vertex(p, 0);
+  const Vec3 e = mesh.Vertex(p, 1) - v0, f = mesh.Vertex(p, 3) - v0;
+  const Vec3 g = mesh.Vertex(p, 2) - mesh.Vertex(p, 1) - f;
+  return Dot(g, g) <= 1e-12 * (Dot(e, e) + Dot(f, f));
+}
+
 }  // namespace
 
 std::array<double, 4> PatchVertexWeights(const PatchMesh& mesh, uint32_t p, double u, double v) {
@@ -78,6 +87,7 @@ std::array<double, 4> PatchVertexWeights(const PatchMesh& mesh, uint32_t p, doub
     const double s = u + v > 1 ? 1 / (u + v) : 1;  // only rounding can push u+v past 1
     return {1 - (u + v) * s, u * s, v * s, 0};
   }
+  if (IsParallelogram(mesh, p)) return {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
   const std::array<double, 4> in_triangle = u + v <= 1
                                                 ? std::array<double, 4>{1 - u - v, u, 0, v}
                                                 : std::array<double, 4>{0, 1 - v, u + v - 1, 1 - u};

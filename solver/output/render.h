@@ -27,7 +27,8 @@ struct RenderOptions {
 // inverting the bilinear map at the hit point (Embree splits a quad into triangles
 // (v0,v1,v3) and (v2,v3,v1), reporting u,v in the second as 1-u', 1-v'): values vary
 // linearly along every edge, as on the neighbour across it, with no streak along a
-// diagonal, and a linear function is reproduced exactly on any planar convex quad.
+// diagonal, and a linear function is reproduced exactly on any planar convex quad. On a
+// parallelogram (s, t) = (u, v) and no inversion is needed.
 // The weights sum to 1.
 std::array<double, 4> PatchVertexWeights(const PatchMesh& mesh, uint32_t p, double u, double v);
 

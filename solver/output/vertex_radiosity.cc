@@ -101,10 +101,16 @@ struct FitWeights {
   std::vector<double> weights;  // one per patch; they sum to 1
 };
 
+// The farthest a vertex's value is extrapolated along a direction: its offset from the fit
+// patches' mean centroid, in standard deviations of their centroids along it (a grid's
+// boundary and corner vertices are at 2).
+constexpr double kMaxExtrapolation = 4;
+
 // Weights that give, for any patch values, the value at `at` of the area-weighted
 // least-squares plane through the patches' (centroid, value) in the tangent plane of
-// `normal`. Directions in which the centroids do not spread (a row of patches) get zero
-// slope.
+// `normal`. Directions in which the centroids do not spread (a row of patches), or spread
+// too little for the vertex's offset (kMaxExtrapolation), get zero slope: the weights'
+// absolute sum is at most 1 + 2 kMaxExtrapolation.
 FitWeights PlaneFitWeights(const PatchMesh& mesh, std::vector<uint32_t> patches, const Vec3& at,
                            const Vec3& normal) {
   const Frame frame = Frame::FromNormal(normal);
@@ -134,6 +140,17 @@ FitWeights PlaneFitWeights(const PatchMesh& mesh, std::vector<uint32_t> patches,
   const double angle = 0.5 * std::atan2(2 * cxy, cxx - cyy);
   const double ex[2] = {std::cos(angle), -std::sin(angle)};
   const double ey[2] = {std::sin(angle), std::cos(angle)};
+  // A direction's slope moves the value by at most |offset| / spread times the values' range
+  // (Cauchy-Schwarz on its weights); it is used only where that factor is at most
+  // kMaxExtrapolation, so rounding noise (one patch: spreads of 1e-14) is never a spread.
+  bool sloped[2];
+  double along_mean[2];
+  for (int e = 0; e < 2; ++e) {
+    along_mean[e] = ex[e] * mx + ey[e] * my;  // the vertex is at 0
+    sloped[e] = lambda[e] > 1e-6 * lambda[0] &&
+                along_mean[e] * along_mean[e] * weight <=
+                    kMaxExtrapolation * kMaxExtrapolation * lambda[e];
+  }
   for (size_t i = 0; i < fit.patches.size(); ++i) {
     const uint32_t p = fit.patches[i];
     const Vec3 d = mesh.patches[p].centroid - at;
@@ -141,9 +158,7 @@ FitWeights PlaneFitWeights(const PatchMesh& mesh, std::vector<uint32_t> patches,
     const double x = Dot(d, frame.s) - mx, y = Dot(d, frame.t) - my;
     fit.weights[i] = a / weight;
     for (int e = 0; e < 2; ++e) {
-      if (!(lambda[e] > 1e-6 * lambda[0])) continue;
-      const double along_mean = ex[e] * mx + ey[e] * my;  // the vertex is at 0
-      fit.weights[i] -= a * (ex[e] * x + ey[e] * y) / lambda[e] * along_mean;
+      if (sloped[e]) fit.weights[i] -= a * (ex[e] * x + ey[e] * y) / lambda[e] * along_mean[e];
     }
   }
   return fit;

@@ -3,7 +3,9 @@
 // at its position of the plane fitted by area-weighted least squares to its patches'
 // values at their centroids: the patches around it for an interior vertex, those and
 // their neighbours for a boundary vertex (so the value there is extrapolated from the
-// inside, not averaged: a linear field is reproduced exactly everywhere). The fit smooths,
+// inside, not averaged: a linear field is reproduced exactly everywhere the vertex lies
+// within 4 standard deviations of the fit centroids' spread; beyond, in that direction the
+// fit is flat, so no vertex's weights sum to more than 9 in absolute value). The fit smooths,
 // so a peaked field's Gouraud picture would lose light; each patch's deficit (its value
 // minus its corners' mean) is fitted the same way and added once, which leaves a deficit
 // second order in the smoothing (Cornell back wall's picture mean: -2.3% -> -0.15%). A T-junction

@@ -2,6 +2,8 @@
 // SegmentHitsSurface with MayBlockPair), for every pair of a cluttered scene of random quadrilaterals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -57,6 +59,64 @@ TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
   EXPECT_GT(in_shaft, 2000);
   EXPECT_LT(in_shaft, 14000);
   EXPECT_GT(blocked, 1000);
+}
+
+// SegmentBlocked with a remembered blocker (`last`, kept across a pair's segments) answers as
+// without it; after a blocked segment it names a blocker that blocks that segment.
+TEST(BlockerBvh, TheRememberedBlockerChangesNoAnswer) {
+  const std::vector<SurfaceShape> shapes = RandomSquares(120, 11);
+  const BlockerBvh bvh(shapes, PotentialBlockers(shapes));
+  int reused = 0;
+  for (uint32_t i = 0; i < shapes.size(); i += 3) {
+    for (uint32_t j = 1; j < shapes.size(); j += 2) {
+      if (i == j) continue;
+      uint32_t last = BlockerBvh::kNoBlocker;
+      for (int s = 0; s < 16; ++s) {  // 4 x 4 segments between points near each centroid
+        const Vec3 a = shapes[i].centroid + (shapes[i].polygon[s % 4] - shapes[i].centroid) / 3;
+        const Vec3 b = shapes[j].centroid + (shapes[j].polygon[s / 4] - shapes[j].centroid) / 4;
+        const uint32_t before = last;
+        const bool hit = bvh.SegmentBlocked(a, b, i, j, last);
+        ASSERT_EQ(hit, bvh.SegmentBlocked(a, b, i, j)) << "pair " << i << " " << j;
+        if (!hit) continue;
+        ASSERT_NE(last, BlockerBvh::kNoBlocker);
+        EXPECT_TRUE(SegmentHitsSurface(a, b, shapes[last]));
+        reused += last == before;
+      }
+    }
+  }
+  EXPECT_GT(reused, 500) << "a pair's segments are often hidden by the same blocker";
+}
+
+// PotentialBlockers (with its quick rule: the scene's box in front of the plane) finds exactly
+// the surfaces with some vertex behind them: random squares in a closed room, whose walls,
+// 1e-7 off flat, block nothing, plus a square just inside the floor, whose plane has the
+// floor within the coplanar band, and one 1e-3 above it, which has the floor behind.
+TEST(BlockerBvh, PotentialBlockersAreTheSurfacesWithSomethingBehind) {
+  std::vector<SurfaceShape> shapes = RandomSquares(60, 5);
+  const double lo = -2, hi = 13, w = hi - lo;  // the squares reach -1.5 and 11.5
+  const Vec3 x{w, 0, 0}, y{0, w, 0}, z{0, 0, w}, o{lo, lo, lo}, t = o + x + y + z;
+  for (const auto& [origin, u, v] : {std::array{o, x, y}, std::array{o, z, x}, std::array{o, y, z},
+                                     std::array{t, -y, -x}, std::array{t, -x, -z},
+                                     std::array{t, -z, -y}}) {
+    const Vec3 off = Normalize(Cross(u, v)) * 1e-7;  // one corner a little into the room
+    shapes.push_back(MakeSurfaceShape({origin, origin + u, origin + u + v + off, origin + v}));
+  }
+  const size_t walls = shapes.size();
+  shapes.push_back(MakeSurfaceShape({{0, 0, lo + 1e-9}, {1, 0, lo}, {1, 1, lo + 1e-9}, {0, 1, lo}}));
+  shapes.push_back(MakeSurfaceShape({{0, 0, lo + 1e-3}, {1, 0, lo + 1e-3}, {1, 1, lo + 1e-3},
+                                     {0, 1, lo + 1e-3}}));
+  std::vector<uint32_t> brute;
+  for (uint32_t k = 0; k < shapes.size(); ++k) {
+    bool behind = false;
+    for (const SurfaceShape& other : shapes) behind = behind || PartlyBehind(shapes[k], other);
+    if (behind) brute.push_back(k);
+  }
+  EXPECT_EQ(PotentialBlockers(shapes), brute);
+  for (size_t k = walls - 6; k < walls + 1; ++k) {
+    EXPECT_FALSE(std::binary_search(brute.begin(), brute.end(), k)) << "wall or floor tile " << k;
+  }
+  EXPECT_TRUE(std::binary_search(brute.begin(), brute.end(), walls + 1));
+  EXPECT_GT(brute.size(), 40u);
 }
 
 TEST(BlockerBvh, EmptyHierarchyFindsNothing) {

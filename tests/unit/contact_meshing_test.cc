@@ -84,6 +84,48 @@ TEST(ContactFootprints, AnOpenTubeOrALiftedBlockHasNone) {
             0u);
 }
 
+// A 10 x 10 ceiling at y = 5 facing down and a 2 x 2 lamp `gap` below it, facing down (its
+// back to the ceiling) or up.
+Scene CeilingAndLamp(double gap, bool lamp_faces_down) {
+  int next = 1;
+  std::string obj =
+      ObjQuad("ceiling", "white", {{0, 5, 0}, {10, 5, 0}, {10, 5, 10}, {0, 5, 10}}, next);
+  const double y = 5 - gap;
+  std::vector<Vec3> lamp = {{4, y, 4}, {6, y, 4}, {6, y, 6}, {4, y, 6}};
+  if (!lamp_faces_down) std::reverse(lamp.begin(), lamp.end());
+  obj += ObjQuad("lamp", "lamp", lamp, next);
+  return testing::SceneFromObj(obj);
+}
+
+TEST(ContactFootprints, AFaceHungJustBelowACeilingHidesItsOutlineThere) {
+  // 0.01 is above the contact tolerance (~1.4e-4) and within 1% of the lamp's size (0.02).
+  const std::vector<std::vector<Footprint>> footprints =
+      FindContactFootprints(CeilingAndLamp(0.01, true));
+  ASSERT_EQ(CountFootprints(footprints), 1u);
+  ASSERT_EQ(footprints[0].size(), 1u);  // on the ceiling, none on the lamp
+  for (const Vec3& p : footprints[0][0]) EXPECT_NEAR(p.y, 5, 1e-12);
+  // Counter-clockwise about the ceiling's normal (-y), the lamp's area.
+  EXPECT_NEAR(Dot(PolygonNewellNormal(footprints[0][0]), Vec3{0, -1, 0}) / 2, 4, 1e-9);
+  // Further than 1% of its size below, or facing the other way, it hides nothing.
+  EXPECT_EQ(CountFootprints(FindContactFootprints(CeilingAndLamp(0.05, true))), 0u);
+  EXPECT_EQ(CountFootprints(FindContactFootprints(CeilingAndLamp(0.01, false))), 0u);
+}
+
+TEST(ContactMeshing, TheCeilingAboveAHungLampHasNoPatches) {
+  const Scene scene = CeilingAndLamp(0.01, true);
+  MeshOptions options;
+  options.max_edge = 1.5;  // the lamp's edges fall inside patches of the ceiling's grid
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  double ceiling_area = 0;
+  for (uint32_t p = mesh->face_first_patch[0]; p < mesh->face_first_patch[1]; ++p) {
+    const Vec3 c = mesh->patches[p].centroid;
+    EXPECT_FALSE(c.x > 4 && c.x < 6 && c.z > 4 && c.z < 6) << "patch " << p;
+    ceiling_area += mesh->patches[p].area;
+  }
+  EXPECT_NEAR(ceiling_area, 100 - 4, 1e-9);
+}
+
 bool InsideDiamond(const Vec3& p, double margin) {
   for (size_t i = 0; i < kDiamond.size(); ++i) {
     const Vec3& a = kDiamond[i];

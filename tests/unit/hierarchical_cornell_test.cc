@@ -1,7 +1,7 @@
 // Refining further never increases the error on the Cornell box: hierarchical at three
-// link epsilons and adaptive at three pass counts, each against a finer hierarchical
-// reference, error = RMS over scene objects of the relative error of the object's
-// area-weighted mean B (a measure that works across different meshes).
+// link epsilons against a finer hierarchical solve, and adaptive at three pass counts against
+// an independent fine Monte Carlo solve; error = RMS over scene objects of the relative error
+// of the object's area-weighted mean B (a measure that works across different meshes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "solver/adaptive/adaptive_refine.h"
 #include "solver/hierarchical/hierarchical.h"
+#include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -97,20 +98,40 @@ TEST_F(CornellRefinement, ElementFloorBoundsTheSmallestLeaf) {
   EXPECT_LT(smallest[1], smallest[0]);
 }
 
+// The reference for adaptive meshing: Monte Carlo rows on 2,000 patches, k = 1024, 256 light
+// samples per row (object means within ~0.5% of Cycles at k = 64). Not the hierarchical
+// reference above: it converges to object means 0.5-3% below this one (the ceiling -3.1%),
+// more than the adaptive errors measured here.
+std::map<std::string, double> MonteCarloReference(const Scene& scene) {
+  JobOptions options;
+  options.mesh.target_patches = 2000;
+  options.form_factors.rays = 1024;
+  options.form_factors.samples = 16;
+  options.solver.tolerance = 1e-7;
+  const JobResult r = *RunJob(scene, options);
+  return ObjectMeans(scene, r.job->mesh, r.solve.radiosity);
+}
+
+// 32 points per patch: refinement never splits a patch whose B is flat (the short block's top
+// stays one patch at every pass), so its quadrature error stays whatever the first pass made
+// it. At the default 4 points that alone is up to +-10% on that face, more than what
+// refinement changes elsewhere.
 TEST_F(CornellRefinement, AdaptiveErrorNeverIncreasesOverThreePasses) {
+  const std::map<std::string, double> reference = MonteCarloReference(*scene_);
   std::vector<double> errors;
   for (int passes : {0, 1, 2}) {
     MeshOptions mesh;
     mesh.target_patches = 100;
     FormFactorOptions ff;
     ff.method = FormFactorMethod::kAnalytic;
+    ff.samples = 32;
     SolverOptions s;
     s.tolerance = 1e-7;
     AdaptiveOptions a;
     a.passes = passes;
     a.threshold = 0.3;
     const AdaptiveResult r = *SolveAdaptive(*scene_, mesh, ff, s, a);
-    errors.push_back(Error(ObjectMeans(*scene_, r.leaf_mesh, r.leaf_radiosity), *reference_));
+    errors.push_back(Error(ObjectMeans(*scene_, r.leaf_mesh, r.leaf_radiosity), reference));
     std::printf("adaptive passes %d: %zu patches error %.3e\n", passes, r.leaves.size(),
                 errors.back());
   }

@@ -40,7 +40,7 @@ TEST(Subdivide, SameCountGivesTheSameMesh) {
 }
 
 // A face's patches cover it but for the feet of the solids resting on it (the Cornell
-// blocks' feet lie inside the floor).
+// blocks' feet lie inside the floor) and what a face hung in front of it hides (the lamp).
 TEST(Subdivide, PatchAreasSumToFaceAreasLessFootprintsAndKeepTheirFace) {
   const Scene scene = Cornell();
   const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{3000, 0});
@@ -57,7 +57,7 @@ TEST(Subdivide, PatchAreasSumToFaceAreasLessFootprintsAndKeepTheirFace) {
     feet += footprints[f].size();
     EXPECT_NEAR(sum[f], area, 1e-9 * FaceArea(scene, f)) << f;
   }
-  EXPECT_EQ(feet, 2u);  // the two blocks on the floor
+  EXPECT_EQ(feet, 3u);  // the two blocks on the floor, the lamp hung below the ceiling
 }
 
 // Within a face every interior edge is shared by exactly two patches (in opposite
@@ -94,7 +94,8 @@ void ExpectConforming(const PatchMesh& mesh, const std::vector<size_t>& except =
 }
 
 TEST(Subdivide, NoTJunctionsInQuadsTrianglesAndFans) {
-  ExpectConforming(*SubdivideScene(Cornell(), MeshOptions{400, 0}), {0});  // 0: the floor
+  // 0: the floor, 1: the ceiling (contact meshing)
+  ExpectConforming(*SubdivideScene(Cornell(), MeshOptions{400, 0}), {0, 1});
   const char* hexagon =
       "mtllib m.mtl\no hex\nusemtl w\nv 1 0 0\nv .5 .866 0\nv -.5 .866 0\nv -1 0 0\nv -.5 -.866 0\n"
       "v .5 -.866 0\nf 1 2 3 4 5 6\n";

@@ -163,11 +163,13 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
   const Frame frame = Frame::FromNormal(Normalize(Vec3{0.3, -0.5, 0.8}));
   const TiltedPlane plane{{1, 2, 3}, frame.s, frame.t};
   const TiltedPlane other{{-20, 0, 0}, Vec3{0, 0, 1}, Normalize(Vec3{1, 1, 0})};
-  PatchMesh mesh;  // a general convex quad (not a parallelogram) and a triangle
+  PatchMesh mesh;  // a general convex quad (not a parallelogram), a triangle, a parallelogram
   AddFace(mesh, {plane.At(0, 0), plane.At(4, 0), plane.At(3, 2), plane.At(0.5, 3)}, {{0, 1, 2, 3}},
           plane.Normal());
   AddFace(mesh, {other.At(0, 0), other.At(3, 0.5), other.At(1, 2.5)}, {{0, 1, 2, 2}},
           other.Normal());
+  AddFace(mesh, {plane.At(6, 0), plane.At(9, 0), plane.At(10, 2), plane.At(7, 2)}, {{0, 1, 2, 3}},
+          plane.Normal());
   const Vec3 slope[3] = {{1, 2, 3}, {-0.5, 0.25, 4}, {0, 0, -2}};
   auto f = [&](const Vec3& p) {
     return Rgb{Dot(slope[0], p) + 1, Dot(slope[1], p), Dot(slope[2], p) - 3};
@@ -217,7 +219,7 @@ TEST(OutputRender, InterpolationOfLinearFunctionIsExactAtHitsAgainstBruteForce) 
       }
     }
   }
-  EXPECT_EQ(hits, 2 * 11 * 11);
+  EXPECT_EQ(hits, 3 * 11 * 11);
   EXPECT_GT(second_triangle_hits, 20);  // both halves of the quad were exercised
   EXPECT_GT(max_bilinear_error, 0.1);   // why PatchVertexWeights inverts the bilinear map
 }

@@ -111,6 +111,31 @@ TEST(OutputVertexRadiosity, ExtrapolationIsClampedAtZero) {
   EXPECT_GT((*v)[0][1], 0);
 }
 
+// A lone triangle (a chamfer on a rail's corner in the conference room, 3 m from the origin,
+// facing (-1, -1, -1)): its vertices' fit has one patch, whose centroid offsets from its mean
+// are rounding noise (1e-14); the pseudo-inverse took that noise as a spread and its slopes
+// gave weights of 1e15, and the conference room's PLY had vertices of B = 9e29 (a clamped 0
+// or a huge value here). Every vertex of a lone patch shows the patch's value.
+TEST(OutputVertexRadiosity, LonePatchesFarFromTheOriginKeepTheirValues) {
+  PatchMesh mesh;
+  std::vector<Rgb> b;
+  for (int k = 0; k < 64; ++k) {  // 64 such triangles, apart, of slightly different sizes
+    const Vec3 v0 = Vec3{-200.466, 176.9, 589.753} + Vec3{37.1, 11.3, -23.7} * k;
+    const double s = 1.4648 + 0.0137 * k;
+    AddFace(mesh, {v0, v0 + Vec3{0, -s, s}, v0 + Vec3{-s, 0, s}}, {{0, 1, 2, 2}},
+            Normalize(Vec3{-1, -1, -1}));
+    b.push_back({0.3 + 0.01 * k, 0.2, 0.1});
+  }
+  auto v = VertexRadiosity(mesh, ShadeOneMaterial(mesh), b);
+  ASSERT_TRUE(v.ok()) << v.status();
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Rgb& expected = b[i / 3];
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR((*v)[i][k], expected[k], 1e-9 * expected[k]) << i << " band " << k;
+    }
+  }
+}
+
 TEST(OutputVertexRadiosity, CreasesBetweenFacesStaySharp) {
   // Floor (y = 0, facing +y) and wall (z = 0, facing +z) share the geometric edge
   // from (0,0,0) to (1,0,0); 90 degrees is past the crease angle.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "howell_closed_forms.h"
+#include "solver/core/physical_memory.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
 #include "solver/formfactor/surface_rows.h"
@@ -118,6 +119,21 @@ TEST(ShaftCull, OnlyGeometryInTheShaftIsTraced) {
   segments = 0;
   EXPECT_EQ(VisibleFraction(a, far, crosses(middle_far), segments), 0.0);
   EXPECT_EQ(segments, 1u);
+  // The one-segment shortcut gives the same answers for the far pair, tests nothing for the
+  // near one.
+  EXPECT_EQ(OneSegmentVisibleFraction(a, far, crosses(middle_far), segments), 0.0);
+  EXPECT_EQ(OneSegmentVisibleFraction(a, far, crosses(aside), segments), 1.0);
+  EXPECT_EQ(segments, 3u);
+  EXPECT_FALSE(OneSegmentVisibleFraction(a, b, crosses(middle), segments).has_value());
+  EXPECT_EQ(segments, 3u);
+  const SurfaceShape far_triangle = MakeSurfaceShape({{0, 0, 20}, {0, 1, 20}, {1, 0, 20}});
+  const SurfaceShape beside = Square({0.3, 0.3, 10}, {0.1, 0, 0}, {0, 0.1, 0});
+  for (const SurfaceShape* k : {&middle_far, &beside}) {
+    uint64_t one = 0, all = 0;
+    EXPECT_EQ(OneSegmentVisibleFraction(a, far_triangle, crosses(*k), one),
+              VisibleFraction(a, far_triangle, crosses(*k), all));
+    EXPECT_EQ(one, all);
+  }
 }
 
 // Two squares crossing through their common centroid (a fuzzer's find: the points-a-side ratio
@@ -206,6 +222,32 @@ TEST(SurfaceRows, ReciprocalRowsMatchRowByRow) {
       EXPECT_NEAR(f[i][j], g[i][j], 5e-3 * g[i][j] + 1e-7) << i << " " << j;
     }
   }
+}
+
+// The memory budget: --memory-limit when given (a hard bound: a triangle one byte over it is
+// not held), else a quarter of physical memory; the 15,006-surface grid room's triangle
+// (about 859 MiB) fits the default of any machine with 4 GB or more.
+TEST(SurfaceRows, TheDefaultBudgetIsAQuarterOfPhysicalMemory) {
+  EXPECT_EQ(TriangleBytes(4), 6 * sizeof(double));
+  EXPECT_EQ(TriangleBytes(15006), uint64_t{15006} * 15005 / 2 * 8);
+  EXPECT_EQ(SurfaceRowsBudget(12345), 12345u);
+  const uint64_t physical = PhysicalMemoryBytes();
+  ASSERT_GT(physical, uint64_t{1} << 30);
+  EXPECT_NEAR(static_cast<double>(SurfaceRowsBudget(0)), 0.25 * static_cast<double>(physical), 1.0);
+  const std::vector<SurfaceShape> shapes = CubeRoom(2);  // 24 surfaces: 276 pairs
+  SurfaceRowsOptions options;
+  SurfaceRowsStats fits, over;
+  options.memory_limit = TriangleBytes(24);
+  Rows(shapes, options, fits);
+  options.memory_limit = TriangleBytes(24) - 1;
+  Rows(shapes, options, over);
+  EXPECT_TRUE(fits.reciprocal);
+  EXPECT_FALSE(over.reciprocal);
+  EXPECT_EQ(fits.triangle, TriangleBytes(24));
+  EXPECT_EQ(over.budget, TriangleBytes(24) - 1);
+  EXPECT_EQ(fits.pairs.culled + fits.pairs.one_point + fits.pairs.middle + fits.pairs.adaptive, 276u);
+  EXPECT_EQ(over.pairs.culled + over.pairs.one_point + over.pairs.middle + over.pairs.adaptive,
+            2 * 276u);
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 // above 1 beyond their allowance are counted (`radflux viewfactors` exits 4 on them).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -98,6 +101,51 @@ TEST(ViewFactorOutput, View3dTextLayout) {
   std::getline(lines, emit);
   EXPECT_EQ(emit, "0.900 0.999 1.000 0.500");
   EXPECT_FALSE(std::getline(lines, row));
+}
+
+// View3D's rows are printf's "%.6f", character for character, for values of every size a
+// view factor takes, values next to a rounding tie (x.xxxxxx5 and its neighbours), and values
+// outside [0, 1000) (the writer's fast path hands those to to_chars).
+TEST(ViewFactorOutput, View3dRowsArePrintfsFixedSixDecimals) {
+  std::vector<double> row;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0, 1), exponent(-12, 0);
+  for (int k = 0; k < 20000; ++k) row.push_back(k % 2 ? unit(rng) : std::pow(10, exponent(rng)));
+  for (int k = 0; k < 2000; ++k) {
+    const double tie = (std::floor(unit(rng) * 1e6) + 0.5) / 1e6;
+    for (double v : {tie, std::nextafter(tie, 0.0), std::nextafter(tie, 1.0)}) row.push_back(v);
+  }
+  for (double v : {0.0, -0.0, 1.0, 0.9999995, 5e-7, 4.9999999999e-7, 999.9999996, 1000.0, 1e9,
+                   -0.25}) {
+    row.push_back(v);
+  }
+  const size_t n = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(row.size()))));
+  while (row.size() < n * n) row.push_back(unit(rng));  // n rows of n values
+  const std::string path = testing::TempDir() + "/vf_fixed6.txt";
+  const ViewFactorSurfaces surfaces{std::vector<std::string>(n, "s"), std::vector<double>(n, 1),
+                                    std::vector<double>(n, 1), false, false};
+  absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
+      ViewFactorWriter::Open({ViewFactorFormat::kView3d, path, 0, ""}, surfaces);
+  ASSERT_TRUE(writer.ok()) << writer.status();
+  for (size_t r = 0; r < n; ++r) {
+    ASSERT_TRUE((*writer)->WriteRow(std::span<const double>(row).subspan(r * n, n)).ok());
+  }
+  ASSERT_TRUE((*writer)->Close().ok());
+  std::istringstream lines(ReadAll(path));
+  std::string line, field;
+  for (int k = 0; k < 2; ++k) std::getline(lines, line);  // header, areas
+  for (size_t r = 0; r < n; ++r) {
+    ASSERT_TRUE(std::getline(lines, line));
+    std::istringstream fields(line);
+    for (size_t c = 0; c < n; ++c) {
+      const double v = row[r * n + c];
+      ASSERT_TRUE(fields >> field);
+      char expected[64];
+      std::snprintf(expected, sizeof(expected), "%.6f", v);
+      ASSERT_EQ(field, expected) << std::hexfloat << v;
+    }
+    EXPECT_FALSE(fields >> field);
+  }
 }
 
 TEST(ViewFactorOutput, CsvIsDenseAndNamed) {
