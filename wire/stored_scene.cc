@@ -26,8 +26,9 @@ MeshInput MeshInputFromProto(const v1::Mesh& mesh) {
     face.group = f.group();
   }
   for (const v1::MeshMaterial& m : mesh.materials()) {
-    input.materials.push_back(
-        {m.name(), RgbFromProto(m.reflectance()), RgbFromProto(m.emitted_radiance())});
+    input.materials.push_back({m.name(), RgbFromProto(m.reflectance()),
+                               RgbFromProto(m.emitted_radiance()),
+                               m.has_opacity() ? m.opacity() : 1.0});
   }
   return input;
 }

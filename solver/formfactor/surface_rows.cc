@@ -45,11 +45,11 @@ double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blo
   return f * *seen;
 }
 
-// Row i into `row` (size radiating).
+// Row i into `row` (size radiating): each factor times its target's opacity.
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats);
+    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats) * shapes[j].opacity;
   }
 }
 
@@ -119,7 +119,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = 0; j < n; ++j) {
       const double a = i == j ? 0 : af[TriangleIndex(n, std::min(i, j), std::max(i, j))];
-      row[j] = std::min(1.0, a / shapes[i].area);
+      row[j] = std::min(1.0, a * shapes[j].opacity / shapes[i].area);
     }
     if (absl::Status s = sink(row); !s.ok()) return s;
   }

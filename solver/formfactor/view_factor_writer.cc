@@ -41,7 +41,12 @@ char* PutFixed6(char* out, double v) {
     return std::to_chars(out, out + kFixed6Room, v, std::chars_format::fixed, 6).ptr;
   }
   const uint64_t q = static_cast<uint64_t>(whole) + (scaled - whole > 0.5 ? 1 : 0);
-  char* end = std::to_chars(out, out + kFixed6Room, q / 1000000).ptr;
+  char* end = out;
+  if (q < 1000000) {
+    *end++ = '0';  // most view factors
+  } else {
+    end = std::to_chars(out, out + kFixed6Room, q / 1000000).ptr;
+  }
   *end++ = '.';
   uint64_t fraction = q % 1000000;
   for (int k = 5; k >= 0; --k, fraction /= 10) end[k] = static_cast<char>('0' + fraction % 10);
