@@ -74,10 +74,10 @@ std::string StoredSceneHash(const StoredScene& scene) {
   return scene.mesh.empty() ? SceneContentHash(scene.obj, scene.mtl) : MeshContentHash(scene.mesh);
 }
 
-absl::StatusOr<Scene> LoadStoredScene(const StoredScene& scene, const ImportOptions& options) {
+absl::StatusOr<Scene> LoadStoredScene(StoredScene scene, const ImportOptions& options) {
   if (!scene.files.empty()) {
     SceneBundle bundle{scene.files[0].path, {}};
-    for (const BundleFile& file : scene.files) bundle.files.emplace(file.path, file.data);
+    for (BundleFile& file : scene.files) bundle.files.emplace(file.path, std::move(file.data));
     return LoadSceneBundle(bundle, options);
   }
   absl::StatusOr<Scene> loaded = LoadTextOrMesh(scene);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 #include "solver/core/parallel.h"
@@ -95,7 +96,7 @@ size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) 
 // a triangle larger than the caches).
 constexpr size_t kEmitBlockBytes = size_t{8} << 20;
 absl::Status EmitTriangleRows(const std::vector<SurfaceShape>& shapes, size_t n,
-                              const std::vector<double>& af, int threads,
+                              std::span<const double> af, int threads,
                               const SurfaceRowSink& sink) {
   const size_t block = std::clamp<size_t>(kEmitBlockBytes / (sizeof(double) * n), 1, n);
   std::vector<double> rows(block * n);
@@ -131,7 +132,9 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
                                  const BlockerBvh& blockers, const SurfaceRowsOptions& options,
                                  const SurfaceRowSink& sink, SurfaceRowsStats& stats) {
   const auto start = Clock::now();
-  std::vector<double> af(TriangleSize(n));
+  // Not zeroed: every entry is written below, and its pages are first touched there, by the
+  // threads (no serial pass over a triangle of up to the memory budget).
+  const std::unique_ptr<double[]> af(new double[TriangleSize(n)]);
   const size_t block = BlockRows(n, options);
   auto last_print = start;
   for (size_t first = 0; first < n; first += block) {
@@ -142,7 +145,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
         const size_t i = first + r;
         if (i + 1 == n) continue;
         BuildTriangleRow(shapes, blockers, static_cast<uint32_t>(i), options.integration,
-                         std::span<double>(af.data() + TriangleIndex(n, i, i + 1), n - i - 1),
+                         std::span<double>(af.get() + TriangleIndex(n, i, i + 1), n - i - 1),
                          per_thread[ThreadIndex()]);
       }
     });
@@ -153,7 +156,10 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
       last_print = Clock::now();
     }
   }
-  if (absl::Status s = EmitTriangleRows(shapes, n, af, options.threads, sink); !s.ok()) return s;
+  const std::span<const double> triangle(af.get(), TriangleSize(n));
+  if (absl::Status s = EmitTriangleRows(shapes, n, triangle, options.threads, sink); !s.ok()) {
+    return s;
+  }
   stats.rows_seconds = SecondsSince(start);
   return absl::OkStatus();
 }
