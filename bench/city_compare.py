@@ -46,7 +46,8 @@ def main():
     v3_times, rf_times = [], []
     for _ in range(a.repeat):
         if not a.skip_view3d:
-            v3 = run([os.path.abspath(a.view3d), stem + '.vs3', stem + '.view3d.vf'], a.workdir)
+            v3 = run([os.path.abspath(a.view3d), stem + '.vs3', stem + '.view3d.vf'], a.workdir,
+                     quiet=True)
             v3_times.append(v3[0])
             print('View3D 3.2: %.2f s wall, %.2f s CPU, peak %.0f MiB' % v3)
         rf = run(rf_cmd, a.workdir)

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Peak RSS (VmHWM) of radfluxd for one upload of a ~MB-megabyte scene and for three at once
-# (issue 22: 857 MiB and 2.4 GiB for 200 MB before). The scenes are the Cornell box padded
-# with comment lines to MB megabytes (each a different pad, so three distinct scenes).
+# (issue 22: 857 MiB and 2.4 GiB for 200 MB while uploads were held in memory; now they
+# stream to disk, and what remains is the scene's text while it is parsed). The scenes are
+# the Cornell box padded with comment lines to MB megabytes (each a different pad, so three
+# distinct scenes).
 #   bench/upload_rss.sh [MB=200] [BUILD=build/ci]
 set -euo pipefail
 mb=${1:-200}
@@ -16,7 +18,7 @@ for k in 1 2 3; do
     >"$tmp/s$k/cornell_box.obj"
 done
 peak() {  # starts radfluxd, submits the given scenes at once, prints its VmHWM
-  rm -rf "$tmp/data" && mkdir "$tmp/data"
+  rm -rf "$tmp/data" "$tmp/log" && mkdir "$tmp/data"  # no earlier server's log to match
   "$build/server/radfluxd" --listen 127.0.0.1:0 --data-dir "$tmp/data" \
     --max-upload $(((mb + 10) * 1000000)) >"$tmp/log" 2>&1 &
   server=$!

@@ -63,11 +63,13 @@ def grid_room_vs3(n, path):
     return len(surfaces)
 
 
-def run(cmd, cwd):
+def run(cmd, cwd, quiet=False):
     """Wall seconds, CPU seconds (user + system) and peak RSS (MiB) of one command. On a
-    shared machine the wall time includes waiting for a core; the CPU time does not."""
+    shared machine the wall time includes waiting for a core; the CPU time does not.
+    quiet: drop its stderr too (View3D prints a progress line per surface there)."""
     start = time.perf_counter()
-    proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+    proc = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL if quiet else None)
     _, status, usage = os.wait4(proc.pid, 0)
     seconds = time.perf_counter() - start
     if status != 0:
@@ -106,7 +108,7 @@ def main():
     v3_out = os.path.join(a.workdir, 'room%d.view3d.vf' % a.n)
     rf_out = os.path.join(a.workdir, 'room%d.radflux.vf' % a.n)
     if not a.skip_view3d or not os.path.exists(v3_out):
-        v3_s, v3_cpu, v3_mib = run([a.view3d, model, v3_out], a.workdir)
+        v3_s, v3_cpu, v3_mib = run([a.view3d, model, v3_out], a.workdir, quiet=True)
         print('View3D 3.2: %d surfaces, %.2f s wall, %.2f s CPU, peak %.0f MiB'
               % (surfaces, v3_s, v3_cpu, v3_mib))
     else:

@@ -27,7 +27,7 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   absl::StatusOr<ImportOptions> import = FromProto(job.options().import_options());
   if (!import.ok()) return import.status();
   JobGeometry geometry;
-  absl::StatusOr<Scene> scene = LoadStoredScene(*stored, *import);
+  absl::StatusOr<Scene> scene = LoadStoredScene(*std::move(stored), *import);
   if (!scene.ok()) return scene.status();
   geometry.scene = *std::move(scene);
   if (absl::Status s = ValidateScene(geometry.scene); !s.ok()) return s;

@@ -268,7 +268,8 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   AddConnectionFlags(*view, *c);
   view->callback([=, &exit_code] { exit_code = RunView(*c, *view_args); });
 
-  auto* list = app.add_subcommand("list", "list jobs, newest first");
+  auto* list = app.add_subcommand(
+      "list", "list jobs, newest first: id, state, phase, patches, message, owner");
   auto page_size = std::make_shared<int>(100);
   list->add_option("--limit", *page_size, "at most this many jobs");
   AddConnectionFlags(*list, *c);
@@ -287,7 +288,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
                                                       : "")
                 << "  "
                 << v1::Phase_Name(job.phase()) << "  patches " << job.patches() << "  "
-                << job.message() << "\n";
+                << job.message() << "  owner " << job.owner() << "\n";
     }
   });
 }

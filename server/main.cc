@@ -260,6 +260,10 @@ int main(int argc, char** argv) {
   app.add_option("--solve-delay-ms", flags.manager.solve_delay_ms,
                  "testing: sleep this long after every solver iteration")
       ->check(CLI::Range(0, 60000));
+  app.add_option("--testing-submit-delay-ms", flags.manager.submit_delay_ms,
+                 "testing: sleep this long in each submit between its disk check and its insert "
+                 "(other submits wait: the check and the insert are one step)")
+      ->check(CLI::Range(0, 60000));
   app.add_option("--snapshot-interval-ms", flags.manager.snapshot_interval_ms,
                  "watchers get at most one snapshot of a job per this many milliseconds of its "
                  "solve: the newest, and always the last iteration's before the job ends (0 = "

@@ -26,8 +26,9 @@ MeshInput MeshInputFromProto(const v1::Mesh& mesh) {
     face.group = f.group();
   }
   for (const v1::MeshMaterial& m : mesh.materials()) {
-    input.materials.push_back(
-        {m.name(), RgbFromProto(m.reflectance()), RgbFromProto(m.emitted_radiance())});
+    input.materials.push_back({m.name(), RgbFromProto(m.reflectance()),
+                               RgbFromProto(m.emitted_radiance()),
+                               m.has_opacity() ? m.opacity() : 1.0});
   }
   return input;
 }
@@ -73,10 +74,10 @@ std::string StoredSceneHash(const StoredScene& scene) {
   return scene.mesh.empty() ? SceneContentHash(scene.obj, scene.mtl) : MeshContentHash(scene.mesh);
 }
 
-absl::StatusOr<Scene> LoadStoredScene(const StoredScene& scene, const ImportOptions& options) {
+absl::StatusOr<Scene> LoadStoredScene(StoredScene scene, const ImportOptions& options) {
   if (!scene.files.empty()) {
     SceneBundle bundle{scene.files[0].path, {}};
-    for (const BundleFile& file : scene.files) bundle.files.emplace(file.path, file.data);
+    for (BundleFile& file : scene.files) bundle.files.emplace(file.path, std::move(file.data));
     return LoadSceneBundle(bundle, options);
   }
   absl::StatusOr<Scene> loaded = LoadTextOrMesh(scene);

@@ -32,8 +32,9 @@ std::string StoredSceneHash(const StoredScene& scene);
 // The scene as the solver sees it, read with the import rules `options` as `radflux solve`
 // reads it (a bundle through LoadSceneBundle; OBJ text and Mesh through their loaders, then
 // ApplyImportRules). Not yet validated: see ValidateScene. INVALID_ARGUMENT with the
-// loader's or the rules' message (for a Mesh: the face index and what is wrong).
-absl::StatusOr<Scene> LoadStoredScene(const StoredScene& scene, const ImportOptions& options);
+// loader's or the rules' message (for a Mesh: the face index and what is wrong). Takes the
+// scene by value: a bundle's bytes are moved, not copied, into the loader's files.
+absl::StatusOr<Scene> LoadStoredScene(StoredScene scene, const ImportOptions& options);
 
 // The SceneChunk stream of GetScene / FetchScene: the header (name, sizes or the bundle's
 // files, `sha256`), then data chunks of at most 1 MiB whose concatenation is obj + mtl, the

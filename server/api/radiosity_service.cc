@@ -19,8 +19,9 @@ class ErrorWriteReactor final : public grpc::ServerWriteReactor<T> {
   void OnDone() override { delete this; }
 };
 
-// Collects an upload, checks its size against the header and the limit, then stores it
-// (off the reactor thread).
+// Streams an upload to disk as its chunks arrive (SceneUpload: size checked per chunk,
+// written off the reactor thread, one chunk in flight), then checks and stores the scene.
+// A failed or cancelled upload's temp files are removed when it ends.
 class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
  public:
   // Holds one of `uploads` (already counted by the caller) until the upload is done.
@@ -31,9 +32,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   }
 
   void OnReadDone(bool ok) override {
-    const absl::Status read = GuardCall("UploadScene", [&] { return ReadChunk(ok); });
-    if (!read.ok()) return Fail(read);
-    if (!finished_) StartRead(&chunk_);
+    work_.Post([this, ok] { ok ? Take() : Complete(); });
   }
 
   void OnDone() override {
@@ -42,55 +41,43 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   }
 
  private:
-  // Takes one chunk (`ok` false: the stream ended); an error ends the upload with it.
-  absl::Status ReadChunk(bool ok) {
-    if (!ok) return Complete();
-    if (first_) {
-      first_ = false;
+  // Writes the chunk just read and reads the next; an error ends the upload with it.
+  void Take() {
+    const absl::Status taken = GuardCall("UploadScene", [&] { return TakeChunk(); });
+    if (taken.ok()) {
+      StartRead(&chunk_);
+    } else {
+      End(taken);
+    }
+  }
+
+  absl::Status TakeChunk() {
+    if (!upload_) {
       if (!chunk_.has_header())
         return absl::InvalidArgumentError("the first chunk of an upload must carry its header");
       header_ = chunk_.header();
-      absl::StatusOr<uint64_t> size = ScenePayloadSize(header_);
-      if (!size.ok()) return size.status();
-      expected_ = *size;
-      if (expected_ > manager_.options().max_upload) {
-        return absl::ResourceExhaustedError(
-            absl::StrCat("scene of ", expected_, " bytes exceeds the upload limit of ",
-                         manager_.options().max_upload, " bytes (--max-upload)"));
-      }
-      data_.reserve(expected_);
+      absl::StatusOr<std::unique_ptr<SceneUpload>> upload = manager_.StartUpload(header_);
+      if (!upload.ok()) return upload.status();
+      upload_ = *std::move(upload);
     }
-    if (chunk_.data().size() > expected_ - data_.size()) {
-      return absl::DataLossError(
-          absl::StrCat("upload is longer than the ", expected_, " bytes its header declares"));
-    }
-    data_ += chunk_.data();
-    return absl::OkStatus();
+    return upload_->Append(chunk_.data());
   }
 
-  void Fail(const absl::Status& status) {
-    finished_ = true;
+  // The stream ended (or was cancelled): check and store the scene.
+  void Complete() {
+    absl::StatusOr<v1::SceneRef> ref =
+        GuardCall("UploadScene", [&]() -> absl::StatusOr<v1::SceneRef> {
+          if (!upload_) return absl::InvalidArgumentError("empty upload");
+          return manager_.AddScene(header_, *upload_, caller_);
+        });
+    if (ref.ok()) *response_ = *ref;
+    End(ref.status());
+  }
+
+  // Removes what the upload left on disk (nothing once stored) and ends the call.
+  void End(const absl::Status& status) {
+    upload_.reset();
     Finish(ToGrpcStatus(status));
-  }
-
-  // The stream ended: store the scene off the reactor thread.
-  absl::Status Complete() {
-    if (first_) return absl::InvalidArgumentError("empty upload");
-    if (data_.size() != expected_) {
-      return absl::DataLossError(
-          absl::StrCat("upload truncated: got ", data_.size(), " of ", expected_, " bytes"));
-    }
-    finished_ = true;
-    work_.Post([this] {
-      absl::StatusOr<v1::SceneRef> ref = GuardCall("UploadScene", [&] {
-        absl::StatusOr<StoredScene> scene = SplitScenePayload(header_, data_);
-        if (!scene.ok()) return absl::StatusOr<v1::SceneRef>(scene.status());
-        return manager_.AddScene(header_, *std::move(scene), caller_);
-      });
-      if (ref.ok()) *response_ = *ref;
-      Finish(ToGrpcStatus(ref.status()));
-    });
-    return absl::OkStatus();
   }
 
   JobManager& manager_;
@@ -100,10 +87,7 @@ class UploadReactor final : public grpc::ServerReadReactor<v1::SceneChunk> {
   std::atomic<int>& uploads_;
   v1::SceneChunk chunk_;
   v1::SceneHeader header_;
-  bool first_ = true;
-  bool finished_ = false;  // Finish was called or is posted: read no more
-  uint64_t expected_ = 0;
-  std::string data_;
+  std::unique_ptr<SceneUpload> upload_;  // from the first chunk on
 };
 
 // Streams messages produced off the reactor thread by `produce` (a result's chunks, a

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -64,42 +65,60 @@ std::string NewJobId() {
 
 }  // namespace
 
+absl::StatusOr<std::unique_ptr<SceneUpload>> JobManager::StartUpload(
+    const v1::SceneHeader& header) {
+  absl::StatusOr<uint64_t> size = ScenePayloadSize(header);
+  if (!size.ok()) return size.status();
+  if (*size > options_.max_upload) {
+    return absl::ResourceExhaustedError(absl::StrCat("scene of ", *size,
+                                                     " bytes exceeds the upload limit of ",
+                                                     options_.max_upload, " bytes (--max-upload)"));
+  }
+  return store_.StartUpload(header);
+}
+
 absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
-                                                  StoredScene scene, const Principal& caller) {
-  const std::string sha = StoredSceneHash(scene);
-  if (!header.sha256().empty() && header.sha256() != sha) {
-    return absl::DataLossError(
-        absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
-  }
-  if (scene.name.empty()) {
-    scene.name = !scene.files.empty() ? scene.files[0].path
-                 : scene.mesh.empty() ? "scene.obj"
-                                      : "mesh";
-  }
-  // Checked with the default import rules; a job's own (--strict, --emit, ...) are applied
-  // when it is submitted, so a scene lit only by --emit uploads without an emitter.
-  absl::StatusOr<Scene> loaded = LoadStoredScene(scene, ImportOptions{});
-  if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
-  if (absl::Status s = ValidateScene(*loaded, /*require_emitter=*/false); !s.ok()) {
-    return absl::InvalidArgumentError(s.message());
-  }
+                                                  SceneUpload& upload, const Principal& caller) {
+  std::string sha;
   v1::SceneRef ref;
+  std::string name;
+  {  // the scene is in memory in this block only: it is stored from its files
+    absl::StatusOr<StoredScene> scene = upload.Finish(&sha);
+    if (!scene.ok()) return scene.status();
+    if (!header.sha256().empty() && header.sha256() != sha) {
+      return absl::DataLossError(
+          absl::StrCat("upload hashes to ", sha, ", not the declared ", header.sha256()));
+    }
+    if (scene->name.empty()) {
+      scene->name = !scene->files.empty() ? scene->files[0].path
+                    : scene->mesh.empty() ? "scene.obj"
+                                          : "mesh";
+    }
+    name = scene->name;
+    // Checked with the default import rules; a job's own (--strict, --emit, ...) are applied
+    // when it is submitted, so a scene lit only by --emit uploads without an emitter.
+    absl::StatusOr<Scene> loaded = LoadStoredScene(*std::move(scene), ImportOptions{});
+    if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
+    if (absl::Status s = ValidateScene(*loaded, /*require_emitter=*/false); !s.ok()) {
+      return absl::InvalidArgumentError(s.message());
+    }
+    ref.set_faces(loaded->faces.size());
+    ref.set_materials(loaded->materials.size());
+  }
   ref.set_sha256(sha);
-  ref.set_faces(loaded->faces.size());
-  ref.set_materials(loaded->materials.size());
   // already_stored tells the caller of its own uploads only: whether another principal
   // uploaded the same bytes stays unsaid.
   const bool stored = store_.HasScene(sha);
   ref.set_already_stored(stored && store_.SceneOwnedBy(sha, caller.name));
   if (!stored) {
-    if (absl::Status s = store_.PutScene(sha, scene); !s.ok()) return s;
-    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), scene.name, ref.faces());
+    if (absl::Status s = store_.PutScene(sha, name, upload); !s.ok()) return s;
+    spdlog::info("scene {} stored ({}, {} faces)", sha.substr(0, 12), name, ref.faces());
   }
   if (absl::Status s = store_.AddSceneOwner(sha, caller.name); !s.ok()) return s;
   return ref;
 }
 
-absl::StatusOr<uint64_t> JobManager::CheckLimits(const v1::SubmitJobRequest& request,
+absl::StatusOr<JobManager::DiskNeed> JobManager::CheckLimits(const v1::SubmitJobRequest& request,
                                                  const Principal& caller) {
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
       scenes_.Get(request.scene_sha256(), request.options().import_options());
@@ -137,7 +156,7 @@ absl::StatusOr<uint64_t> JobManager::CheckLimits(const v1::SubmitJobRequest& req
       !s.ok()) {
     return s;
   }
-  return CheckDiskRoom(patches, *options);
+  return DiskNeed{JobDiskNeed(patches, *options), patches};
 }
 
 absl::Status JobManager::CheckRunningJobs(const Principal& caller) {
@@ -172,7 +191,7 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request,
   const auto check_start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckSceneVisible(request.scene_sha256(), caller); !s.ok()) return s;
   if (absl::Status s = store_.EnsureSpaceReserve(); !s.ok()) return s;
-  const absl::StatusOr<uint64_t> disk_need = CheckLimits(request, caller);
+  const absl::StatusOr<DiskNeed> disk_need = CheckLimits(request, caller);
   if (!disk_need.ok()) return disk_need.status();
   const auto create_start = std::chrono::steady_clock::now();
   v1::Job job;
@@ -185,8 +204,12 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request,
   job.set_owner(caller.name);
   absl::StatusOr<v1::Job> created;
   {
-    std::lock_guard admit(admit_mu_);  // no other submit between the count and the insert
+    std::lock_guard admit(admit_mu_);  // no other submit between the checks and the insert
     if (absl::Status s = CheckRunningJobs(caller); !s.ok()) return s;
+    if (absl::Status s = CheckDiskRoom(*disk_need); !s.ok()) return s;
+    if (options_.submit_delay_ms > 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(options_.submit_delay_ms));
+    }
     {
       std::lock_guard lock(mu_);
       if (stopping_) return absl::UnavailableError("server is shutting down");
@@ -198,13 +221,16 @@ absl::StatusOr<v1::Job> JobManager::Submit(const v1::SubmitJobRequest& request,
     // Committed without its fsync, queued, and then made durable: the job starts (its first
     // steps need no durable row) while the fsync runs, and the client hears of it only after.
     created = store_.CreateJob(job, request_hash, /*sync=*/false);
+    if (created.ok() && created->job_id() == job.job_id()) {
+      std::lock_guard lock(mu_);
+      disk_needs_.emplace(job.job_id(), disk_need->bytes);  // held before the next check
+    }
   }
   if (!created.ok() || created->job_id() != job.job_id()) return durable(created);  // a retry
   const auto sync_start = std::chrono::steady_clock::now();
   {
     std::lock_guard lock(mu_);
     queue_.push_back(job.job_id());
-    disk_needs_.emplace(job.job_id(), *disk_need);
     v1::JobEvent event;
     event.set_state(v1::JOB_STATE_QUEUED);
     HubLocked(job.job_id())->Publish(event);
@@ -250,17 +276,16 @@ void JobManager::TrackDiskNeed(const v1::Job& job) {
   disk_needs_.emplace(job.job_id(), need);
 }
 
-absl::StatusOr<uint64_t> JobManager::CheckDiskRoom(uint64_t patches, const JobOptions& options) {
-  const uint64_t need = JobDiskNeed(patches, options);
+absl::Status JobManager::CheckDiskRoom(const DiskNeed& need) {
   const absl::StatusOr<uint64_t> free = FreeDiskBytes(store_.data_dir());
-  if (!free.ok()) return need;
+  if (!free.ok()) return absl::OkStatus();
   const uint64_t reserved = ReservedDiskBytes();
-  if (reserved <= *free && need <= *free - reserved) return need;
+  if (reserved <= *free && need.bytes <= *free - reserved) return absl::OkStatus();
   constexpr double kMiB = 1 << 20;
   return absl::ResourceExhaustedError(absl::StrFormat(
       "job would need up to %.1f MiB of disk (%d patches: rows, checkpoint, result); the data "
       "directory %s has %.1f MiB free, of which the unfinished jobs may still write %.1f MiB",
-      static_cast<double>(need) / kMiB, patches, store_.data_dir(),
+      static_cast<double>(need.bytes) / kMiB, need.patches, store_.data_dir(),
       static_cast<double>(*free) / kMiB, static_cast<double>(reserved) / kMiB));
 }
 

@@ -2,6 +2,7 @@
 // from them, from memory or from the store.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
@@ -74,6 +75,9 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
   const bool in_memory = bytes != nullptr;
   if (!in_memory) {
     absl::StatusOr<std::string> read = store_.GetResult(job_id);
+    if (absl::IsDataLoss(read.status()) || absl::IsNotFound(read.status())) {
+      return RecomputeResult(*std::move(job), read.status());
+    }
     if (!read.ok()) return read.status();
     bytes = std::make_shared<const std::string>(*std::move(read));
   }
@@ -83,6 +87,39 @@ absl::StatusOr<std::vector<v1::ResultChunk>> JobManager::Result(const std::strin
                 MsBetween(read_start, std::chrono::steady_clock::now()));
   if (chunks.ok() && !chunks->empty()) *(*chunks)[0].mutable_header()->mutable_job() = *job;
   return chunks;
+}
+
+absl::Status JobManager::RecomputeResult(v1::Job job, const absl::Status& why) {
+  const std::string& job_id = job.job_id();
+  const absl::Status recomputing = absl::UnavailableError(absl::StrCat(
+      "job ", job_id, ": its stored result was lost or corrupt on the server and is being "
+      "computed again; watch the job and ask for its result when it has succeeded"));
+  absl::StatusOr<uint64_t> base = store_.NextHistoryBase(job_id);
+  if (!base.ok()) return base.status();
+  TrackDiskNeed(job);
+  {
+    std::lock_guard lock(mu_);
+    if (stopping_) return absl::UnavailableError("server is shutting down");
+    if (running_.count(job_id) > 0 ||
+        std::find(queue_.begin(), queue_.end(), job_id) != queue_.end()) {
+      return recomputing;  // another call found it first
+    }
+    spdlog::error("job {}: SUCCEEDED but its result is unreadable ({}); computing it again",
+                  job_id, std::string(why.message()));
+    store_.DiscardResult(job_id);
+    job.set_state(v1::JOB_STATE_QUEUED);
+    job.set_phase(v1::PHASE_UNSPECIFIED);
+    job.set_message("stored result lost or corrupt; computing it again");
+    job.clear_finished_unix_ms();
+    if (absl::Status s = store_.UpdateJob(job); !s.ok()) return s;
+    // The closed hub goes: watchers from now on follow the new run.
+    finished_hubs_.erase(std::remove(finished_hubs_.begin(), finished_hubs_.end(), job_id),
+                         finished_hubs_.end());
+    RebuildHubLocked(job, *base);
+    queue_.push_back(job_id);
+  }
+  cv_.notify_one();
+  return recomputing;
 }
 
 }  // namespace radflux

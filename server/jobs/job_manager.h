@@ -46,6 +46,7 @@ struct ManagerOptions {
                                        // newest; the last iteration's always), 0 = every one
   RowFarm* farm = nullptr;             // worker nodes share the row blocks through it (may be null)
   int block_delay_ms = 0;              // testing: sleep after each row block built on the server
+  int submit_delay_ms = 0;             // testing: sleep in a submit between its checks and insert
   // The limits of a job's owner when it runs (its cpu_seconds; null: no limits).
   std::function<PrincipalLimits(const std::string& owner)> limits_of;
 };
@@ -72,10 +73,14 @@ class JobManager {
   // another principal's job or scene is NOT_FOUND exactly as a job or scene that does not
   // exist (ids do not leak); an admin sees all.
 
-  // Parses and stores an uploaded scene, OBJ + MTL or Mesh, as one of the caller's
-  // (INVALID_ARGUMENT with the loader's message; DATA_LOSS when it does not hash to
-  // header.sha256()). already_stored: the caller had uploaded it before.
-  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, StoredScene scene,
+  // An upload of the scene `header` declares, streamed to disk (SceneUpload): INVALID_ARGUMENT
+  // for a header ScenePayloadSize refuses, RESOURCE_EXHAUSTED past --max-upload.
+  absl::StatusOr<std::unique_ptr<SceneUpload>> StartUpload(const v1::SceneHeader& header);
+  // Finishes `upload` (all its bytes written), checks and parses the scene and stores it as
+  // one of the caller's (INVALID_ARGUMENT with the loader's message; DATA_LOSS when it was
+  // cut short or does not hash to header.sha256()). already_stored: the caller had uploaded
+  // it before.
+  absl::StatusOr<v1::SceneRef> AddScene(const v1::SceneHeader& header, SceneUpload& upload,
                                         const Principal& caller);
   // Validates and queues a job of the caller (RESOURCE_EXHAUSTED "disk full ..." while the
   // data directory cannot hold the store's space reserve; RESOURCE_EXHAUSTED naming the limit
@@ -96,7 +101,8 @@ class JobManager {
   // The event hub of a job (live, or a closed one-event history for a finished job).
   absl::StatusOr<std::shared_ptr<JobHub>> Hub(const std::string& job_id, const Principal& caller);
   // The result chunks of a SUCCEEDED job (FAILED_PRECONDITION before that); with
-  // `report_only`, only the header and the report (GetResultRequest.report_only).
+  // `report_only`, only the header and the report (GetResultRequest.report_only). A result
+  // file lost or failing its check is computed again (RecomputeResult): UNAVAILABLE saying so.
   absl::StatusOr<std::vector<v1::ResultChunk>> Result(const std::string& job_id,
                                                       const Principal& caller,
                                                       bool report_only = false);
@@ -110,17 +116,24 @@ class JobManager {
 
   // The job if the caller may see it, else NOT_FOUND as for no such job.
   absl::StatusOr<v1::Job> VisibleJob(const std::string& job_id, const Principal& caller);
-  // The scene and options checks of a submit (server and caller limits, memory, disk);
-  // the job's disk need in bytes.
-  absl::StatusOr<uint64_t> CheckLimits(const v1::SubmitJobRequest& request,
+  // What a job may write to disk (JobDiskNeed), for CheckDiskRoom.
+  struct DiskNeed {
+    uint64_t bytes = 0;
+    uint64_t patches = 0;
+  };
+  // The scene and options checks of a submit (server and caller limits, memory); the job's
+  // disk need, checked against the free space by CheckDiskRoom with the insert.
+  absl::StatusOr<DiskNeed> CheckLimits(const v1::SubmitJobRequest& request,
                                        const Principal& caller);
   // NOT_FOUND (as for no such scene) unless the caller uploaded the scene or is an admin.
   absl::Status CheckSceneVisible(const std::string& sha256, const Principal& caller);
   // RESOURCE_EXHAUSTED when the caller has its running_jobs limit of jobs unfinished.
   absl::Status CheckRunningJobs(const Principal& caller);
-  // The job's disk need, or RESOURCE_EXHAUSTED when it exceeds the data directory's free
-  // space less what the unfinished jobs may still write (ReservedDiskBytes).
-  absl::StatusOr<uint64_t> CheckDiskRoom(uint64_t patches, const JobOptions& options);
+  // RESOURCE_EXHAUSTED when the job's disk need exceeds the data directory's free space
+  // less what the unfinished jobs may still write (ReservedDiskBytes). Called under
+  // admit_mu_ with the insert that records the need, so two submits cannot both take the
+  // room of one.
+  absl::Status CheckDiskRoom(const DiskNeed& need);
   // What the jobs of disk_needs_ may still write: each one's need less the bytes its
   // directory holds already.
   uint64_t ReservedDiskBytes();
@@ -143,6 +156,11 @@ class JobManager {
   // deterministic (rows still stored are reused; a solver checkpoint is not, so that cg,
   // whose resume agrees only within the tolerance, restarts as the first run did).
   absl::Status CheckResultsAtStart();
+  // A SUCCEEDED job whose result file was found lost or corrupt (`why`) after it was marked
+  // durable: the file is discarded and the job goes back to QUEUED (its watchers see a new
+  // run) to compute the result again, bit-identical, from its scene (and rows still stored).
+  // Returns UNAVAILABLE saying so, also when another call has requeued it already.
+  absl::Status RecomputeResult(v1::Job job, const absl::Status& why);
   // On Start: queues a stored QUEUED or RUNNING job and rebuilds its event history.
   absl::Status RequeueAtStart(const v1::Job& job);
   std::shared_ptr<JobHub> HubLocked(const std::string& job_id);
@@ -162,7 +180,7 @@ class JobManager {
   // and decompressing its file.
   RecentMap<std::string> recent_results_{2};
   const ManagerOptions options_;
-  std::mutex admit_mu_;  // a submit's running_jobs check and its insert, one submit at a time
+  std::mutex admit_mu_;  // a submit's running_jobs and disk checks and its insert, one at a time
   std::mutex mu_;
   std::condition_variable cv_;
   std::deque<std::string> queue_;

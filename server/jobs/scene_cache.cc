@@ -29,13 +29,14 @@ absl::StatusOr<std::shared_ptr<const LoadedScene>> SceneCache::Get(
   if (!options.ok()) return options.status();
   absl::StatusOr<StoredScene> stored = store_.GetScene(sha256);
   if (!stored.ok()) return stored.status();
-  absl::StatusOr<Scene> loaded = LoadStoredScene(*stored, *options);
+  const std::string name = stored->name;
+  absl::StatusOr<Scene> loaded = LoadStoredScene(*std::move(stored), *options);
   if (!loaded.ok()) return absl::InvalidArgumentError(std::string(loaded.status().message()));
   if (absl::Status s = ValidateScene(*loaded); !s.ok()) {
     return absl::InvalidArgumentError(std::string(s.message()));
   }
   auto scene = std::make_shared<LoadedScene>();
-  scene->name = stored->name;
+  scene->name = name;
   scene->scene = *std::move(loaded);
   recent_.Put(key, scene);
   return scene;

@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
-#include <openssl/evp.h>
 #include <unistd.h>
 #include <zstd.h>
 
@@ -10,7 +9,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <memory>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "server/store/disk_space.h"
@@ -40,6 +40,25 @@ std::string ParentDir(const std::string& path) {
   return std::filesystem::path(path).parent_path().string();
 }
 
+// The header of a blob of `raw_size` bytes with hex SHA-256 `hash`: the bytes before its frames.
+std::string BlobHeader(uint64_t raw_size, std::string_view hash) {
+  return absl::StrCat(std::string(kMagic), raw_size, "\n", std::string(hash), "\n");
+}
+
+// Appends `data` compressed as one zstd frame to `frames`.
+absl::Status AppendFrame(std::string& frames, std::string_view data) {
+  const size_t at = frames.size();
+  frames.resize(at + ZSTD_compressBound(data.size()));
+  const size_t size =
+      ZSTD_compress(frames.data() + at, frames.size() - at, data.data(), data.size(), kZstdLevel);
+  if (ZSTD_isError(size)) {
+    frames.resize(at);
+    return absl::InternalError(ZSTD_getErrorName(size));
+  }
+  frames.resize(at + size);
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 bool SyncPath(const std::string& path) {
@@ -50,36 +69,20 @@ bool SyncPath(const std::string& path) {
   return ok;
 }
 
-struct BlobBuilder::Hash {
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx{EVP_MD_CTX_new(), EVP_MD_CTX_free};
-};
-
-BlobBuilder::BlobBuilder() : hash_(std::make_unique<Hash>()) {
-  EVP_DigestInit_ex(hash_->ctx.get(), EVP_sha256(), nullptr);
-}
+BlobBuilder::BlobBuilder() : hash_(std::make_unique<Sha256Stream>()) {}
 BlobBuilder::~BlobBuilder() = default;
 BlobBuilder::BlobBuilder(BlobBuilder&&) noexcept = default;
 BlobBuilder& BlobBuilder::operator=(BlobBuilder&&) noexcept = default;
 
 absl::Status BlobBuilder::Append(std::string_view data) {
-  const size_t at = frames_.size();
-  frames_.resize(at + ZSTD_compressBound(data.size()));
-  const size_t size =
-      ZSTD_compress(frames_.data() + at, frames_.size() - at, data.data(), data.size(), kZstdLevel);
-  if (ZSTD_isError(size)) {
-    frames_.resize(at);
-    return absl::InternalError(ZSTD_getErrorName(size));
-  }
-  frames_.resize(at + size);
-  EVP_DigestUpdate(hash_->ctx.get(), data.data(), data.size());
+  if (absl::Status s = AppendFrame(frames_, data); !s.ok()) return s;
+  hash_->Update(data);
   raw_size_ += data.size();
   return absl::OkStatus();
 }
 
 std::string BlobBuilder::File() const {
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  EVP_MD_CTX_copy_ex(ctx.get(), hash_->ctx.get());
-  return absl::StrCat(std::string(kMagic), raw_size_, "\n", DigestHex(ctx.get()), "\n", frames_);
+  return absl::StrCat(BlobHeader(raw_size_, hash_->Hex()), frames_);
 }
 
 namespace {
@@ -116,6 +119,67 @@ absl::Status WriteBuiltBlobFile(const std::string& path, std::string_view file,
   return absl::OkStatus();
 }
 
+absl::StatusOr<std::unique_ptr<StreamedBlobFile>> StreamedBlobFile::Create(
+    const std::string& dir, uint64_t raw_size, std::string what) {
+  std::string temp = dir + "/upload.XXXXXX";
+  const int fd = ::mkostemp(temp.data(), O_CLOEXEC);
+  if (fd < 0) return DiskWriteError(what, temp, errno);
+  std::unique_ptr<StreamedBlobFile> file(new StreamedBlobFile(temp, fd, raw_size, what));
+  // The hash is not known yet: zeros of its length now, the digest at Finish.
+  const std::string header = BlobHeader(raw_size, std::string(kHashHexSize, '0'));
+  const int error = ::fchmod(fd, 0644) != 0 ? errno : WriteAll(fd, header, /*sync=*/false);
+  if (error != 0) return DiskWriteError(what, temp, error);
+  return file;
+}
+
+StreamedBlobFile::StreamedBlobFile(std::string temp, int fd, uint64_t raw_size, std::string what)
+    : temp_(std::move(temp)), fd_(fd), raw_size_(raw_size), what_(std::move(what)) {}
+
+StreamedBlobFile::~StreamedBlobFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_) ::unlink(temp_.c_str());
+}
+
+absl::Status StreamedBlobFile::Append(std::string_view data) {
+  if (data.empty()) return absl::OkStatus();
+  frame_.clear();
+  if (absl::Status s = AppendFrame(frame_, data); !s.ok()) return s;
+  if (const int error = WriteAll(fd_, frame_, /*sync=*/false); error != 0) {
+    return DiskWriteError(what_, temp_, error);
+  }
+  hash_.Update(data);
+  got_ += data.size();
+  framed_ = true;
+  return absl::OkStatus();
+}
+
+absl::Status StreamedBlobFile::Finish() {
+  if (got_ != raw_size_) {
+    return absl::DataLossError(absl::StrCat(what_, ": got ", got_, " of ", raw_size_, " bytes"));
+  }
+  if (!framed_) {  // a blob has at least one frame (ReadBlobFile decompresses one)
+    frame_.clear();
+    if (absl::Status s = AppendFrame(frame_, {}); !s.ok()) return s;
+    if (const int error = WriteAll(fd_, frame_, false); error != 0) {
+      return DiskWriteError(what_, temp_, error);
+    }
+  }
+  const std::string hash = hash_.Hex();
+  const off_t at = static_cast<off_t>(BlobHeader(raw_size_, hash).size() - kHashHexSize - 1);
+  if (::pwrite(fd_, hash.data(), hash.size(), at) != static_cast<ssize_t>(hash.size()) ||
+      ::fsync(fd_) != 0) {
+    return DiskWriteError(what_, temp_, errno);
+  }
+  return absl::OkStatus();
+}
+
+absl::Status StreamedBlobFile::Commit(const std::string& path) {
+  if (::rename(temp_.c_str(), path.c_str()) != 0) return DiskWriteError(what_, path, errno);
+  committed_ = true;
+  SyncPath(ParentDir(path));
+  return absl::OkStatus();
+}
+
 absl::Status CreateDurableFile(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) return DiskWriteError("an empty file", path, errno);
@@ -139,12 +203,45 @@ absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view
   return absl::OkStatus();
 }
 
+namespace {
+
+// Decompresses the frames in `in` into `parts`, in order, filling each exactly; false when
+// the frames hold fewer or more bytes than the parts, or are not valid zstd.
+bool DecompressInto(ZSTD_inBuffer in, std::vector<std::string>& parts) {
+  std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(), ZSTD_freeDCtx);
+  char spare = 0;  // after the parts: any byte more is too many
+  size_t left = 1;
+  for (size_t k = 0; k <= parts.size(); ++k) {
+    const bool last = k == parts.size();
+    ZSTD_outBuffer out{last ? &spare : parts[k].data(), last ? 1 : parts[k].size(), 0};
+    while (last ? in.pos < in.size : out.pos < out.size) {
+      const size_t in_before = in.pos;
+      const size_t out_before = out.pos;
+      left = ZSTD_decompressStream(context.get(), &out, &in);
+      if (ZSTD_isError(left) || (last && out.pos > 0)) return false;
+      if (in.pos == in_before && out.pos == out_before) return false;  // truncated
+    }
+  }
+  return left == 0;  // the last frame is whole
+}
+
+}  // namespace
+
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  absl::StatusOr<std::vector<std::string>> parts = ReadBlobFileParts(path, {});
+  if (!parts.ok()) return parts.status();
+  return std::move(parts->front());
+}
+
+absl::StatusOr<std::vector<std::string>> ReadBlobFileParts(const std::string& path,
+                                                           std::vector<uint64_t> sizes) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return absl::NotFoundError(absl::StrCat("no such blob: ", path));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string file = buffer.str();
+  std::string file(static_cast<size_t>(in.tellg()), '\0');  // read once, not copied
+  in.seekg(0);
+  if (!in.read(file.data(), static_cast<std::streamsize>(file.size()))) {
+    return absl::DataLossError(absl::StrCat("cannot read blob ", path));
+  }
   const auto corrupt = [&](std::string_view why) {
     return absl::DataLossError(absl::StrCat("corrupt blob ", path, ": ", std::string(why)));
   };
@@ -159,12 +256,23 @@ absl::StatusOr<std::string> ReadBlobFile(const std::string& path) {
   char* end = nullptr;
   const unsigned long long raw_size = std::strtoull(size_text.c_str(), &end, 10);
   if (end == size_text.c_str() || *end != '\0') return corrupt("bad size");
-  std::string raw(raw_size, '\0');
-  const size_t got =
-      ZSTD_decompress(raw.data(), raw.size(), file.data() + body, file.size() - body);
-  if (ZSTD_isError(got) || got != raw_size) return corrupt("bad compressed data");
-  if (Sha256Hex(raw) != hash) return corrupt("checksum mismatch");
-  return raw;
+  if (sizes.empty()) sizes.push_back(raw_size);
+  uint64_t total = 0;
+  for (uint64_t size : sizes) {
+    if (__builtin_add_overflow(total, size, &total)) return corrupt("parts overflow");
+  }
+  if (total != raw_size) {
+    return corrupt(absl::StrCat(raw_size, " bytes, not the ", total, " of its parts"));
+  }
+  std::vector<std::string> parts;
+  for (uint64_t size : sizes) parts.emplace_back(size, '\0');
+  if (!DecompressInto({file.data() + body, file.size() - body, 0}, parts)) {
+    return corrupt("bad compressed data");
+  }
+  Sha256Stream digest;
+  for (const std::string& part : parts) digest.Update(part);
+  if (digest.Hex() != hash) return corrupt("checksum mismatch");
+  return parts;
 }
 
 }  // namespace radflux

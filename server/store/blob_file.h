@@ -10,8 +10,10 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "absl/status/statusor.h"
+#include "wire/scene_hash.h"
 
 namespace radflux {
 
@@ -33,10 +35,47 @@ class BlobBuilder {
   std::string File() const;
 
  private:
-  struct Hash;                  // the running SHA-256 (OpenSSL)
-  std::unique_ptr<Hash> hash_;  // null after a move
+  std::unique_ptr<Sha256Stream> hash_;  // of the raw bytes; null after a move
   uint64_t raw_size_ = 0;
   std::string frames_;
+};
+
+// A blob file written as its bytes arrive (an upload): under a unique temp name in a
+// directory (mkostemp, "upload.XXXXXX"), each Append compressed as one zstd frame and
+// hashed, its raw size declared up front; Finish writes the SHA-256 into the header and
+// fsyncs; Commit renames it into place. The temp file is removed by the destructor unless
+// committed (a failed or cancelled upload leaves nothing behind).
+class StreamedBlobFile {
+ public:
+  // The temp file in `dir` for `raw_size` bytes of `what` (named in errors).
+  static absl::StatusOr<std::unique_ptr<StreamedBlobFile>> Create(const std::string& dir,
+                                                                  uint64_t raw_size,
+                                                                  std::string what);
+  ~StreamedBlobFile();
+  StreamedBlobFile(const StreamedBlobFile&) = delete;
+  StreamedBlobFile& operator=(const StreamedBlobFile&) = delete;
+
+  // Adds raw bytes (the caller keeps their sum within raw_size).
+  absl::Status Append(std::string_view data);
+  // DATA_LOSS unless raw_size bytes came; else completes the header and fsyncs: the temp
+  // file is then a whole blob that ReadBlobFile(temp_path()) verifies.
+  absl::Status Finish();
+  // Atomically replaces `path` with the finished file (rename; fsync of the directory).
+  absl::Status Commit(const std::string& path);
+  const std::string& temp_path() const { return temp_; }
+
+ private:
+  StreamedBlobFile(std::string temp, int fd, uint64_t raw_size, std::string what);
+
+  std::string temp_;
+  int fd_;
+  uint64_t raw_size_;
+  std::string what_;
+  uint64_t got_ = 0;            // raw bytes appended
+  bool framed_ = false;         // a frame was written (an empty blob gets one at Finish)
+  bool committed_ = false;
+  std::string frame_;           // compression buffer, reused
+  Sha256Stream hash_;           // of the raw bytes
 };
 
 // fsyncs `path` (a file or a directory); false when it cannot be opened or synced.
@@ -66,5 +105,11 @@ absl::Status WriteBuiltBlobFileInPlace(const std::string& path, std::string_view
 
 // Reads and verifies a blob: NOT_FOUND when absent, DATA_LOSS when truncated or corrupt.
 absl::StatusOr<std::string> ReadBlobFile(const std::string& path);
+
+// ReadBlobFile of a blob whose bytes are parts of `sizes` one after another, each
+// decompressed straight into its own string (no copy of the whole); DATA_LOSS also when
+// the sizes do not add up to the blob's. Empty `sizes`: one part, the whole blob.
+absl::StatusOr<std::vector<std::string>> ReadBlobFileParts(const std::string& path,
+                                                           std::vector<uint64_t> sizes);
 
 }  // namespace radflux

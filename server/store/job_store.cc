@@ -41,6 +41,14 @@ absl::Status CheckDatabaseNotLost(const std::string& data_dir, const std::string
   return absl::OkStatus();
 }
 
+// Removes the temp files of uploads a crash cut short (StreamedBlobFile's "upload.*").
+void RemoveCutUploads(const fs::path& scenes) {
+  std::error_code ec;
+  for (fs::directory_iterator it(scenes, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().starts_with("upload.")) fs::remove(it->path(), ec);
+  }
+}
+
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<JobStore>> JobStore::Open(const std::string& data_dir) {
@@ -50,6 +58,7 @@ absl::StatusOr<std::unique_ptr<JobStore>> JobStore::Open(const std::string& data
   fs::create_directories(fs::path(data_dir) / "scenes", ec);
   fs::create_directories(fs::path(data_dir) / "jobs", ec);
   if (ec) return absl::InternalError(absl::StrCat("cannot create ", data_dir, ": ", ec.message()));
+  RemoveCutUploads(fs::path(data_dir) / "scenes");
   std::unique_ptr<JobStore> store(new JobStore(data_dir));
   if (sqlite3_open(db_path.c_str(), &store->db_) != SQLITE_OK) {
     return SqlError(store->db_, absl::StrCat("cannot open ", db_path));

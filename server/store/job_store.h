@@ -22,6 +22,7 @@
 #include "absl/status/statusor.h"
 #include "radflux/v1/job.pb.h"
 #include "server/store/disk_space.h"
+#include "server/store/scene_upload.h"
 #include "server/store/stored_codec.h"
 #include "wire/stored_scene.h"
 
@@ -44,7 +45,8 @@ struct JobFilter {
 class JobStore {
  public:
   // Opens (creating if needed) the store in `data_dir`. FAILED_PRECONDITION, saying how to
-  // recover, when scenes/ or jobs/ hold files but the database radflux.db is gone.
+  // recover, when scenes/ or jobs/ hold files but the database radflux.db is gone. Temp files
+  // of uploads cut short by a crash are removed (no upload outlives its server).
   static absl::StatusOr<std::unique_ptr<JobStore>> Open(const std::string& data_dir);
   ~JobStore();
   JobStore(const JobStore&) = delete;
@@ -55,8 +57,12 @@ class JobStore {
   absl::Status EnsureSpaceReserve();
 
   bool HasScene(const std::string& sha256);
-  // Stores a scene under its content address (a no-op when already stored).
-  absl::Status PutScene(const std::string& sha256, const StoredScene& scene);
+  // An upload of the scene `header` declares, its bytes streamed to temp files in scenes/
+  // (see SceneUpload; INVALID_ARGUMENT for a header ScenePayloadSize refuses).
+  absl::StatusOr<std::unique_ptr<SceneUpload>> StartUpload(const v1::SceneHeader& header);
+  // Stores a finished upload (SceneUpload::Finish) as scene `sha256` named `name`: its files
+  // renamed into place, its row added (kept when it was stored already).
+  absl::Status PutScene(const std::string& sha256, const std::string& name, SceneUpload& upload);
   // NOT_FOUND when no scene has that address. DATA_LOSS (a message without server paths)
   // when its files are missing or fail their check: the scene is then marked missing
   // (HasScene false, owners kept), so that an upload of the same bytes stores it again.

@@ -25,41 +25,21 @@ bool JobStore::HasScene(const std::string& sha256) {
   return st.ok() && st.Step() == SQLITE_ROW;
 }
 
-absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& scene) {
+absl::StatusOr<std::unique_ptr<SceneUpload>> JobStore::StartUpload(
+    const v1::SceneHeader& header) {
+  return SceneUpload::Start((fs::path(data_dir_) / "scenes").string(), header);
+}
+
+absl::Status JobStore::PutScene(const std::string& sha256, const std::string& name,
+                                SceneUpload& upload) {
   const std::string base = (fs::path(data_dir_) / "scenes" / sha256).string();
-  const auto write = [&](const std::string& suffix, const std::string& text) {
-    absl::Status s = WriteBlobFile(base + suffix, text, "a scene");
-    if (!s.ok()) {  // no part of the scene stays behind
-      std::error_code ec;
-      for (const char* part : {".mesh.rfb", ".obj.rfb", ".mtl.rfb", ".files.rfb", ".bundle.rfb"}) {
-        fs::remove(base + part, ec);
-      }
-    }
-    return s;
-  };
-  if (!scene.files.empty()) {
-    v1::SceneHeader index;  // the files' paths and sizes; their bytes follow in .bundle.rfb
-    std::string data;
-    for (const BundleFile& file : scene.files) {
-      v1::BundleFile* entry = index.add_files();
-      entry->set_path(file.path);
-      entry->set_size(file.data.size());
-      data += file.data;
-    }
-    if (absl::Status s = write(".files.rfb", index.SerializeAsString()); !s.ok()) return s;
-    if (absl::Status s = write(".bundle.rfb", data); !s.ok()) return s;
-  } else if (!scene.mesh.empty()) {
-    if (absl::Status s = write(".mesh.rfb", scene.mesh); !s.ok()) return s;
-  } else {
-    if (absl::Status s = write(".obj.rfb", scene.obj); !s.ok()) return s;
-    if (absl::Status s = write(".mtl.rfb", scene.mtl); !s.ok()) return s;
-  }
+  if (absl::Status s = upload.Commit(base); !s.ok()) return s;
   std::lock_guard lock(mu_);
   Statement st(db_,
                "INSERT OR IGNORE INTO scenes(sha256, name, created_ms) VALUES(?, ?, "
                "CAST((julianday('now') - 2440587.5) * 86400000 AS INTEGER))");
   st.Bind(1, sha256);
-  st.Bind(2, scene.name);
+  st.Bind(2, name);
   if (!st.ok() || st.Step() != SQLITE_DONE) return SqlError(db_, "a scene");
   return absl::OkStatus();
 }
@@ -67,12 +47,14 @@ absl::Status JobStore::PutScene(const std::string& sha256, const StoredScene& sc
 absl::StatusOr<StoredScene> JobStore::GetBundle(const std::string& base, const std::string& name) {
   absl::StatusOr<std::string> index = ReadBlobFile(base + ".files.rfb");
   if (!index.ok()) return index.status();
-  absl::StatusOr<std::string> data = ReadBlobFile(base + ".bundle.rfb");
-  if (!data.ok()) return data.status();
   v1::SceneHeader header;
   if (!header.ParseFromString(*index)) return absl::DataLossError(base + ".files.rfb: corrupt");
-  header.set_name(name);
-  return SplitScenePayload(header, *data);
+  absl::StatusOr<std::vector<BundleFile>> files = ReadBundleBlob(base + ".bundle.rfb", header);
+  if (!files.ok()) return files.status();
+  StoredScene scene;
+  scene.name = name;
+  scene.files = *std::move(files);
+  return scene;
 }
 
 absl::StatusOr<StoredScene> JobStore::ReadSceneFiles(const std::string& base,

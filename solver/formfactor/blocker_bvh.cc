@@ -37,7 +37,8 @@ uint32_t BlockerBvh::Build(uint32_t begin, uint32_t end) {
     chi = {std::max(chi.x, s.centroid.x), std::max(chi.y, s.centroid.y), std::max(chi.z, s.centroid.z)};
   }
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
-  nodes_.push_back(Node{(lo + hi) * 0.5, (hi - lo) * 0.5, begin, end - begin});
+  const Vec3 pad{pad_, pad_, pad_};
+  nodes_.push_back(Node{lo - pad, hi + pad, begin, end - begin});
   if (end - begin <= kLeafSize) return index;
   const Vec3 extent = chi - clo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
@@ -84,7 +85,10 @@ bool BlockerBvh::AnyInShaft(uint32_t i, uint32_t j) const {
   const SurfaceShape& sj = shapes_[j];
   const Shaft shaft(si, sj, kRelativeTolerance * (si.diameter + sj.diameter + max_diameter_));
   return AnyBlocker(
-             i, j, [&](const Node& node) { return shaft.MayMeetBox(node.center, node.half); },
+             i, j,
+             [&](const Node& node) {
+               return shaft.MayMeetBox((node.lo + node.hi) * 0.5, (node.hi - node.lo) * 0.5);
+             },
              [](const Node&) { return false; },
              [&](const SurfaceShape& blocker) { return shaft.MayHold(blocker); }) != kNoBlocker;
 }
@@ -97,7 +101,7 @@ bool BlockerBvh::PairMayMeetBlockers(uint32_t i, uint32_t j) const {
   const Node& root = nodes_[0];
   for (int c = 0; c < 3; ++c) {
     const double lo = std::min(si.lo[c], sj.lo[c]) - margin, hi = std::max(si.hi[c], sj.hi[c]) + margin;
-    if (hi < root.center[c] - root.half[c] || lo > root.center[c] + root.half[c]) return false;
+    if (hi < root.lo[c] || lo > root.hi[c]) return false;
   }
   return true;
 }
@@ -119,7 +123,7 @@ bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32
   const auto meets_box = [&](const Node& node) {
     double t0 = 0, t1 = 1;
     for (int c = 0; c < 3; ++c) {
-      const double lo = node.center[c] - node.half[c] - pad_, hi = node.center[c] + node.half[c] + pad_;
+      const double lo = node.lo[c], hi = node.hi[c];
       if (d[c] == 0) {
         if (a[c] < lo || a[c] > hi) return false;
         continue;

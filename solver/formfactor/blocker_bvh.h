@@ -50,7 +50,7 @@ class BlockerBvh {
 
  private:
   struct Node {
-    Vec3 center, half;       // the box of the node's blockers, as centre and half extents
+    Vec3 lo, hi;             // the box of the node's blockers, widened by pad_
     uint32_t first = 0;      // leaf: first index into order_; inner: the right child
     uint32_t count = 0;      // leaf: number of blockers (> 0); inner: 0 (left child is next)
     uint8_t axis = 0;        // inner: the split axis (left child: the lower centroids)

@@ -33,7 +33,9 @@ size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, const Vec3& origin,
 size_t ClipPolygonToHalfSpace(std::span<const Vec3> polygon, std::span<const double> distance,
                               std::span<Vec3> out);
 
-// Lambert's contour sum for a polygon already in front of x: no clipping.
+// Lambert's contour sum for a polygon already in front of x: no clipping. The sum of
+// ContourEdgeTerm over the edges in order, bit for bit (two edges at a time on the
+// small-angle path).
 double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
                                          std::span<const Vec3> polygon);
 
@@ -41,12 +43,14 @@ double UnclippedPointToPolygonFormFactor(const Vec3& x, const Vec3& n,
 // the u^12 term (the first omitted one is below 1e-17), in Estrin's order (short
 // dependency chains).
 inline constexpr double kSmallAngleTan2 = 1.0 / 16;  // tan^2 of ~14 degrees
-inline double AtanOverTOfSquare(double u) {
+// T is double, or a GCC vector of doubles (the same operations lane by lane).
+template <typename T>
+inline T AtanOverTOfSquare(T u) {
   // Coefficient k is (-1)^k / (2k + 1), rounded once at compile time (no division here).
   constexpr double c[13] = {1.0,       -1.0 / 3,  1.0 / 5,   -1.0 / 7, 1.0 / 9,
                             -1.0 / 11, 1.0 / 13,  -1.0 / 15, 1.0 / 17, -1.0 / 19,
                             1.0 / 21,  -1.0 / 23, 1.0 / 25};
-  const double u2 = u * u, u4 = u2 * u2, u8 = u4 * u4;
+  const T u2 = u * u, u4 = u2 * u2, u8 = u4 * u4;
   return ((c[0] + c[1] * u) + u2 * (c[2] + c[3] * u)) +
          u4 * ((c[4] + c[5] * u) + u2 * (c[6] + c[7] * u)) +
          u8 * (((c[8] + c[9] * u) + u2 * (c[10] + c[11] * u)) + u4 * c[12]);

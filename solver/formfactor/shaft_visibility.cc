@@ -70,10 +70,10 @@ bool WhollyInFront(const SurfaceShape& s, const SurfaceShape& other) {
   return whole;
 }
 
-// Points a side of each cell of s's part seen by `other` (`cells` of them).
-int PointsASide(const SurfaceShape& s, const SurfaceShape& other, size_t cells) {
+// Points a side of each cell of s's part seen by `other` (`cells` of them), `distance` apart
+// (their centroids').
+int PointsASide(const SurfaceShape& s, double distance, size_t cells) {
   // Clamped as a double: centroids that (nearly) coincide give an unbounded ratio.
-  const double distance = Length(other.centroid - s.centroid);
   const double ratio = distance > 0 ? std::ceil(kSideDensity * s.diameter / distance) : kMaxSide;
   int side = static_cast<int>(std::clamp<double>(ratio, kMinSide, kMaxSide));
   while (side > 1 && cells * side * side > kMaxSamplePoints) --side;
@@ -88,7 +88,7 @@ void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out)
   if (!whole) clipped = ClipPolygonToHalfSpace(s.polygon, other.centroid, other.normal);
   const std::vector<Vec3>& part = whole || clipped.size() < 3 ? s.polygon : clipped;
   const size_t cells = part.size() == 4 ? 1 : part.size() - 2;
-  const int side = PointsASide(s, other, cells);
+  const int side = PointsASide(s, Length(other.centroid - s.centroid), cells);
   if (part.size() == 4) {
     out.AddQuad({part[0], part[1], part[2], part[3]}, side);
     return;
@@ -99,10 +99,13 @@ void Sample(const SurfaceShape& s, const SurfaceShape& other, SamplePoints& out)
 }
 
 // The one point Sample takes on s (a triangle or quadrilateral wholly in front of `other`,
-// one point a side): true and `point`, else false (Sample takes several, or clips).
-bool OnePoint(const SurfaceShape& s, const SurfaceShape& other, Vec3& point) {
+// one point a side; `distance` between their centroids): true and `point`, else false (Sample
+// takes several, or clips).
+bool OnePoint(const SurfaceShape& s, const SurfaceShape& other, double distance, Vec3& point) {
   const size_t n = s.polygon.size();
-  if ((n != 3 && n != 4) || PointsASide(s, other, 1) != 1 || !WhollyInFront(s, other)) return false;
+  if ((n != 3 && n != 4) || PointsASide(s, distance, 1) != 1 || !WhollyInFront(s, other)) {
+    return false;
+  }
   const std::vector<Vec3>& p = s.polygon;
   point = n == 4 ? QuadPoint({p[0], p[1], p[2], p[3]}, 0.5, 0.5)
                  : TrianglePoint(p[0], p[1] - p[0], p[2] - p[0], 1.0 / 3, 1.0 / 3);
@@ -130,8 +133,10 @@ bool SegmentHitsSurface(const Vec3& from, const Vec3& to, const SurfaceShape& k)
 
 std::optional<double> OneSegmentVisibleFraction(const SurfaceShape& i, const SurfaceShape& j,
                                                 SegmentTest blocked, uint64_t& segments) {
+  // Length(j - i) and Length(i - j) are the same number: one square root for both sides.
+  const double distance = Length(j.centroid - i.centroid);
   Vec3 a, b;
-  if (!OnePoint(i, j, a) || !OnePoint(j, i, b)) return std::nullopt;
+  if (!OnePoint(i, j, distance, a) || !OnePoint(j, i, distance, b)) return std::nullopt;
   const Vec3 d = b - a;
   // VisibleFraction's weight is positive (else it tests nothing and returns 1).
   if (!(Dot(d, d) > 0 && Dot(d, i.normal) > 0 && Dot(d, j.normal) < 0)) return 1.0;

@@ -204,7 +204,8 @@ Side SideOf(const SurfaceShape& a, const SurfaceShape& b, double band) {
 double UnoccludedViewFactor(const SurfaceShape& i, const SurfaceShape& j,
                             const PairIntegration& options, PairCounts& counts) {
   const double band = CoplanarBand(i, j);
-  const Side j_side = SideOf(i, j, band), i_side = SideOf(j, i, band);
+  const Side j_side = SideOf(i, j, band);
+  const Side i_side = j_side.partly ? SideOf(j, i, band) : Side{};
   if (!j_side.partly || !i_side.partly) {  // !CanSeeEachOther(i, j)
     ++counts.culled;
     return 0;

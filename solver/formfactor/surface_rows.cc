@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 #include "solver/core/parallel.h"
@@ -45,11 +46,11 @@ double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blo
   return f * *seen;
 }
 
-// Row i into `row` (size radiating).
+// Row i into `row` (size radiating): each factor times its target's opacity.
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats);
+    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats) * shapes[j].opacity;
   }
 }
 
@@ -88,12 +89,52 @@ size_t TriangleSize(size_t n) { return n * (n - 1) / 2; }
 // Offset of pair (i, j), i < j, in the packed upper triangle of an n x n matrix.
 size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); }
 
+// The rows F_ij = min(1, A F_ij * opacity_j / A_i) of the packed triangle `af` of A F, to the
+// sink in order, a block of kEmitBlockBytes at a time, filled in parallel in the order the
+// triangle is stored: row i's part right of the diagonal is triangle row i, and its part left
+// of it, for the block's rows side by side, runs along triangle row j (no column walks through
+// a triangle larger than the caches).
+constexpr size_t kEmitBlockBytes = size_t{8} << 20;
+absl::Status EmitTriangleRows(const std::vector<SurfaceShape>& shapes, size_t n,
+                              std::span<const double> af, int threads,
+                              const SurfaceRowSink& sink) {
+  const size_t block = std::clamp<size_t>(kEmitBlockBytes / (sizeof(double) * n), 1, n);
+  std::vector<double> rows(block * n);
+  const auto factor = [&](size_t i, size_t j, double a) {
+    return std::min(1.0, a * shapes[j].opacity / shapes[i].area);
+  };
+  for (size_t first = 0; first < n; first += block) {
+    const size_t count = std::min(block, n - first);
+    ParallelFor(static_cast<int64_t>(count), 1, threads, [&](int64_t b, int64_t e) {
+      for (int64_t r = b; r < e; ++r) {  // the diagonal and right of it
+        const size_t i = first + static_cast<size_t>(r);
+        double* row = rows.data() + static_cast<size_t>(r) * n;
+        row[i] = factor(i, i, 0);
+        for (size_t j = i + 1; j < n; ++j) row[j] = factor(i, j, af[TriangleIndex(n, i, j)]);
+      }
+    });
+    ParallelFor(static_cast<int64_t>(first + count), 64, threads, [&](int64_t b, int64_t e) {
+      for (size_t j = static_cast<size_t>(b); j < static_cast<size_t>(e); ++j) {  // left of it
+        for (size_t i = std::max(first, j + 1); i < first + count; ++i) {
+          rows[(i - first) * n + j] = factor(i, j, af[TriangleIndex(n, j, i)]);
+        }
+      }
+    });
+    for (size_t r = 0; r < count; ++r) {
+      if (absl::Status s = sink(std::span<const double>(rows.data() + r * n, n)); !s.ok()) return s;
+    }
+  }
+  return absl::OkStatus();
+}
+
 // Every pair once (reciprocity: A_i F_ij = A_j F_ji), the triangle held whole, then the rows.
 absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t n,
                                  const BlockerBvh& blockers, const SurfaceRowsOptions& options,
                                  const SurfaceRowSink& sink, SurfaceRowsStats& stats) {
   const auto start = Clock::now();
-  std::vector<double> af(TriangleSize(n));
+  // Not zeroed: every entry is written below, and its pages are first touched there, by the
+  // threads (no serial pass over a triangle of up to the memory budget).
+  const std::unique_ptr<double[]> af(new double[TriangleSize(n)]);
   const size_t block = BlockRows(n, options);
   auto last_print = start;
   for (size_t first = 0; first < n; first += block) {
@@ -104,7 +145,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
         const size_t i = first + r;
         if (i + 1 == n) continue;
         BuildTriangleRow(shapes, blockers, static_cast<uint32_t>(i), options.integration,
-                         std::span<double>(af.data() + TriangleIndex(n, i, i + 1), n - i - 1),
+                         std::span<double>(af.get() + TriangleIndex(n, i, i + 1), n - i - 1),
                          per_thread[ThreadIndex()]);
       }
     });
@@ -115,13 +156,9 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
       last_print = Clock::now();
     }
   }
-  std::vector<double> row(n);
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t j = 0; j < n; ++j) {
-      const double a = i == j ? 0 : af[TriangleIndex(n, std::min(i, j), std::max(i, j))];
-      row[j] = std::min(1.0, a / shapes[i].area);
-    }
-    if (absl::Status s = sink(row); !s.ok()) return s;
+  const std::span<const double> triangle(af.get(), TriangleSize(n));
+  if (absl::Status s = EmitTriangleRows(shapes, n, triangle, options.threads, sink); !s.ok()) {
+    return s;
   }
   stats.rows_seconds = SecondsSince(start);
   return absl::OkStatus();

@@ -54,7 +54,11 @@ struct SurfaceRowsStats {
 using SurfaceRowSink = std::function<absl::Status(std::span<const double> row)>;
 
 // Rows of F between the first `radiating` shapes; the shapes after them only block (View3D's
-// obstruction surfaces). Stops at the first sink error and returns it.
+// obstruction surfaces). F_ij is the share of what leaves i that j's opaque part intercepts:
+// the geometric factor (through partly transparent blockers at their transmission) times
+// j's opacity (SurfaceShape::opacity), the rest passing on to what lies behind j; so rows
+// of a closed enclosure still sum to 1, and opacity_i A_i F_ij = opacity_j A_j F_ji. Stops
+// at the first sink error and returns it.
 absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t radiating,
                               const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
                               SurfaceRowsStats& stats);

@@ -49,12 +49,13 @@ SurfaceViewFactors AggregateViewFactors(const Scene& scene, const PatchMesh& mes
   out.area.assign(s, 0.0);
   for (uint32_t i = 0; i < mesh.size(); ++i) {
     if (surface_of[i] == kNoSurface) continue;
-    out.area[surface_of[i]] += mesh.patches[i].area;
+    const double area = mesh.patches[i].area * mesh.patches[i].opacity;  // what it sends from
+    out.area[surface_of[i]] += area;
     const auto cols = rows.RowCols(i);
     const auto vals = rows.RowValues(i);
     for (size_t k = 0; k < cols.size(); ++k) {
       if (surface_of[cols[k]] == kNoSurface) continue;
-      out.factor[surface_of[i]][surface_of[cols[k]]] += mesh.patches[i].area * vals[k];
+      out.factor[surface_of[i]][surface_of[cols[k]]] += area * vals[k];
     }
   }
   for (size_t a = 0; a < s; ++a) {

@@ -1,5 +1,7 @@
 // View factors between whole named surfaces, aggregated from patch rows (area-weighted):
 // F_ST = sum_{i in S} A_i sum_{j in T} F_ij / A_S. What radiative heat-transfer users want.
+// A_i is a patch's opaque area (Patch::opacity times its area), as the rows' F_ij to a
+// partly transparent patch are the share its opaque part intercepts (surface_rows.h).
 // Obstruction-only faces (Face::obstruction) belong to no surface: they block, nothing more.
 #pragma once
 
@@ -17,7 +19,7 @@ enum class SurfaceGrouping { kObject, kGroup, kFace };
 
 struct SurfaceViewFactors {
   std::vector<std::string> names;           // one per surface, in first-appearance order
-  std::vector<double> area;                 // m^2, one per surface
+  std::vector<double> area;                 // opaque area, m^2, one per surface
   std::vector<double> emittance;            // 1 - reflectance (band 0) of its first face
   std::vector<std::vector<double>> factor;  // factor[s][t] = F from surface s to t
 };

@@ -77,8 +77,9 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
   report.row_sums.allowance = std::max(kRowSumSlack, options.surface_rows.integration.tolerance);
   size_t row_index = 0;
   const auto check = [&](std::span<const double> row) { report.row_sums.Add(row_index++, row); };
-  std::vector<double> area;
-  for (size_t k = 0; k < surfaces.radiating; ++k) area.push_back(surfaces.shapes[k].area);
+  std::vector<double> area;  // opaque areas: what reciprocity and the outputs pair with F
+  for (size_t k = 0; k < surfaces.radiating; ++k)
+    area.push_back(surfaces.shapes[k].area * surfaces.shapes[k].opacity);
   ViewFactorSurfaces out = MakeSurfaces(surfaces.names, area, surfaces.emittance, options);
   SurfaceRowsStats stats;
   const auto start = std::chrono::steady_clock::now();

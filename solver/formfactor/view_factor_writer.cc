@@ -1,6 +1,7 @@
 #include "solver/formfactor/view_factor_writer.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -41,10 +42,26 @@ char* PutFixed6(char* out, double v) {
     return std::to_chars(out, out + kFixed6Room, v, std::chars_format::fixed, 6).ptr;
   }
   const uint64_t q = static_cast<uint64_t>(whole) + (scaled - whole > 0.5 ? 1 : 0);
-  char* end = std::to_chars(out, out + kFixed6Room, q / 1000000).ptr;
+  char* end = out;
+  if (q < 1000000) {
+    *end++ = '0';  // most view factors
+  } else {
+    end = std::to_chars(out, out + kFixed6Room, q / 1000000).ptr;
+  }
   *end++ = '.';
+  // The six decimals two at a time from a table of "00" to "99".
+  static constexpr auto kPairs = [] {
+    std::array<char, 200> pairs{};
+    for (int k = 0; k < 100; ++k) {
+      pairs[2 * k] = static_cast<char>('0' + k / 10);
+      pairs[2 * k + 1] = static_cast<char>('0' + k % 10);
+    }
+    return pairs;
+  }();
   uint64_t fraction = q % 1000000;
-  for (int k = 5; k >= 0; --k, fraction /= 10) end[k] = static_cast<char>('0' + fraction % 10);
+  for (int k = 4; k >= 0; k -= 2, fraction /= 100) {
+    std::memcpy(end + k, kPairs.data() + 2 * (fraction % 100), 2);
+  }
   return end + 6;
 }
 

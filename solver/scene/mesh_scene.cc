@@ -16,12 +16,18 @@ bool IsFiniteRgb(const Rgb& rgb) {
 }
 
 absl::Status CheckMaterial(const MeshMaterialInput& m, size_t k, const std::string& name) {
+  const std::string material = absl::StrCat(name, ": material ", k, " '", m.name, "': ");
   const char* what = !IsFiniteRgb(m.reflectance)        ? "reflectance"
                      : !IsFiniteRgb(m.emitted_radiance) ? "emitted radiance"
                                                         : nullptr;
-  if (what == nullptr) return absl::OkStatus();
-  return absl::InvalidArgumentError(
-      absl::StrCat(name, ": material ", k, " '", m.name, "': ", what, " is NaN or infinite"));
+  if (what != nullptr) {
+    return absl::InvalidArgumentError(absl::StrCat(material, what, " is NaN or infinite"));
+  }
+  if (!(m.opacity > 0 && m.opacity <= 1)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(material, "opacity ", m.opacity, " is outside (0, 1]"));
+  }
+  return absl::OkStatus();
 }
 
 absl::Status CheckFace(const MeshInput& mesh, size_t f, const std::string& name) {
@@ -66,6 +72,7 @@ absl::StatusOr<Scene> SceneFromMesh(const MeshInput& mesh, const std::string& na
     Material material;
     material.name = m.name;
     material.reflectance = m.reflectance;
+    material.opacity = m.opacity;
     for (int b = 0; b < kBands; ++b)
       material.emission[b] = std::numbers::pi * m.emitted_radiance[b];
     scene.materials.push_back(std::move(material));

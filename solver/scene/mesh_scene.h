@@ -17,6 +17,7 @@ struct MeshMaterialInput {
   std::string name;
   Rgb reflectance{};       // diffuse reflectance rho per band, in [0, 1) (OBJ: Kd)
   Rgb emitted_radiance{};  // L_e per band, W/(m^2 sr) (OBJ: Ke); emission E = pi * L_e
+  double opacity = 1;      // Material::opacity, in (0, 1]
 };
 
 struct MeshFaceInput {
@@ -34,7 +35,8 @@ struct MeshInput {
 // The Scene of `mesh`, named `name` in messages. INVALID_ARGUMENT naming what is wrong
 // and where (the face index for a face with < 3 vertices, a vertex index out of range, an
 // unknown material index or a vertex with a NaN/infinite coordinate; the material for a
-// non-finite value). The result is not yet validated: see ValidateScene.
+// non-finite value or an opacity outside (0, 1]). The result is not yet validated: see
+// ValidateScene.
 absl::StatusOr<Scene> SceneFromMesh(const MeshInput& mesh, const std::string& name);
 
 }  // namespace radflux

@@ -176,14 +176,46 @@ absl::StatusOr<SourceScan> CheckedScan(const std::string& obj_text, const std::s
   return scan;
 }
 
-absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const SourceScan& scan,
+// What tinyobjloader read (ObjReader's fields), from a file or from memory.
+struct ParsedObj {
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning;
+  std::string error;
+  bool valid = false;
+};
+
+// A read-only streambuf over pieces of memory, one after another, not copied (an
+// uploaded OBJ may be hundreds of MB: ObjReader::ParseFromString copied it).
+class PiecesBuf final : public std::streambuf {
+ public:
+  explicit PiecesBuf(std::vector<std::string_view> pieces) : pieces_(std::move(pieces)) {}
+
+ protected:
+  int_type underflow() override {
+    while (gptr() == egptr()) {
+      if (next_ == pieces_.size()) return traits_type::eof();
+      const std::string_view piece = pieces_[next_++];
+      char* begin = const_cast<char*>(piece.data());  // only read through get pointers
+      setg(begin, begin, begin + piece.size());
+    }
+    return traits_type::to_int_type(*gptr());
+  }
+
+ private:
+  std::vector<std::string_view> pieces_;
+  size_t next_ = 0;
+};
+
+absl::StatusOr<Scene> ConvertReader(const ParsedObj& reader, const SourceScan& scan,
                                     const std::string& name, const TextureReader& textures) {
-  if (!reader.Valid()) {
-    return absl::InvalidArgumentError(absl::StrCat(name, ": cannot parse OBJ: ", reader.Error()));
+  if (!reader.valid) {
+    return absl::InvalidArgumentError(absl::StrCat(name, ": cannot parse OBJ: ", reader.error));
   }
   Scene scene;
   scene.source = name;
-  const auto& attrib = reader.GetAttrib();
+  const auto& attrib = reader.attrib;
   const size_t vertex_count = attrib.vertices.size() / 3;
   for (size_t v = 0; v < vertex_count; ++v) {
     scene.positions.push_back(
@@ -191,7 +223,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const Sour
   }
   std::vector<MaterialTextures> texture_names;
   bool textured = false;
-  for (const auto& m : reader.GetMaterials()) {
+  for (const auto& m : reader.materials) {
     texture_names.push_back({m.diffuse_texname, m.emissive_texname, m.alpha_texname});
     MaterialTextures& wrap = texture_names.back();  // `-clamp on`: the edges stretch on
     wrap.diffuse_wrap = ObjWrapping(m.diffuse_texopt);
@@ -212,7 +244,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const Sour
   uint32_t last_object = kNone, last_group = kNone;
   size_t face_number = 0;
   std::vector<std::vector<TexCoord>> uvs;  // per face, kept when a material has a texture
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : reader.shapes) {
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_number) {
       const size_t arity = shape.mesh.num_face_vertices[f];
@@ -238,7 +270,7 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const Sour
                                     ? "face has no material (no 'usemtl' before it)"
                                     : absl::StrCat("unknown material '", origin.usemtl, "'");
         return absl::InvalidArgumentError(
-            absl::StrCat(name, ":", origin.line, ": ", why, LoaderNotes(reader.Warning())));
+            absl::StrCat(name, ":", origin.line, ": ", why, LoaderNotes(reader.warning)));
       }
       face.material = static_cast<uint32_t>(material);
       scene.faces.push_back(std::move(face));
@@ -253,13 +285,6 @@ absl::StatusOr<Scene> ConvertReader(const tinyobj::ObjReader& reader, const Sour
   return scene;
 }
 
-tinyobj::ObjReaderConfig Config() {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;
-  config.vertex_color = false;
-  return config;
-}
-
 }  // namespace
 
 absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
@@ -269,18 +294,19 @@ absl::StatusOr<Scene> LoadObjFile(const std::string& path) {
   text << file.rdbuf();
   absl::StatusOr<SourceScan> scan = CheckedScan(text.str(), path);
   if (!scan.ok()) return scan.status();
-  tinyobj::ObjReaderConfig config = Config();
   const size_t slash = path.find_last_of('/');
-  config.mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
+  const std::string mtl_search_path = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
   const std::string folder = path.substr(0, slash == std::string::npos ? 0 : slash);
   for (const std::string& library : scan->libraries) {
     // A library that cannot be read is left to tinyobjloader's warning, as before.
     const absl::StatusOr<std::string> mtl = ReadFoundFile(folder, library);
     if (!mtl.ok()) continue;
-    if (absl::Status s = CheckMtlColours(*mtl, config.mtl_search_path + library); !s.ok()) return s;
+    if (absl::Status s = CheckMtlColours(*mtl, mtl_search_path + library); !s.ok()) return s;
   }
-  tinyobj::ObjReader reader;
-  reader.ParseFromFile(path, config);
+  ParsedObj reader;  // faces as written (not triangulated), no vertex colours
+  reader.valid = tinyobj::LoadObj(&reader.attrib, &reader.shapes, &reader.materials,
+                                  &reader.warning, &reader.error, path.c_str(),
+                                  mtl_search_path.c_str(), false, false);
   const TextureReader textures = [&](const std::string& texture) {
     return ReadFoundFile(folder, texture);
   };
@@ -294,11 +320,17 @@ absl::StatusOr<Scene> LoadObjText(const std::string& obj_text, const std::string
   // The MTL is named as the OBJ names it (its first library; scene.mtl when none is named).
   const std::string mtl_name = scan->libraries.empty() ? "scene.mtl" : scan->libraries[0];
   if (absl::Status s = CheckMtlColours(mtl_text, mtl_name); !s.ok()) return s;
-  tinyobj::ObjReader reader;
   // tinyobjloader reads the MTL text only when the OBJ names a material library.
   const bool names_library = obj_text.find("mtllib") != std::string::npos;
-  reader.ParseFromString(names_library ? obj_text : "mtllib scene.mtl\n" + obj_text, mtl_text,
-                         Config());
+  PiecesBuf obj_buf({names_library ? "" : "mtllib scene.mtl\n", obj_text});
+  PiecesBuf mtl_buf({mtl_text});
+  std::istream obj_in(&obj_buf);
+  std::istream mtl_in(&mtl_buf);
+  tinyobj::MaterialStreamReader mtl_reader(mtl_in);
+  ParsedObj reader;  // faces as written (not triangulated), no vertex colours
+  reader.valid = tinyobj::LoadObj(&reader.attrib, &reader.shapes, &reader.materials,
+                                  &reader.warning, &reader.error, &obj_in, &mtl_reader, false,
+                                  false);
   const TextureReader none = [](const std::string&) -> absl::StatusOr<std::string> {
     return absl::NotFoundError("no texture files given with this OBJ text");
   };

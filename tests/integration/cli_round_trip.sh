@@ -15,6 +15,10 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 [ "$(wc -l <"$DIR/b.csv")" -gt 150 ]
 grep -q '"iterations"' "$DIR/report.json"
 "$CLI" list --server "$ADDR" | grep -q "$JOB.*JOB_STATE_SUCCEEDED"
+# list's columns: id, state, phase, patches, message, and last the owner (on a server
+# without tokens everyone is the principal 'default').
+"$CLI" list --server "$ADDR" | grep -q "^$JOB  JOB_STATE_SUCCEEDED  PHASE_DONE  patches [0-9]*  .*  owner default$" \
+  || { "$CLI" list --server "$ADDR"; echo "list line without its owner last"; exit 1; }
 # watch speaks to people: on a terminal (script(1) gives it one) a bar redrawn in place with
 # the phase in words; piped, plain lines with the event number.
 script -qec "$CLI watch $JOB --server $ADDR" /dev/null >"$DIR/tty.out"

@@ -5,11 +5,12 @@
 // when SQLite itself finds the disk full (the store's space reserve) and survives a restart;
 // once space is back a small job succeeds with the exact result. A job that cannot fit the
 // disk at all is refused at submit, and so is one that does not fit beside the disk the
-// unfinished jobs may still write.
+// unfinished jobs may still write, also when both are submitted at once.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "server/store/job_store.h"
@@ -146,6 +147,32 @@ TEST_F(DiskFullTest, UnfinishedJobsKeepTheirDiskEstimateFromLaterSubmits) {
   ASSERT_TRUE(stub_->CancelJob(Context().get(), cancel, &first).ok());
   EXPECT_EQ(Watch(first.job_id()).back().state(), v1::JOB_STATE_CANCELLED);
   EXPECT_TRUE(Submit(options, &second, sha).ok());
+}
+
+// Two submits at once, each fitting the free space alone but not both: one is taken and
+// the other refused. The disk check and the insert that holds the job's estimate are one
+// step under the submit lock; --testing-submit-delay-ms sleeps inside that step, so with the
+// check outside it (as before) both submits passed their checks before either was held.
+TEST_F(DiskFullTest, TwoSubmitsAtOnceCannotBothTakeTheRoomOfOne) {
+  TinyFilesystem disk(data_dir_, 8 << 20);  // ~6.8 MiB free beside the reserve and database
+  ASSERT_TRUE(disk.ok());
+  StartServer({"--testing-block-delay-ms", "2000", "--checkpoint-seconds", "1000",
+               "--testing-submit-delay-ms", "1000"});
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(1200, "jacobi");  // ~4 MiB of disk
+  v1::Job jobs[2];
+  grpc::Status statuses[2];
+  std::vector<std::thread> submits;
+  for (int k = 0; k < 2; ++k) {
+    submits.emplace_back([&, k] { statuses[k] = Submit(options, &jobs[k], sha); });
+  }
+  for (std::thread& t : submits) t.join();
+  EXPECT_NE(statuses[0].ok(), statuses[1].ok())
+      << statuses[0].error_message() << " / " << statuses[1].error_message();
+  const grpc::Status& refused = statuses[0].ok() ? statuses[1] : statuses[0];
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << refused.error_message();
+  EXPECT_NE(refused.error_message().find("would need up to"), std::string::npos)
+      << refused.error_message();
 }
 
 // SQLite itself finds the disk full: a RUNNING update is refused with a plain message,

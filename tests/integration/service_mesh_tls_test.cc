@@ -96,6 +96,7 @@ v1::Mesh MeshOf(const Scene& scene) {
       EXPECT_EQ(std::numbers::pi * radiance[b], m.emission[b]) << m.name << " band " << b;
     }
     SetRgb(radiance, material->mutable_emitted_radiance());
+    if (m.opacity != 1) material->set_opacity(m.opacity);
   }
   return mesh;
 }
@@ -133,6 +134,33 @@ TEST_F(MeshUploadTest, CornellBoxAsMeshSolvesBitIdenticalToItsObjUpload) {
   const v1::SolveOptions options = SmallOptions(300, "cg");
   ExpectBitIdentical(Solve(ref.sha256(), options), Solve(obj_sha, options),
                      "the Mesh upload solves to the OBJ upload's B");
+}
+
+TEST_F(MeshUploadTest, AHalfOpaquePlateKeepsItsOpacityAndSolvesBitIdenticalToLocal) {
+  // The Cornell box with a grey 250 x 250 mm plate at mid height under the light, half
+  // opaque: uploaded as a Mesh with the plate's opacity, it solves to the B of the same
+  // scene solved in-process, bit for bit; without the field it solves as an opaque plate.
+  StartServer();
+  absl::StatusOr<Scene> scene = LoadObjText(
+      kObj + "o plate\nusemtl plate\nv 400 300 150\nv 400 300 400\nv 150 300 400\n"
+             "v 150 300 150\nf 67 68 69 70\n",
+      kMtl + "newmtl plate\nKd 0.5 0.5 0.5\n", "cornell_plate.obj");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  ASSERT_EQ(scene->materials.back().name, "plate");
+  scene->materials.back().opacity = 0.5;
+  const v1::Mesh half = MeshOf(*scene);
+  ASSERT_TRUE(half.materials().rbegin()->has_opacity());
+  v1::Mesh opaque = half;
+  opaque.mutable_materials()->rbegin()->clear_opacity();
+  v1::SceneRef half_ref, opaque_ref;
+  ASSERT_TRUE(UploadMesh(half.SerializeAsString(), &half_ref).ok());
+  ASSERT_TRUE(UploadMesh(opaque.SerializeAsString(), &opaque_ref).ok());
+  EXPECT_NE(half_ref.sha256(), opaque_ref.sha256());
+  const v1::SolveOptions options = SmallOptions(300, "cg");
+  const std::vector<double> served = Solve(half_ref.sha256(), options);
+  ExpectBitIdentical(served, testing::InProcess(options, *scene),
+                     "the served B of the half-opaque plate is the local B");
+  EXPECT_NE(served, Solve(opaque_ref.sha256(), options)) << "the opacity reached the solver";
 }
 
 // Two unit squares facing each other, a lamp (face 0) and a wall (face 1).
@@ -184,6 +212,8 @@ TEST_F(MeshUploadTest, MalformedMeshesGetInvalidArgumentNamingTheFaceAndTheServe
       {"NaN radiance",
        [nan](v1::Mesh& m) { m.mutable_materials(0)->mutable_emitted_radiance()->set_blue(nan); },
        "mesh: material 0 'lamp': emitted radiance is NaN or infinite"},
+      {"opacity", [](v1::Mesh& m) { m.mutable_materials(1)->set_opacity(0); },
+       "mesh: material 1 'wall': opacity 0 is outside (0, 1]"},
       {"positions", [](v1::Mesh& m) { m.add_positions(1); },
        "mesh: 25 position values are not x y z triples"},
   };

@@ -4,9 +4,12 @@
 // directory whose database is gone while scenes or jobs remain refuses to start.
 #include <stdio.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -84,14 +87,102 @@ TEST_F(StoreRepairTest, CorruptStoredSceneIsMarkedMissingAndAnUploadRepairsIt) {
   EXPECT_TRUE(repaired->obj == kObj && repaired->mtl == kMtl);
 }
 
-// A result file corrupted on disk after it was marked durable is reported without the
-// server's paths (it is not computed again: see issue 22).
-TEST_F(StoreRepairTest, CorruptResultIsReportedWithoutServerPaths) {
+// The temp files of uploads in progress under scenes/ (SceneUpload: "upload.*").
+std::vector<std::string> UploadTempFiles(const std::string& data_dir) {
+  std::vector<std::string> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(data_dir + "/scenes")) {
+    if (e.path().filename().string().starts_with("upload.")) files.push_back(e.path().string());
+  }
+  return files;
+}
+
+// Polls (every 10 ms, for at most 60 s: a bound, not a timing the test relies on) until
+// `done()`; returns done().
+bool Eventually(const std::function<bool()>& done) {
+  for (int i = 0; i < 6000 && !done(); ++i) usleep(10'000);
+  return done();
+}
+
+// An upload's bytes go to a temp file in the data directory as they arrive (the whole
+// upload was held in memory before: no file appeared until it had ended); an upload
+// cancelled mid-stream, or cut by kill -9 of the server, leaves no file behind.
+TEST_F(StoreRepairTest, AnUploadStreamsToDiskAndOneCutShortLeavesNoFile) {
+  StartServer();
+  for (const bool kill_server : {false, true}) {
+    SCOPED_TRACE(kill_server ? "server killed" : "upload cancelled");
+    v1::SceneRef ref;
+    auto context = Context();
+    auto writer = stub_->UploadScene(context.get(), &ref);
+    v1::SceneChunk chunk;
+    chunk.mutable_header()->set_name("cornell_box.obj");
+    chunk.mutable_header()->set_obj_size(kObj.size());
+    chunk.mutable_header()->set_mtl_size(kMtl.size());
+    chunk.set_data(kObj.substr(0, kObj.size() / 2));
+    ASSERT_TRUE(writer->Write(chunk));
+    ASSERT_TRUE(Eventually([&] { return UploadTempFiles(data_dir_).size() == 2; }))
+        << "no temp files (OBJ and MTL) while the upload is open";
+    if (kill_server) {
+      server_->Kill();
+      EXPECT_EQ(UploadTempFiles(data_dir_).size(), 2u);
+      StartServer();  // removes them before it listens
+      EXPECT_EQ(UploadTempFiles(data_dir_), std::vector<std::string>{});
+    } else {
+      context->TryCancel();
+      EXPECT_EQ(writer->Finish().error_code(), grpc::StatusCode::CANCELLED);
+      EXPECT_TRUE(Eventually([&] { return UploadTempFiles(data_dir_).empty(); }))
+          << UploadTempFiles(data_dir_)[0];
+    }
+  }
+  EXPECT_TRUE(fs::is_empty(data_dir_ + "/scenes")) << "no scene was stored";
+}
+
+// A scene uploaded in pieces that straddle its OBJ/MTL boundary gets the content address
+// it got when uploads were held in memory (pinned: SHA-256 of "radflux-scene-v1\n71\n" +
+// OBJ + MTL), and is stored with exactly its bytes.
+TEST_F(StoreRepairTest, AStreamedUploadKeepsItsContentAddress) {
+  const std::string obj =
+      "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl white\nf 1 2 3 4\n";
+  const std::string mtl = "newmtl white\nKd 0.5 0.5 0.5\n";
+  const std::string kPinned = "2021ab16334b732ac890633679ba073bc7f8dd76fc71f2fe48d74321189ced19";
+  ASSERT_EQ(SceneContentHash(obj, mtl), kPinned);
+  StartServer();
+  v1::SceneRef ref;
+  auto context = Context();
+  auto writer = stub_->UploadScene(context.get(), &ref);
+  v1::SceneChunk chunk;
+  chunk.mutable_header()->set_name("quad.obj");
+  chunk.mutable_header()->set_obj_size(obj.size());
+  chunk.mutable_header()->set_mtl_size(mtl.size());
+  const std::string data = obj + mtl;
+  for (size_t at = 0; at < data.size(); at += 7) {  // 71 = 10 * 7 + 1: a chunk straddles
+    chunk.set_data(data.substr(at, 7));
+    ASSERT_TRUE(writer->Write(chunk));
+    chunk.clear_header();
+  }
+  writer->WritesDone();
+  const grpc::Status status = writer->Finish();
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(ref.sha256(), kPinned);
+  EXPECT_EQ(ref.faces(), 1u);
+  const absl::StatusOr<StoredScene> stored = GetScene(kPinned);
+  ASSERT_TRUE(stored.ok()) << stored.status();
+  EXPECT_EQ(stored->obj, obj);
+  EXPECT_EQ(stored->mtl, mtl);
+  EXPECT_EQ(UploadTempFiles(data_dir_), std::vector<std::string>{});
+}
+
+// A result file corrupted on disk after it was marked durable is computed again when it is
+// asked for (it was only reported, DATA_LOSS): the call answers UNAVAILABLE without the
+// server's paths, the job runs again, and its new result is bit-identical to the first.
+TEST_F(StoreRepairTest, CorruptResultIsComputedAgainBitIdentical) {
   StartServer();
   const std::string sha = UploadCornell();
   v1::Job job;
   ASSERT_TRUE(Submit(testing::SmallOptions(100, "jacobi"), &job, sha).ok());
   ASSERT_EQ(Watch(job.job_id()).back().state(), v1::JOB_STATE_SUCCEEDED);
+  std::vector<double> original;
+  ASSERT_TRUE(Result(job.job_id(), &original).ok());
+  ASSERT_GT(original.size(), 50u);
   ASSERT_EQ(server_->Stop(), 0);  // the result is read from its file after a restart
   const std::string result = data_dir_ + "/jobs/" + job.job_id() + "/result.rfb";
   {
@@ -100,12 +191,22 @@ TEST_F(StoreRepairTest, CorruptResultIsReportedWithoutServerPaths) {
     file.put('\x5a').put('\xa5').put('\x5a');
   }
   StartServer();
-  std::vector<double> radiosity;
-  const grpc::Status read = Result(job.job_id(), &radiosity);
-  EXPECT_EQ(read.error_code(), grpc::StatusCode::DATA_LOSS) << read.error_message();
-  EXPECT_NE(read.error_message().find("stored result is corrupt"), std::string::npos)
+  std::vector<double> none;
+  const grpc::Status read = Result(job.job_id(), &none);
+  EXPECT_EQ(read.error_code(), grpc::StatusCode::UNAVAILABLE) << read.error_message();
+  EXPECT_NE(read.error_message().find("being computed again"), std::string::npos)
       << read.error_message();
   EXPECT_EQ(read.error_message().find(data_dir_), std::string::npos) << read.error_message();
+
+  const std::vector<v1::JobEvent> rerun = Watch(job.job_id());
+  EXPECT_EQ(rerun.front().state(), v1::JOB_STATE_QUEUED) << rerun.front().message();
+  ASSERT_EQ(rerun.back().state(), v1::JOB_STATE_SUCCEEDED) << rerun.back().message();
+  std::vector<double> again;
+  const grpc::Status reread = Result(job.job_id(), &again);
+  ASSERT_TRUE(reread.ok()) << reread.error_message();
+  ASSERT_EQ(again.size(), original.size());
+  EXPECT_EQ(std::memcmp(again.data(), original.data(), again.size() * sizeof(double)), 0)
+      << "the recomputed B differs from the first";
 }
 
 // radfluxd's exit status and everything it printed (stdout and stderr), on `data_dir`.

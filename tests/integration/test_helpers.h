@@ -28,18 +28,23 @@ inline std::string ReadText(const std::string& path) {
 inline const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
 inline const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
 
-// B per patch per band of the same job computed in-process by RunJob.
-inline std::vector<double> InProcess(const v1::SolveOptions& proto) {
+// B per patch per band of the job `proto` on `scene` computed in-process by RunJob.
+inline std::vector<double> InProcess(const v1::SolveOptions& proto, Scene scene) {
   absl::StatusOr<JobOptions> options = FromProto(proto);
   EXPECT_TRUE(options.ok());
   options->form_factors.threads = 2;
-  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
-  EXPECT_TRUE(scene.ok());
-  absl::StatusOr<JobResult> result = RunJob(*std::move(scene), *options);
+  absl::StatusOr<JobResult> result = RunJob(std::move(scene), *options);
   EXPECT_TRUE(result.ok()) << result.status();
   std::vector<double> values;
   for (const Rgb& b : result->solve.radiosity) values.insert(values.end(), b.begin(), b.end());
   return values;
+}
+
+// B per patch per band of the same job on the Cornell box computed in-process by RunJob.
+inline std::vector<double> InProcess(const v1::SolveOptions& proto) {
+  absl::StatusOr<Scene> scene = LoadObjText(kObj, kMtl, "cornell_box.obj");
+  EXPECT_TRUE(scene.ok());
+  return InProcess(proto, *std::move(scene));
 }
 
 // `a` and `b` are the same non-empty values, bit for bit.

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "absl/strings/str_cat.h"
 #include "solver/scene/obj_loader.h"
 
 namespace radflux {
@@ -60,6 +61,16 @@ TEST(SceneFromMesh, EqualsTheObjLoadersSceneOfTheSameSurfaces) {
     EXPECT_EQ(mesh->materials[m].emission, obj->materials[m].emission) << "E = pi * L_e";
   }
   EXPECT_EQ(mesh->materials[0].emission[1], 2 * std::numbers::pi);
+  EXPECT_EQ(mesh->materials[1].opacity, 1) << "opaque unless given";
+}
+
+TEST(SceneFromMesh, KeepsAMaterialsOpacity) {
+  MeshInput input = TwoFaces();
+  input.materials[1].opacity = 0.375;
+  absl::StatusOr<Scene> mesh = SceneFromMesh(input, "two");
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  EXPECT_EQ(mesh->materials[0].opacity, 1);
+  EXPECT_EQ(mesh->materials[1].opacity, 0.375);
 }
 
 TEST(SceneFromMesh, RefusesMalformedInputNamingTheFace) {
@@ -87,6 +98,12 @@ TEST(SceneFromMesh, RefusesMalformedInputNamingTheFace) {
   m = TwoFaces();
   m.materials[0].emitted_radiance[0] = nan;
   EXPECT_EQ(message(m), "m: material 0 'lamp': emitted radiance is NaN or infinite");
+  for (double opacity : {0.0, -0.5, 1.5, nan}) {
+    m = TwoFaces();
+    m.materials[1].opacity = opacity;
+    EXPECT_EQ(message(m), "m: material 1 'wall': opacity " + absl::StrCat(opacity) +
+                              " is outside (0, 1]");
+  }
   m = TwoFaces();
   m.positions.pop_back();
   EXPECT_EQ(message(m), "m: 20 position values are not x y z triples");
