@@ -168,7 +168,7 @@ TEST_F(ServiceRestartTest, KillNineDuringCgSolveResumesWithinTolerance) {
       KillDuringSolveAndResume(*this, options, &first_iteration, &report);
   EXPECT_GE(first_iteration, 5) << "the restarted solve resumes from its checkpoint";
   // CG warm-starts from the checkpointed B (its Krylov space restarts), so the result is
-  // not bit-identical. Invariants: the resumed result converged (relative residual <=
+  // in general not bit-identical. Invariants: the resumed result converged (relative residual <=
   // tolerance, as the report says), and it differs from the uninterrupted run by at most
   // 10 * tolerance relative to the largest B of its band, per patch and band.
   const nlohmann::json json = nlohmann::json::parse(report);
@@ -182,8 +182,11 @@ TEST_F(ServiceRestartTest, KillNineDuringCgSolveResumesWithinTolerance) {
   double worst = 0;
   for (size_t i = 0; i < reference.size(); ++i)
     worst = std::max(worst, std::abs(served[i] - reference[i]) / band_max[i % 3]);
+  // The result may still be bit-identical: CG restarts a lane from the true residual
+  // whenever the rows are not reciprocal enough (defect correction), and a checkpoint taken
+  // at such a restart resumes on exactly the uninterrupted path. first_iteration >= 5 above
+  // is what proves the warm start.
   EXPECT_LE(worst, 10 * kTolerance);
-  EXPECT_GT(worst, 0.0) << "bit-identical would mean the resume did not warm-start";
 }
 
 // What an OS crash can leave of a finished job: its SUCCEEDED commit durable, its result
