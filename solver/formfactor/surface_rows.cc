@@ -86,6 +86,8 @@ void PrintProgress(const char* what, size_t done, size_t total, Clock::time_poin
 
 size_t TriangleSize(size_t n) { return n * (n - 1) / 2; }
 
+absl::Status StoppedError() { return absl::CancelledError("view-factor rows stopped"); }
+
 // Offset of pair (i, j), i < j, in the packed upper triangle of an n x n matrix.
 size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); }
 
@@ -150,6 +152,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
       }
     });
     for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+    if (options.on_rows && !options.on_rows(first + count, n)) return StoppedError();
     const size_t done = TriangleSize(n) - TriangleSize(n - first - count);
     if (options.progress && (SecondsSince(last_print) > 1 || first + count == n)) {
       PrintProgress("pairs", done, TriangleSize(n), start);
@@ -207,6 +210,7 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
       }
     });
     for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+    if (options.on_rows && !options.on_rows(first + count, radiating)) return StoppedError();
     for (size_t r = 0; r < count; ++r) {
       absl::Status s = sink(std::span<const double>(rows.data() + r * radiating, radiating));
       if (!s.ok()) return s;

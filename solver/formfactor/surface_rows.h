@@ -25,6 +25,9 @@ struct SurfaceRowsOptions {
   uint64_t memory_limit = 0;         // bytes for rows in flight, a hard bound; 0 = 64 rows per
                                      // thread (and the triangle within SurfaceRowsBudget(0))
   bool progress = false;             // print rows done and ETA to stderr
+  // Called after each block of rows (of the pair triangle's rows when reciprocal) with the
+  // rows done and their total; returning false stops the build: CANCELLED.
+  std::function<bool(size_t done, size_t total)> on_rows;
 };
 
 // The bytes of rows BuildSurfaceRows may hold: `memory_limit` when given (> 0), else

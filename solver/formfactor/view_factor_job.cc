@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 
+#include "absl/strings/str_format.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
@@ -160,6 +161,13 @@ void RowSumCheck::Add(size_t index, std::span<const double> row) {
     worst_sum = sum;
     worst_row = index;
   }
+}
+
+std::string RowSumCheck::OverMessage() const {
+  return absl::StrFormat(
+      "%zu row(s) sum above 1 + %.3g (worst: %s, sum %.4f): view factors overestimated, a "
+      "blocker missed or a cluttered pair's visibility (outputs written)",
+      rows_over, allowance, worst_name, worst_sum);
 }
 
 bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by) {

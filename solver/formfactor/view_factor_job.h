@@ -43,6 +43,8 @@ struct RowSumCheck {
   std::string worst_name;           // its surface's name
   // Counts `row` (surface `index`).
   void Add(size_t index, std::span<const double> row);
+  // One line naming the rows over and the worst (when rows_over > 0).
+  std::string OverMessage() const;
 };
 
 struct ViewFactorReport {
