@@ -26,13 +26,14 @@ double SecondsSince(Clock::time_point start) {
 // segments may meet a blocker. A pair taking one segment (far for its size) traces it at
 // once: its walk through the hierarchy visits no more nodes than the shaft's would (the
 // segment lies in the shaft) and an empty shaft leaves it unblocked, so F is the same. Other
-// pairs are traced only when their shaft may hold a blocker. The segments of a pair test the
-// blocker that hid the previous one first (BlockerBvh::SegmentBlocked's `last`).
+// pairs are traced only when their shaft may hold a blocker. A segment tests the blocker that
+// hid the previous one first (BlockerBvh::SegmentBlocked's `last`), kept across the pairs of
+// a row: the next pair of a row is often a neighbour of the last behind the same building.
 double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
-                  uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
+                  uint32_t j, const PairIntegration& integration, uint32_t& last,
+                  SurfaceRowsStats& stats) {
   const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
   if (f == 0 || !blockers.PairMayMeetBlockers(i, j)) return f;
-  uint32_t last = BlockerBvh::kNoBlocker;
   const auto blocked = [&](const Vec3& a, const Vec3& b) {
     return blockers.SegmentBlocked(a, b, i, j, last);
   };
@@ -49,8 +50,9 @@ double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blo
 // Row i into `row` (size radiating): each factor times its target's opacity.
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
+  uint32_t last = BlockerBvh::kNoBlocker;
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats) * shapes[j].opacity;
+    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, last, stats) * shapes[j].opacity;
   }
 }
 
@@ -59,11 +61,12 @@ void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blocker
 void BuildTriangleRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers,
                       uint32_t i, const PairIntegration& integration, std::span<double> row,
                       SurfaceRowsStats& stats) {
+  uint32_t last = BlockerBvh::kNoBlocker;
   for (uint32_t k = 0; k < row.size(); ++k) {
     const uint32_t j = i + 1 + k;
     const bool i_outer = shapes[i].diameter <= shapes[j].diameter;
     const uint32_t o = i_outer ? i : j, t = i_outer ? j : i;
-    row[k] = shapes[o].area * PairFactor(shapes, blockers, o, t, integration, stats);
+    row[k] = shapes[o].area * PairFactor(shapes, blockers, o, t, integration, last, stats);
   }
 }
 
