@@ -28,7 +28,7 @@ struct ViewFactorRun {
 absl::StatusOr<ViewFactorRun> PrepareViewFactorRun(const v1::SolveOptions& request,
                                                    StoredScene stored);
 
-// Bytes of disk the job may write at most: its two files and its result.
+// Bytes of disk the job may write at most: its checkpointed rows, its two files, its result.
 uint64_t ViewFactorDiskBound(const ViewFactorRun& run);
 
 // Runs the view-factor job to completion; CANCELLED when *context.stop was set. A job whose

@@ -83,10 +83,11 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     area.push_back(surfaces.shapes[k].area * surfaces.shapes[k].opacity);
   ViewFactorSurfaces out = MakeSurfaces(surfaces.names, area, surfaces.emittance, options);
   SurfaceRowsStats stats;
+  const SurfaceRowsBuilder build = options.build_rows ? options.build_rows : BuildSurfaceRows;
   const auto start = std::chrono::steady_clock::now();
   if (options.enclosure) {  // the adjustment needs the whole matrix
     std::vector<std::vector<double>> factor;
-    absl::Status built = BuildSurfaceRows(
+    absl::Status built = build(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
         [&](std::span<const double> row) {
           check(row);
@@ -101,7 +102,7 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
         ViewFactorWriter::Open(options.output, std::move(out));
     if (!writer.ok()) return writer.status();
-    absl::Status built = BuildSurfaceRows(
+    absl::Status built = build(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
         [&](std::span<const double> row) {
           check(row);
