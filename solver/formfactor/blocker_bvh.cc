@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
@@ -46,6 +47,94 @@ struct Box {
 
 Vec3 BoxCenter(const SurfaceShape& s) { return (s.lo + s.hi) * 0.5; }
 
+// The bin of s's box centre along `axis` among kBins equal slices of `centers` (which has
+// extent along that axis).
+int BinOf(const SurfaceShape& s, const Box& centers, int axis) {
+  const double f = (BoxCenter(s)[axis] - centers.lo[axis]) / (centers.hi[axis] - centers.lo[axis]);
+  return std::min(kBins - 1, static_cast<int>(f * kBins));
+}
+
+// A split of blockers by bin: bins below `bin` along `axis` to the left (axis -1: none).
+struct SahSplit {
+  int axis = -1, bin = 0;
+};
+
+// The split between bins, along any axis, with the least surface area cost (the children's
+// box half areas times their blocker counts) that leaves neither side empty; axis -1 when
+// there is none (all centres in one bin on every axis).
+SahSplit BestSahSplit(const std::vector<SurfaceShape>& shapes, std::span<const uint32_t> blockers,
+                      const Box& centers) {
+  SahSplit best;
+  double best_cost = HUGE_VAL;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(centers.hi[axis] - centers.lo[axis] > 0)) continue;
+    std::array<Box, kBins> boxes;
+    std::array<uint32_t, kBins> counts{};
+    for (uint32_t k : blockers) {
+      const int bin = BinOf(shapes[k], centers, axis);
+      boxes[bin].Extend(shapes[k].lo, shapes[k].hi);
+      ++counts[bin];
+    }
+    std::array<double, kBins> right_cost{};  // of bins [b, kBins)
+    Box acc;
+    uint32_t n = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      acc.Extend(boxes[b].lo, boxes[b].hi);
+      n += counts[b];
+      right_cost[b] = n > 0 ? acc.HalfArea() * n : 0;
+    }
+    acc = Box{};
+    n = 0;
+    for (int b = 1; b < kBins; ++b) {  // left: bins [0, b)
+      acc.Extend(boxes[b - 1].lo, boxes[b - 1].hi);
+      n += counts[b - 1];
+      const double cost = (n > 0 ? acc.HalfArea() * n : 0) + right_cost[b];
+      if (n > 0 && n < blockers.size() && cost < best_cost) {
+        best_cost = cost;
+        best = {axis, b};
+      }
+    }
+  }
+  return best;
+}
+
+// A segment a + t d, t in [0, 1], in single precision, for the slab test of four boxes at
+// once (a direction component below kTinyDirection counts as zero).
+struct Slabs {
+  __m128 origin[3], inverse[3];
+
+  Slabs(const float (&o)[3], const float (&d)[3]) {
+    for (int c = 0; c < 3; ++c) {
+      origin[c] = _mm_set1_ps(o[c]);
+      inverse[c] = _mm_set1_ps(std::abs(d[c]) < kTinyDirection ? std::copysign(1 / kTinyDirection, d[c])
+                                                               : 1 / d[c]);
+    }
+  }
+
+  // The first `lanes` boxes (lo[axis][lane], hi[axis][lane]) the segment may meet, into
+  // `order` nearest entry first; returns how many.
+  int Meet(const float (&lo)[3][4], const float (&hi)[3][4], uint32_t lanes, int (&order)[4]) const {
+    __m128 t_near = _mm_setzero_ps(), t_far = _mm_set1_ps(1);
+    for (int c = 0; c < 3; ++c) {
+      const __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(lo[c]), origin[c]), inverse[c]);
+      const __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(hi[c]), origin[c]), inverse[c]);
+      t_near = _mm_max_ps(t_near, _mm_min_ps(t0, t1));
+      t_far = _mm_min_ps(t_far, _mm_max_ps(t0, t1));
+    }
+    const int mask = _mm_movemask_ps(_mm_cmple_ps(t_near, t_far)) & ((1 << lanes) - 1);
+    alignas(16) float t[4];
+    _mm_store_ps(t, t_near);
+    int met = 0;
+    for (int l = 0; l < 4; ++l) {  // insertion by entry distance
+      if (!(mask & (1 << l))) continue;
+      int at = met++;
+      for (; at > 0 && t[order[at - 1]] > t[l]; --at) order[at] = order[at - 1];
+      order[at] = l;
+    }
+    return met;
+  }
+};
+
 }  // namespace
 
 BlockerBvh::BlockerBvh(const std::vector<SurfaceShape>& shapes, std::vector<uint32_t> blockers)
@@ -70,55 +159,18 @@ BlockerBvh::BlockerBvh(const std::vector<SurfaceShape>& shapes, std::vector<uint
 }
 
 void BlockerBvh::SplitRange(Range range, int depth, Range& left, Range& right) {
+  const std::span<uint32_t> blockers(order_.data() + range.begin, range.size());
   Box centers;
-  for (uint32_t k = range.begin; k < range.end; ++k) {
-    const Vec3 c = BoxCenter(shapes_[order_[k]]);
-    centers.Extend(c, c);
-  }
+  for (uint32_t k : blockers) centers.Extend(BoxCenter(shapes_[k]), BoxCenter(shapes_[k]));
   const Vec3 extent = centers.hi - centers.lo;
-  double best_cost = HUGE_VAL;
-  int best_axis = -1, best_bin = 0;
-  const auto bin_of = [&](uint32_t k, int axis) {
-    const double f = (BoxCenter(shapes_[k])[axis] - centers.lo[axis]) / extent[axis];
-    return std::min(kBins - 1, static_cast<int>(f * kBins));
-  };
-  for (int axis = 0; axis < 3 && depth < kMaxSahDepth; ++axis) {
-    if (!(extent[axis] > 0)) continue;
-    std::array<Box, kBins> boxes;
-    std::array<uint32_t, kBins> counts{};
-    for (uint32_t k = range.begin; k < range.end; ++k) {
-      const int bin = bin_of(order_[k], axis);
-      boxes[bin].Extend(shapes_[order_[k]].lo, shapes_[order_[k]].hi);
-      ++counts[bin];
-    }
-    std::array<double, kBins> right_cost{};  // of bins [b, kBins)
-    Box acc;
-    uint32_t n = 0;
-    for (int b = kBins - 1; b > 0; --b) {
-      acc.Extend(boxes[b].lo, boxes[b].hi);
-      n += counts[b];
-      right_cost[b] = n > 0 ? acc.HalfArea() * n : 0;
-    }
-    acc = Box{};
-    n = 0;
-    for (int b = 1; b < kBins; ++b) {  // left: bins [0, b)
-      acc.Extend(boxes[b - 1].lo, boxes[b - 1].hi);
-      n += counts[b - 1];
-      const double cost = (n > 0 ? acc.HalfArea() * n : 0) + right_cost[b];
-      if (n > 0 && n < range.size() && cost < best_cost) {
-        best_cost = cost;
-        best_axis = axis;
-        best_bin = b;
-      }
-    }
-  }
+  const SahSplit best = depth < kMaxSahDepth ? BestSahSplit(shapes_, blockers, centers) : SahSplit{};
   uint32_t mid;
-  if (best_axis >= 0) {
+  if (best.axis >= 0) {
     mid = static_cast<uint32_t>(
         std::partition(order_.begin() + range.begin, order_.begin() + range.end,
-                       [&](uint32_t k) { return bin_of(k, best_axis) < best_bin; }) -
+                       [&](uint32_t k) { return BinOf(shapes_[k], centers, best.axis) < best.bin; }) -
         order_.begin());
-  } else {  // the median of the centroids along their widest axis
+  } else {  // the median of the box centres along their widest axis
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     mid = range.begin + range.size() / 2;
     std::nth_element(order_.begin() + range.begin, order_.begin() + mid, order_.begin() + range.end,
@@ -242,32 +294,9 @@ bool BlockerBvh::SegmentBlocked(const Vec3& a, const Vec3& b, uint32_t i, uint32
       }
     }
   } else {
-    // Slab test of a + t d, t in [0, 1], against four boxes at once, in single precision.
-    __m128 o[3], inv[3];
-    for (int c = 0; c < 3; ++c) {
-      o[c] = _mm_set1_ps(origin[c]);
-      const float dc = direction[c];
-      inv[c] = _mm_set1_ps(std::abs(dc) < kTinyDirection ? std::copysign(1 / kTinyDirection, dc) : 1 / dc);
-    }
+    const Slabs slabs(origin, direction);
     const auto meets = [&](const Node& node, int (&order)[4]) {
-      __m128 t_near = _mm_setzero_ps(), t_far = _mm_set1_ps(1);
-      for (int c = 0; c < 3; ++c) {
-        const __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[c]), o[c]), inv[c]);
-        const __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[c]), o[c]), inv[c]);
-        t_near = _mm_max_ps(t_near, _mm_min_ps(t0, t1));
-        t_far = _mm_min_ps(t_far, _mm_max_ps(t0, t1));
-      }
-      const int mask = _mm_movemask_ps(_mm_cmple_ps(t_near, t_far)) & ((1 << node.lanes) - 1);
-      alignas(16) float t[4];
-      _mm_store_ps(t, t_near);
-      int met = 0;
-      for (int l = 0; l < 4; ++l) {  // insertion by entry distance
-        if (!(mask & (1 << l))) continue;
-        int at = met++;
-        for (; at > 0 && t[order[at - 1]] > t[l]; --at) order[at] = order[at - 1];
-        order[at] = l;
-      }
-      return met;
+      return slabs.Meet(node.lo, node.hi, node.lanes, order);
     };
     // A blocker whose plane the segment does not cross is passed over at once (its plane
     // read from planes_, side by side for a leaf, not from its shape).
