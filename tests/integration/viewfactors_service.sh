@@ -47,21 +47,8 @@ o box_side
 f 9 13 14 10
 OBJ
 printf 'newmtl grey\nKd 0.5 0.5 0.5\n' >"$M/room.mtl"
-# A street canyon: ground and two facing walls, two triangles each (ASCII STL).
-python3 - "$M/canyon.stl" <<'PY'
-import sys
-quads = [((0, 0, 0), (2, 0, 0), (2, 1, 0), (0, 1, 0)),   # ground, up
-         ((0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)),   # west wall, facing +x
-         ((2, 0, 0), (2, 0, 1), (2, 1, 1), (2, 1, 0))]   # east wall, facing -x
-with open(sys.argv[1], "w") as f:
-    f.write("solid canyon\n")
-    for a, b, c, d in quads:
-        for tri in ((a, b, c), (a, c, d)):
-            f.write("facet normal 0 0 0\nouter loop\n")
-            for v in tri: f.write("vertex %g %g %g\n" % v)
-            f.write("endloop\nendfacet\n")
-    f.write("endsolid canyon\n")
-PY
+# A street canyon: ground and two facing walls, two triangles each.
+python3 "$(dirname "$0")/write_stl.py" canyon "$M/canyon.stl"
 server=(--server "$ADDR")
 # same_bytes NAME MODEL ARGS...: local viewfactors, submit --watch, and result of that job
 # write the same two files.
