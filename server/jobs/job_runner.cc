@@ -10,6 +10,7 @@
 #include "absl/strings/str_format.h"
 #include "server/jobs/progress_throttle.h"
 #include "server/jobs/row_budget.h"
+#include "server/jobs/view_factor_runner.h"
 #include "server/store/result_codec.h"
 #include "server/store/row_block_writer.h"
 #include "server/store/row_sink.h"
@@ -260,6 +261,7 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 }  // namespace
 
 absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
+  if (job.options().has_viewfactors()) return RunStoredViewFactorJob(job, c);
   const auto start = Clock::now();
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
       c.scenes->Get(job.scene_sha256(), job.options().import_options());
