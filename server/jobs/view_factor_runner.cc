@@ -6,13 +6,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
-#include <thread>
 
 #include "nlohmann/json.hpp"
 #include "server/jobs/progress_throttle.h"
-#include "server/store/view_factor_blocks.h"
+#include "server/jobs/view_factor_rows.h"
 #include "solver/formfactor/view_factor_flags.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
@@ -51,7 +49,8 @@ nlohmann::json ErrorJson(const EnclosureError& e) {
 }
 
 // The report: what `radflux viewfactors` prints, as JSON.
-std::string ReportJson(const ViewFactorReport& r, const ViewFactorRun& run, size_t reused_rows) {
+std::string ReportJson(const ViewFactorReport& r, const ViewFactorRun& run,
+                       const ViewFactorRowsReport& rows) {
   // run.model.scene was moved into the job: only its name is read here.
   nlohmann::json j = {
       {"scene", run.model_name},
@@ -64,7 +63,8 @@ std::string ReportJson(const ViewFactorReport& r, const ViewFactorRun& run, size
       {"row_sums", {{"allowance", r.row_sums.allowance}, {"rows_over", r.row_sums.rows_over},
                     {"worst_row", r.row_sums.worst_row}, {"worst_sum", r.row_sums.worst_sum},
                     {"worst_name", r.row_sums.worst_name}}}};
-  j["reused_rows"] = reused_rows;  // from a resumed job's stored blocks (not in the counts)
+  j["reused_rows"] = rows.reused_rows;  // from a resumed job's stored blocks (not in the counts)
+  j["workers"] = WorkersJson(rows.farm);
   if (r.adaptive) {
     const SurfaceRowsStats& s = *r.adaptive;
     j["adaptive"] = {{"culled", s.pairs.culled},         {"one_point", s.pairs.one_point},
@@ -101,83 +101,6 @@ absl::StatusOr<EncodedResult> EncodeFiles(const ViewFactorOutput& output, const 
   if (absl::Status s = blob.Append(result.bytes); !s.ok()) return s;
   result.file = blob.File();
   return result;
-}
-
-// Rows per checkpointed block: a block's progress event and file (64 rows of n doubles).
-constexpr size_t kBlockRows = 64;
-
-// Whether a stored block belongs to `plan` and holds the rows its name says.
-bool Fits(const ViewFactorBlock& b, const SurfaceRowPlan& plan) {
-  const size_t n = plan.radiating();
-  return b.surfaces == n && b.reciprocal == plan.reciprocal() && b.first % kBlockRows == 0 &&
-         b.first < n && b.count == std::min(kBlockRows, n - b.first) &&
-         b.values.size() == plan.BlockValues(b.first, b.count);
-}
-
-// The first rows of the blocks of `dir` that fit `plan` (each read and checked; others are
-// logged and built again).
-std::set<uint64_t> ReusableBlocks(const std::string& dir, const SurfaceRowPlan& plan,
-                                  const std::string& job_id) {
-  std::set<uint64_t> reusable;
-  for (uint64_t first : StoredViewFactorBlocks(dir)) {
-    absl::StatusOr<ViewFactorBlock> block = GetViewFactorBlock(dir, first);
-    if (block.ok() && Fits(*block, plan)) {
-      reusable.insert(first);
-    } else {
-      spdlog::warn("job {}: stored view-factor rows from {} not reused ({})", job_id, first,
-                   block.ok() ? "another plan of rows" : std::string(block.status().message()));
-    }
-  }
-  return reusable;
-}
-
-// SurfaceRowsBuilder of a job: SurfaceRowPlan's blocks of kBlockRows rows, those stored in
-// the job's directory reused, the others built and stored as each finishes (on a failed
-// write the job fails: context.fail), then all emitted in row order. `reused_rows` counts
-// the rows that came from the store.
-SurfaceRowsBuilder CheckpointedRows(const v1::Job& job, const RunContext& c, size_t& reused_rows) {
-  return [&job, &c, &reused_rows](const std::vector<SurfaceShape>& shapes, size_t radiating,
-                                  const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
-                                  SurfaceRowsStats& stats) -> absl::Status {
-    const std::string dir = c.store->JobDir(job.job_id());
-    const SurfaceRowPlan plan(shapes, radiating, options, stats);
-    const auto start = Clock::now();
-    const std::set<uint64_t> reusable = ReusableBlocks(dir, plan, job.job_id());
-    for (size_t first = 0; first < radiating; first += kBlockRows) {
-      const size_t count = std::min(kBlockRows, radiating - first);
-      if (reusable.count(first) > 0) {
-        reused_rows += count;
-      } else {
-        ViewFactorBlock block{radiating, plan.reciprocal(), first, count, {}};
-        block.values.resize(plan.BlockValues(first, count));
-        plan.BuildBlock(first, count, block.values, stats);
-        if (c.block_delay_ms > 0) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(c.block_delay_ms));
-        }
-        if (absl::Status s = PutViewFactorBlock(dir, block); !s.ok()) {
-          c.fail(s);
-          return s;
-        }
-      }
-      if (options.on_rows && !options.on_rows(first + count, radiating)) {
-        return absl::CancelledError("view-factor rows stopped");
-      }
-    }
-    if (reused_rows > 0) {
-      spdlog::info("job {}: reused {} stored view-factor rows of {}", job.job_id(), reused_rows,
-                   radiating);
-    }
-    absl::Status emitted = plan.Emit(
-        kBlockRows,
-        [&](size_t first) -> absl::StatusOr<std::vector<double>> {
-          absl::StatusOr<ViewFactorBlock> block = GetViewFactorBlock(dir, first);
-          if (!block.ok()) return block.status();
-          return std::move(block->values);
-        },
-        sink);
-    stats.rows_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    return emitted;
-  };
 }
 
 // Progress of the surface rows to the job's watchers; false once the job is to stop.
@@ -263,15 +186,15 @@ absl::StatusOr<EncodedResult> RunStoredViewFactorJob(const v1::Job& job, const R
   options.output.svf_path = dir + "/sky_view_factors.out";
   ProgressThrottle throttle(*c.hub, JobHub::kWakeInterval, std::chrono::milliseconds(100));
   options.surface_rows.on_rows = RowProgress(throttle, c);
-  size_t reused_rows = 0;
-  options.build_rows = CheckpointedRows(job, c, reused_rows);
+  ViewFactorRowsReport rows_report;
+  options.build_rows = FarmedViewFactorRows(job, c, rows_report);
   c.on_phase(v1::PHASE_ROWS, static_cast<int64_t>(run->surfaces));
   absl::StatusOr<ViewFactorReport> report = RunViewFactorJob(std::move(run->model.scene), options);
   throttle.Flush();
   if (c.stop && c.stop->load()) return absl::CancelledError("stopped during view-factor rows");
   if (!report.ok()) return report.status();
   absl::StatusOr<EncodedResult> result =
-      EncodeFiles(options.output, ReportJson(*report, *run, reused_rows));
+      EncodeFiles(options.output, ReportJson(*report, *run, rows_report));
   if (result.ok() && report->row_sums.rows_over > 0) {
     result->energy_balance_ok = false;
     result->message = report->row_sums.OverMessage();

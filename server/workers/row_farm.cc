@@ -184,6 +184,10 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
   absl::StatusOr<StoredRowBlock> unpacked =
       UnpackRowBlock(r, MaxRowBlockBytes(issued.row_count, patch_count));
   if (!unpacked.ok()) return unpacked.status();
+  if (job.spec.dense) return CheckDense(issued, job, *std::move(unpacked), rows);
+  if (unpacked->view_factors) {
+    return absl::InvalidArgumentError("a view-factor block for a form-factor job's lease");
+  }
   const RowBlock& block = unpacked->block;
   absl::StatusOr<std::vector<uint32_t>> high_sum =
       CheckRowBlock(block, issued.first_row, issued.row_count, patch_count, job.spec.max_row_sum);
@@ -208,6 +212,27 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
     if (!same.ok()) return same;
   }
   *rows = *std::move(unpacked);
+  return absl::OkStatus();
+}
+
+absl::Status RowFarm::CheckDense(const Issued& issued, Job& job, StoredRowBlock unpacked,
+                                 StoredRowBlock* rows) {
+  std::vector<uint32_t> sample;
+  {
+    std::lock_guard lock(mu_);
+    sample = SampleRows(issued.first_row, issued.row_count, verify_fraction_, rng_);
+  }
+  const auto start = Clock::now();
+  const absl::Status same =
+      CheckDenseBlock(unpacked, issued.first_row, issued.row_count, *job.spec.dense, sample);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  {
+    std::lock_guard lock(mu_);
+    job.report.verified_rows += sample.size();
+    job.report.verify_seconds += seconds;
+  }
+  if (!same.ok()) return same;
+  *rows = std::move(unpacked);
   return absl::OkStatus();
 }
 

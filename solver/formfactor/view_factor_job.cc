@@ -38,14 +38,7 @@ absl::Status WriteDense(std::vector<std::vector<double>>& factor, ViewFactorSurf
   return (*writer)->Close();
 }
 
-// The surfaces when each is one face: the radiating faces' shapes in order, then the
-// obstruction faces'; nullopt when some surface has several faces.
-struct FaceSurfaces {
-  std::vector<SurfaceShape> shapes;
-  size_t radiating = 0;
-  std::vector<std::string> names;
-  std::vector<double> emittance;
-};
+}  // namespace
 
 std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by) {
   if (!EverySurfaceIsOneFace(scene, by)) return std::nullopt;
@@ -70,6 +63,8 @@ std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGroupin
   for (SurfaceShape& s : obstructions) out.shapes.push_back(std::move(s));
   return out;
 }
+
+namespace {
 
 absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
                                              const ViewFactorJobOptions& options) {

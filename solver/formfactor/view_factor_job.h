@@ -70,6 +70,18 @@ struct ViewFactorReport {
 // adaptive integration needs, and what kAuto chooses it by.
 bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by);
 
+// The surfaces when each is one face (what adaptive integration integrates): the radiating
+// faces' shapes in order, then the obstruction faces'.
+struct FaceSurfaces {
+  std::vector<SurfaceShape> shapes;
+  size_t radiating = 0;
+  std::vector<std::string> names;
+  std::vector<double> emittance;
+};
+
+// FaceSurfaces of `scene` by `by`; nullopt when some surface has several faces.
+std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by);
+
 // Computes the view factors of `scene` between its surfaces (options.by) and writes them.
 // INVALID_ARGUMENT for a bad scene or options (file:line), errors naming the output file.
 absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene, const ViewFactorJobOptions& options);

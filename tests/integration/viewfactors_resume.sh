@@ -8,22 +8,8 @@ set -euo pipefail
 RADFLUXD=$1 CLI=$2
 source "$(dirname "$0")/radfluxd_fixture.sh"
 start_radfluxd "$RADFLUXD" /tmp/radflux_vf_resume_XXXXXX --testing-block-delay-ms 300
-# A 20 x 20 grid of ground squares (two facets each) and a wall along one side, facing the
-# ground: 802 surfaces, 13 blocks of 64 rows.
-python3 - "$DIR/yard.stl" <<'PY'
-import sys
-quads = [((x, y, 0), (x + 1, y, 0), (x + 1, y + 1, 0), (x, y + 1, 0))
-         for x in range(20) for y in range(20)]
-quads.append(((0, 0, 0), (0, 20, 0), (0, 20, 5), (0, 0, 5)))
-with open(sys.argv[1], "w") as f:
-    f.write("solid yard\n")
-    for a, b, c, d in quads:
-        for tri in ((a, b, c), (a, c, d)):
-            f.write("facet normal 0 0 0\nouter loop\n")
-            for v in tri: f.write("vertex %g %g %g\n" % v)
-            f.write("endloop\nendfacet\n")
-    f.write("endsolid yard\n")
-PY
+# A 20 x 20 grid of ground squares and a wall: 802 surfaces, 13 blocks of 64 rows.
+python3 "$(dirname "$0")/write_stl.py" yard "$DIR/yard.stl"
 ARGS=(--by face --format sparse --min-vf 0.0001)
 "$CLI" viewfactors "$DIR/yard.stl" "${ARGS[@]}" -q -o "$DIR/local.txt" --svf "$DIR/local.svf" \
   2>/dev/null

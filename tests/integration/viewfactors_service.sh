@@ -47,21 +47,8 @@ o box_side
 f 9 13 14 10
 OBJ
 printf 'newmtl grey\nKd 0.5 0.5 0.5\n' >"$M/room.mtl"
-# A street canyon: ground and two facing walls, two triangles each (ASCII STL).
-python3 - "$M/canyon.stl" <<'PY'
-import sys
-quads = [((0, 0, 0), (2, 0, 0), (2, 1, 0), (0, 1, 0)),   # ground, up
-         ((0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)),   # west wall, facing +x
-         ((2, 0, 0), (2, 0, 1), (2, 1, 1), (2, 1, 0))]   # east wall, facing -x
-with open(sys.argv[1], "w") as f:
-    f.write("solid canyon\n")
-    for a, b, c, d in quads:
-        for tri in ((a, b, c), (a, c, d)):
-            f.write("facet normal 0 0 0\nouter loop\n")
-            for v in tri: f.write("vertex %g %g %g\n" % v)
-            f.write("endloop\nendfacet\n")
-    f.write("endsolid canyon\n")
-PY
+# A street canyon: ground and two facing walls, two triangles each.
+python3 "$(dirname "$0")/write_stl.py" canyon "$M/canyon.stl"
 server=(--server "$ADDR")
 # same_bytes NAME MODEL ARGS...: local viewfactors, submit --watch, and result of that job
 # write the same two files.
@@ -103,6 +90,10 @@ assert adaptive["surfaces"] == 8 and adaptive["integration"] == "adaptive", adap
 assert adaptive["adaptive"]["reciprocal"] is True, adaptive["adaptive"]
 assert patches["integration"] == "patches" and patches["patches"] > 8, patches
 PY
+# `result` without files names the job's surfaces.
+room_job=$(tail -n 1 "$DIR/room-csv.job")
+"$CLI" result "$room_job" "${server[@]}" | grep -q "^8 surfaces" ||
+  { echo "result of a view-factor job without -o: $("$CLI" result "$room_job" "${server[@]}")"; exit 1; }
 # One sky view factor per surface after the header line.
 [ "$(wc -l <"$DIR/room-csv.local.svf")" -eq 9 ] && [ "$(wc -l <"$DIR/canyon-csv.local.svf")" -eq 7 ] ||
   { echo "sky view factor files: $(wc -l "$DIR"/*-csv.local.svf)"; exit 1; }
