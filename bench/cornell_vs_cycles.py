@@ -16,6 +16,10 @@ With one RADFLUX picture: that run's table, RMS and worst. With several (one per
 --seed): per (surface, band) the mean difference over the runs (the bias) and their standard
 deviation (the run-to-run noise); the RMS and worst of the mean differences; and each run's own
 RMS, with their mean, minimum and maximum (what a single run scores).
+
+A RADFLUX picture n times the mask's size in both directions (same camera) is box-averaged down
+to it: n x n samples per pixel, as Cycles' box filter (a pixel straddling an edge inside one
+object, e.g. a block's front and side faces, is not eroded by the mask and must mean the same).
 """
 import json
 import sys
@@ -37,6 +41,14 @@ def read_pfm(path):
         scale = float(f.readline())
         data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
     return data.reshape(h, w, 3)[::-1].astype(np.float64)
+
+
+def box_down(image, shape):
+    """image averaged over n x n blocks down to shape (h, w, 3); n must be a whole number."""
+    n = image.shape[0] // shape[0]
+    if n < 1 or image.shape != (shape[0] * n, shape[1] * n, shape[2]):
+        raise SystemExit(f"picture {image.shape} is not a whole multiple of the mask {shape}")
+    return image.reshape(shape[0], n, shape[1], n, shape[2]).mean(axis=(1, 3))
 
 
 def masks(code_image):
@@ -69,7 +81,7 @@ def main():
         raise SystemExit(__doc__)
     code = read_pfm(args[0])
     seed1, seed2 = (np.load(p).astype(np.float64) for p in args[1:3])
-    runs = [read_pfm(p) for p in args[3:]]
+    runs = [box_down(read_pfm(p), code.shape) for p in args[3:]]
     if any(im.shape != code.shape for im in [seed1, seed2] + runs):
         raise SystemExit(f"image sizes differ: {[im.shape for im in [code, seed1, seed2] + runs]}")
     cycles = (seed1 + seed2) / 2

@@ -13,10 +13,15 @@
 #   RUNS=20 (0: no timing), BIN=build/ci/client/radflux, SEEDS="1 2 3 4 5 6" (radflux --seed
 #   per picture; one seed, e.g. SEEDS=1, is the single-run mode). The two Cycles renders (seeds
 #   1 and 2, ~6-9 min each here) are reused when OUT already has them for the same SIZE and SPP.
+#   SS=4: radflux's pictures are rendered SS times larger and box-averaged down in the comparison
+#   (SS x SS samples per pixel, as Cycles' box filter spans the pixel: a pixel across an edge
+#   inside one object, such as a block's front and side faces, then means the same in both;
+#   SS=1 takes each pixel's centre, which put a block's one-pixel-wide side column 50% off).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-/tmp/radflux-cycles}
 size=${SIZE:-128x128}
+ss=${SS:-4}
 spp=${SPP:-4096}
 runs=${RUNS:-20}
 read -r -a seeds <<< "${SEEDS:-1 2 3 4 5 6}"
@@ -64,11 +69,14 @@ with open(flat + ".mtl", "w") as f:
 EOF
 "$bin" solve "$out/flat.obj" --render "$out/mask.pfm" "${camera[@]}" -q
 
-# radflux's pictures at the defaults (plus any flags given), one per seed, and the comparison.
+# radflux's pictures at the defaults (plus any flags given), one per seed, SS times larger,
+# and the comparison.
+w=${size%x*} h=${size#*x}
+big=(--camera-pos "$pos" --camera-look-at "$look" --fov-deg "$fov" --size $((w * ss))x$((h * ss)))
 pictures=()
 for seed in "${seeds[@]}"; do
   pictures+=("$out/radflux_seed$seed.pfm")
-  "$bin" solve "$scene" --render "${pictures[-1]}" "${camera[@]}" -q --seed "$seed" "$@"
+  "$bin" solve "$scene" --render "${pictures[-1]}" "${big[@]}" -q --seed "$seed" "$@"
 done
 /usr/bin/python3 bench/cornell_vs_cycles.py "$out/mask.pfm" \
   "$out/cycles_${size}_${spp}_seed1.npy" "$out/cycles_${size}_${spp}_seed2.npy" \

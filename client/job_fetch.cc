@@ -47,13 +47,23 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
   auto reader = client.stub().GetResult(context.get(), request);
   v1::ResultChunk chunk;
   StreamedResult r;
-  uint64_t vertex_count = 0, patch_count = 0;
+  uint64_t vertex_count = 0, patch_count = 0, factor_bytes = 0, sky_bytes = 0;
   std::vector<double> xyz, b;
   while (reader->Read(&chunk)) {
     if (chunk.has_header()) {
       r.job = chunk.header().job();
       vertex_count = chunk.header().vertex_count();
       patch_count = chunk.header().patch_count();
+      factor_bytes = chunk.header().view_factor_bytes();
+      sky_bytes = chunk.header().sky_view_factor_bytes();
+    }
+    if (chunk.has_view_factor_file()) {
+      const v1::ViewFactorFileChunk& f = chunk.view_factor_file();
+      std::string& file = f.file() == v1::VIEW_FACTOR_FILE_SKY ? r.sky_view_factors : r.view_factors;
+      if (f.offset() != file.size()) {
+        return absl::DataLossError("view-factor file chunks out of order in the result stream");
+      }
+      file += f.data();
     }
     if (chunk.has_vertices())
       xyz.insert(xyz.end(), chunk.vertices().xyz().begin(), chunk.vertices().xyz().end());
@@ -67,7 +77,10 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
   }
   if (absl::Status s = FromGrpcStatus(reader->Finish()); !s.ok()) return s;
   r.patch_count = patch_count;
-  if (report_only && xyz.empty() && r.faces.empty()) return r;
+  if (report_only && xyz.empty() && r.faces.empty() && r.view_factors.empty()) return r;
+  if (r.view_factors.size() != factor_bytes || r.sky_view_factors.size() != sky_bytes) {
+    return absl::DataLossError("result stream's view-factor files do not match its header's sizes");
+  }
   if (xyz.size() != 3 * vertex_count || r.faces.size() != patch_count ||
       r.vertices.size() != 4 * patch_count || b.size() != kBands * patch_count) {
     return absl::DataLossError("result stream does not match its header's counts");

@@ -35,6 +35,9 @@ struct StreamedResult {
   std::vector<Rgb> radiosity;  // W/m^2 per band, per patch
   std::string report;
   uint64_t patch_count = 0;  // from the header (also when the mesh and B were not asked for)
+  // A view-factor job's files (empty when report_only): what `radflux viewfactors` writes
+  // to -o and to --svf.
+  std::string view_factors, sky_view_factors;
 };
 
 // A finished job's result (GetResult). With `report_only`, asks for the header and the

@@ -74,7 +74,8 @@ absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMe
                          const ToneMapOptions& tone, int threads, OutputTimings* timings) {
   auto caster = EmbreeRayCaster::Create(solved_mesh);
   if (!caster.ok()) return caster.status();
-  absl::StatusOr<Camera> camera = CameraFromFlags(f, solved_mesh, **caster, scene.origin);
+  absl::StatusOr<Camera> camera =
+      CameraFromFlags(f, solved_mesh, **caster, radiosity, scene.origin);
   if (!camera.ok()) return camera.status();
   const auto start = std::chrono::steady_clock::now();
   absl::StatusOr<Image> image =
@@ -103,7 +104,8 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
           ->delimiter(',')
           ->expected(3),
       app.add_option("--camera-up", f.camera_up,
-                     "camera up vector X,Y,Z (default 0,1,0; inside an enclosed scene its up axis)")
+                     "camera up vector X,Y,Z (default: the default view's +y or +z; with "
+                     "--camera-pos, 0,1,0)")
           ->delimiter(',')
           ->expected(3),
       app.add_option("--fov-deg", f.fov_deg, "vertical field of view, degrees")
@@ -165,13 +167,14 @@ absl::Status ValidateOutputFlags(const OutputFlags& f) {
 }
 
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& mesh,
-                                       const RayCaster& caster, const Vec3& origin) {
+                                       const RayCaster& caster, std::span<const Rgb> radiosity,
+                                       const Vec3& origin) {
   Camera camera;
   std::tie(camera.width, camera.height) = ParseSize(f.size);
   camera.vertical_fov_degrees = f.fov_deg;
   const Vec3 up = f.camera_up.empty() ? Vec3{} : ToVec3(f.camera_up);
   if (f.camera_pos.empty()) {
-    camera = DefaultCamera(mesh, caster, camera, up);
+    camera = DefaultCamera(mesh, caster, radiosity, camera, up);
   } else {
     camera.up = f.camera_up.empty() ? Vec3{0, 1, 0} : up;
     Vec3 lo = mesh.positions.at(0), hi = lo;

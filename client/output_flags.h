@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,12 +43,13 @@ absl::Status ValidateOutputFlags(const OutputFlags& flags);
 
 // The camera from the flags; without --camera-pos, the default view's rule places it
 // (solver/output/default_view.h: from inside for an enclosed scene, with `caster` probing
-// `mesh`, and choosing up unless --camera-up is given; with --camera-pos, up is +y unless
-// given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the
+// `mesh` lit by `radiosity` (B per patch), and choosing up unless --camera-up is given; with
+// --camera-pos, up is +y unless given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the
 // camera is in the mesh's, which are the file's minus `origin` (Scene::origin of a recentred
 // scene).
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
-                                       const RayCaster& caster, const Vec3& origin = {});
+                                       const RayCaster& caster, std::span<const Rgb> radiosity,
+                                       const Vec3& origin = {});
 
 // Seconds spent in parts of WriteOutputs, for the job report.
 struct OutputTimings {

@@ -2,6 +2,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -17,12 +18,15 @@
 #include "client/scene_upload.h"
 #include "client/service_client.h"
 #include "client/view/view_command.h"
+#include "client/viewfactors_flags.h"
 #include "radflux/v1/radiosity.grpc.pb.h"
+#include "solver/formfactor/view_factor_flags.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/validation.h"
 #include "wire/grpc_credentials.h"
 #include "wire/proto_convert.h"
 #include "wire/scene_stream.h"
+#include "wire/view_factor_convert.h"
 #include "wire/stored_scene.h"
 
 namespace radflux::cli {
@@ -30,6 +34,49 @@ namespace {
 
 bool WantsGeometry(const OutputFlags& f) {
   return !f.out.empty() || !f.render.empty() || !f.patch_values.empty();
+}
+
+// Writes `bytes` to `path` ("" = nothing to write); INTERNAL naming the file on failure.
+absl::Status WriteFile(const std::string& path, const std::string& bytes) {
+  if (path.empty()) return absl::OkStatus();
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+  out.close();
+  if (!out) return absl::InternalError("cannot write " + path);
+  return absl::OkStatus();
+}
+
+// The files of a view-factor job's result: what `radflux viewfactors` writes to -o and --svf.
+struct ViewFactorFiles {
+  std::string output, svf, report;  // "" = not asked for
+};
+
+// `radflux result` of a view-factor job (`submit --viewfactors`): its files, the bytes
+// `radflux viewfactors` writes for the same model and options; then, as GetResult, the
+// job's verdict (rows summing above 1: kExitRowSumOver, with one line unless the caller said
+// it already).
+int GetViewFactorResult(Client& client, const std::string& job_id, const ViewFactorFiles& files,
+                        bool say_shortfall = true) {
+  absl::StatusOr<StreamedResult> result =
+      FetchResult(client, job_id, /*report_only=*/files.output.empty() && files.svf.empty());
+  if (!result.ok()) return Fail(result.status(), client.flags());
+  if (!result->job.options().has_viewfactors()) {
+    return Fail(absl::InvalidArgumentError(
+                    job_id + " is not a view-factor job: -o and --svf are for jobs of `radflux "
+                             "submit --viewfactors` (a radiosity job's mesh is --out)"),
+                client.flags());
+  }
+  result->report += "\n";
+  for (const auto& [path, bytes] : {std::pair{files.output, &result->view_factors},
+                                    std::pair{files.svf, &result->sky_view_factors},
+                                    std::pair{files.report, &result->report}}) {
+    if (absl::Status s = WriteFile(path, *bytes); !s.ok()) return Fail(s, client.flags());
+  }
+  std::cout << result->job.patches() << " surfaces\n";
+  const int verdict = SucceededJobExitCode(result->job);
+  if (verdict != 0 && say_shortfall)
+    return ReportJobShortfall("result", job_id, result->job.message(), verdict);
+  return verdict;
 }
 
 // `radflux result`: the outputs of `radflux solve` from a finished job. `prefetched` is the
@@ -44,6 +91,11 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
   absl::StatusOr<StreamedResult> result =
       FetchResult(client, job_id, /*report_only=*/!WantsGeometry(args.output));
   if (!result.ok()) return Fail(result.status(), client.flags());
+  if (result->job.options().has_viewfactors() && WantsGeometry(args.output)) {
+    return Fail(absl::InvalidArgumentError(
+                    job_id + " is a view-factor job: fetch its files with -o FILE [--svf FILE]"),
+                client.flags());
+  }
   if (WantsGeometry(args.output)) {
     std::optional<JobGeometry> fetched;
     if (!prefetched) {
@@ -63,12 +115,8 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
       return Fail(s, client.flags());
     }
   }
-  if (!args.output.report.empty()) {
-    std::ofstream out(args.output.report);
-    out << result->report << "\n";
-    out.close();
-    if (!out)
-      return Fail(absl::InternalError("cannot write " + args.output.report), client.flags());
+  if (absl::Status s = WriteFile(args.output.report, result->report + "\n"); !s.ok()) {
+    return Fail(s, client.flags());
   }
   std::cout << result->patch_count << " patches\n";
   const int verdict = SucceededJobExitCode(result->job);
@@ -101,6 +149,61 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
   return GetResult(client, job_id, args, g, /*say_shortfall=*/watched == 0);
 }
 
+// The request of `radflux submit MODEL --viewfactors`: the options given, checked here as
+// `radflux viewfactors` checks them where the model is not needed (the server checks the
+// rest: it reads the model).
+absl::StatusOr<v1::SolveOptions> ViewFactorRequest(const std::vector<std::string>& given,
+                                                  const std::string& model, const JobFlags& job,
+                                                  const ImportFlags& import_flags,
+                                                  const ViewFactorFlags& vf) {
+  const ViewFactorIntegration requested = RequestedIntegration(vf);
+  if (absl::Status s = CheckViewFactorFlags(given, model, requested, requested); !s.ok()) return s;
+  absl::StatusOr<JobOptions> options = ToJobOptions(job);
+  if (!options.ok()) return options.status();
+  absl::StatusOr<ImportOptions> import = ToImportOptions(import_flags);
+  if (!import.ok()) return import.status();
+  v1::SolveOptions full = ToProto(*options);
+  *full.mutable_import_options() = ToProto(*import);
+  v1::ViewFactorOptions p;
+  p.set_by(vf.by);
+  p.set_format(vf.format);
+  p.set_min_vf(vf.min_vf);
+  p.set_integration(vf.integration);
+  p.set_vf_tolerance(vf.pairs.tolerance);
+  p.set_far_ratio(vf.pairs.far_ratio);
+  p.set_middle_ratio(vf.pairs.middle_ratio);
+  p.set_memory_limit(vf.memory_limit);
+  return ViewFactorRequestOptions(std::move(full), p, given);
+}
+
+// INVALID_ARGUMENT when the command line mixes the kinds of job: a view-factor flag without
+// --viewfactors, or a radiosity output flag with it; or asks for files without --watch.
+absl::Status CheckSubmitKind(const CLI::App& submit, bool viewfactors, bool watch) {
+  std::vector<std::string> vf_given;
+  for (const CLI::Option* option : submit.get_options()) {
+    if (option->get_group() == kViewFactorGroup && option->count() > 0) {
+      vf_given.push_back(option->get_name());
+    }
+  }
+  const std::vector<std::string> outputs = GivenOutputFlags(submit);
+  if (!viewfactors && !vf_given.empty()) {
+    return absl::InvalidArgumentError(vf_given.front() + " needs --viewfactors");
+  }
+  if (viewfactors && !outputs.empty()) {
+    return absl::InvalidArgumentError(outputs.front() +
+                                      " is for radiosity jobs; a view-factor job writes -o and --svf");
+  }
+  const std::vector<std::string>& files = viewfactors ? vf_given : outputs;
+  for (const std::string& flag : files) {
+    if (flag != "-o" && flag != "--output" && flag != "--svf" && viewfactors) continue;
+    if (watch) break;
+    return absl::InvalidArgumentError(absl::StrCat(
+        flag, " needs --watch: outputs are written when the watched job succeeds (without "
+              "--watch, run `radflux result JOB ", flag, " ...` once it has)"));
+  }
+  return absl::OkStatus();
+}
+
 // The verb's connection, for the rest of the process: never destroyed, because destroying
 // the last gRPC channel shuts gRPC down (its threads joined, with sleeps), which radflux-service
 // skips by ending with _Exit once its output is written (service_main.cc): ~3-6 ms of a round
@@ -131,6 +234,39 @@ void AddConnectionFlags(CLI::App& command, ConnectionFlags& c) {
   key->needs(cert);
 }
 
+// `radflux submit MODEL --viewfactors ...`: uploads the model, submits the view-factor job
+// and prints its id; with --watch follows it and writes its files as `radflux result` does.
+int SubmitViewFactors(const ConnectionFlags& c, const std::string& model,
+                      const std::vector<std::string>& given, const JobFlags& job,
+                      const ImportFlags& import, const ViewFactorFlags& vf,
+                      const std::string& request_id, bool watch, int reconnect_seconds) {
+  absl::StatusOr<v1::SolveOptions> options = ViewFactorRequest(given, model, job, import, vf);
+  if (!options.ok()) return ReportStatus("submit", options.status());
+  absl::StatusOr<SceneFile> scene_file = ReadSceneFile(model);
+  if (!scene_file.ok()) return Fail(scene_file.status(), c);
+  Client& client = ProcessClient(c);
+  v1::SubmitJobRequest request;
+  *request.mutable_options() = *std::move(options);
+  request.set_request_id(request_id);
+  v1::Job submitted;
+  const grpc::Status status = SubmitScene(client, *scene_file, request, &submitted);
+  if (!status.ok()) return Report(status, c);
+  std::cerr << "submitted " << submitted.job_id() << " (scene "
+            << request.scene_sha256().substr(0, 12) << ")\n";
+  int exit_code = 0;
+  if (watch) {
+    const int watched = WatchJob(client, submitted.job_id(), "", nullptr, OutputArgs{}, 0,
+                                 reconnect_seconds);
+    const bool succeeded = watched == 0 || watched == kExitRowSumOver;
+    exit_code = !succeeded ? watched
+                           : GetViewFactorResult(client, submitted.job_id(),
+                                                 ViewFactorFiles{vf.output, vf.svf, ""},
+                                                 /*say_shortfall=*/watched == 0);
+  }
+  std::cout << submitted.job_id() << std::endl;
+  return exit_code;
+}
+
 }  // namespace
 
 void AddServiceCommands(CLI::App& app, int& exit_code) {
@@ -158,16 +294,21 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   auto reconnect_seconds = std::make_shared<int>(kReconnectSeconds);
   AddReconnectFlag(*submit, *reconnect_seconds);
   AddOutputFlags(*submit, *submit_outputs);
+  auto viewfactors = std::make_shared<bool>(false);
+  auto vf_flags = std::make_shared<ViewFactorFlags>();
+  submit->add_flag("--viewfactors", *viewfactors,
+                   "a view-factor job (the options of `radflux viewfactors`; its files are "
+                   "written by --watch -o FILE [--svf FILE] or `radflux result JOB -o FILE`)");
+  AddViewFactorFlags(*submit, *vf_flags, /*output_required=*/false);
   AddConnectionFlags(*submit, *c);
   submit->callback([=, &exit_code] {
-    if (const std::vector<std::string> given = GivenOutputFlags(*submit);
-        !given.empty() && !*watch) {
-      return void(exit_code = ReportStatus(
-                      "submit", absl::InvalidArgumentError(absl::StrCat(
-                                    given.front(),
-                                    " needs --watch: outputs are written when the watched job "
-                                    "succeeds (without --watch, run `radflux result JOB ",
-                                    given.front(), " ...` once it has)"))));
+    if (absl::Status s = CheckSubmitKind(*submit, *viewfactors, *watch); !s.ok()) {
+      return void(exit_code = ReportStatus("submit", s));
+    }
+    if (*viewfactors) {
+      return void(exit_code = SubmitViewFactors(*c, *scene, GivenFlagNames(*submit), *job_flags,
+                                                *import_flags, *vf_flags, *request_id, *watch,
+                                                *reconnect_seconds));
     }
     if (absl::Status s = ValidateOutputFlags(*submit_outputs); !s.ok()) {
       return void(exit_code = Fail(s, *c));
@@ -237,10 +378,29 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   result->add_option("job", *result_id, "job id")->required();
   AddOutputFlags(*result, result_args->output);
   result->add_option("--threads", result_args->threads, "render threads (0 = all cores)");
+  auto vf_files = std::make_shared<ViewFactorFiles>();
+  result->add_option("-o,--output", vf_files->output,
+                     "a view-factor job's file (its --format), as `radflux viewfactors -o` "
+                     "writes it");
+  result->add_option("--svf", vf_files->svf,
+                     "a view-factor job's sky view factors, as `radflux viewfactors --svf` "
+                     "writes them");
   AddConnectionFlags(*result, *c);
   result->callback([=, &exit_code] {
     Client& client = ProcessClient(*c);
-    exit_code = GetResult(client, *result_id, *result_args);
+    if (vf_files->output.empty() && vf_files->svf.empty()) {
+      return void(exit_code = GetResult(client, *result_id, *result_args));
+    }
+    if (const std::vector<std::string> given = GivenOutputFlags(*result);
+        std::find_if(given.begin(), given.end(),
+                     [](const std::string& flag) { return flag != "--report"; }) != given.end()) {
+      return void(exit_code = ReportStatus(
+                      "result", absl::InvalidArgumentError(
+                                    "-o and --svf (a view-factor job's files) go without the "
+                                    "radiosity outputs (--out, --render, --patch-values)")));
+    }
+    exit_code = GetViewFactorResult(
+        client, *result_id, ViewFactorFiles{vf_files->output, vf_files->svf, result_args->output.report});
   });
 
   auto* cancel = app.add_subcommand("cancel", "cancel a queued or running job");

@@ -74,12 +74,14 @@ std::string StoredSceneHash(const StoredScene& scene) {
   return scene.mesh.empty() ? SceneContentHash(scene.obj, scene.mtl) : MeshContentHash(scene.mesh);
 }
 
+SceneBundle TakeSceneBundle(StoredScene& scene) {
+  SceneBundle bundle{scene.files[0].path, {}};
+  for (BundleFile& file : scene.files) bundle.files.emplace(file.path, std::move(file.data));
+  return bundle;
+}
+
 absl::StatusOr<Scene> LoadStoredScene(StoredScene scene, const ImportOptions& options) {
-  if (!scene.files.empty()) {
-    SceneBundle bundle{scene.files[0].path, {}};
-    for (BundleFile& file : scene.files) bundle.files.emplace(file.path, std::move(file.data));
-    return LoadSceneBundle(bundle, options);
-  }
+  if (!scene.files.empty()) return LoadSceneBundle(TakeSceneBundle(scene), options);
   absl::StatusOr<Scene> loaded = LoadTextOrMesh(scene);
   if (!loaded.ok()) return loaded.status();
   if (absl::Status s = ApplyImportRules(options, *loaded); !s.ok()) return s;

@@ -10,6 +10,7 @@
 #include "absl/status/statusor.h"
 #include "radflux/v1/scene.pb.h"
 #include "solver/scene/import_options.h"
+#include "solver/scene/load_scene.h"
 #include "solver/scene/scene.h"
 #include "wire/scene_bundle.h"
 
@@ -35,6 +36,9 @@ std::string StoredSceneHash(const StoredScene& scene);
 // loader's or the rules' message (for a Mesh: the face index and what is wrong). Takes the
 // scene by value: a bundle's bytes are moved, not copied, into the loader's files.
 absl::StatusOr<Scene> LoadStoredScene(StoredScene scene, const ImportOptions& options);
+
+// The bundle of a stored scene of bundle form (files not empty), its files' bytes moved.
+SceneBundle TakeSceneBundle(StoredScene& scene);
 
 // The SceneChunk stream of GetScene / FetchScene: the header (name, sizes or the bundle's
 // files, `sha256`), then data chunks of at most 1 MiB whose concatenation is obj + mtl, the

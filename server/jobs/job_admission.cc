@@ -15,6 +15,7 @@
 #include "server/jobs/cpu_time.h"
 #include "server/jobs/job_manager.h"
 #include "server/jobs/row_budget.h"
+#include "server/jobs/view_factor_runner.h"
 #include "server/store/disk_space.h"
 #include "server/store/request_hash.h"
 #include "solver/pipeline.h"
@@ -120,6 +121,7 @@ absl::StatusOr<v1::SceneRef> JobManager::AddScene(const v1::SceneHeader& header,
 
 absl::StatusOr<JobManager::DiskNeed> JobManager::CheckLimits(const v1::SubmitJobRequest& request,
                                                  const Principal& caller) {
+  if (request.options().has_viewfactors()) return CheckViewFactorLimits(request, caller);
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
       scenes_.Get(request.scene_sha256(), request.options().import_options());
   if (!loaded.ok()) return loaded.status();
@@ -157,6 +159,32 @@ absl::StatusOr<JobManager::DiskNeed> JobManager::CheckLimits(const v1::SubmitJob
     return s;
   }
   return DiskNeed{JobDiskNeed(patches, *options), patches};
+}
+
+absl::StatusOr<JobManager::DiskNeed> JobManager::CheckViewFactorLimits(
+    const v1::SubmitJobRequest& request, const Principal& caller) {
+  absl::StatusOr<StoredScene> stored = store_.GetScene(request.scene_sha256());
+  if (!stored.ok()) return stored.status();
+  absl::StatusOr<ViewFactorRun> run = PrepareViewFactorRun(request.options(), *std::move(stored));
+  if (!run.ok()) return run.status();
+  // A surface is a row: the patch limits bound the matrix's rows (and, integrating patch rows,
+  // the patches asked for).
+  const int64_t asked = std::max(static_cast<int64_t>(run->surfaces),
+                                 run->options.integration == ViewFactorIntegration::kPatches
+                                     ? run->options.job.mesh.target_patches
+                                     : 0);
+  if (options_.max_patches > 0 && asked > options_.max_patches) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "view-factor job of ", asked, " surfaces or patches; this server allows at most ",
+        options_.max_patches, " (--max-patches)"));
+  }
+  if (caller.limits.patches > 0 && asked > caller.limits.patches) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat("view-factor job of ", asked, " surfaces or patches; principal '",
+                     caller.name, "' may submit at most ", caller.limits.patches,
+                     " a job (its limit patches)"));
+  }
+  return DiskNeed{ViewFactorDiskBound(*run), static_cast<uint64_t>(run->surfaces)};
 }
 
 absl::Status JobManager::CheckRunningJobs(const Principal& caller) {

@@ -125,6 +125,10 @@ class JobManager {
   // disk need, checked against the free space by CheckDiskRoom with the insert.
   absl::StatusOr<DiskNeed> CheckLimits(const v1::SubmitJobRequest& request,
                                        const Principal& caller);
+  // CheckLimits of a view-factor job: its model and options checked as `radflux viewfactors`
+  // checks them, its surfaces against the patch limits, its files' size as its disk need.
+  absl::StatusOr<DiskNeed> CheckViewFactorLimits(const v1::SubmitJobRequest& request,
+                                                 const Principal& caller);
   // NOT_FOUND (as for no such scene) unless the caller uploaded the scene or is an admin.
   absl::Status CheckSceneVisible(const std::string& sha256, const Principal& caller);
   // RESOURCE_EXHAUSTED when the caller has its running_jobs limit of jobs unfinished.

@@ -10,6 +10,7 @@
 #include "absl/strings/str_format.h"
 #include "server/jobs/progress_throttle.h"
 #include "server/jobs/row_budget.h"
+#include "server/jobs/view_factor_runner.h"
 #include "server/store/result_codec.h"
 #include "server/store/row_block_writer.h"
 #include "server/store/row_sink.h"
@@ -136,7 +137,7 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   };
   const auto max_row_sum = [&](uint32_t row) { return prepared.rows.MaxRowSum(row); };
   farm.Open(FarmJob{job.job_id(), job.scene_sha256(), job.options(), n, block_size, rebuild,
-                    max_row_sum},
+                    max_row_sum, std::nullopt},
             missing, store_block);
   ParallelFor(threads, 1, threads, [&](int64_t, int64_t) {
     auto& row = scratch[static_cast<size_t>(ThreadIndex())];
@@ -162,17 +163,6 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   absl::StatusOr<JobRows> rows = sink.Finish();
   if (rows.ok()) rows->seconds = SecondsSince(start);
   return rows;
-}
-
-// The report's "workers" section: rows from workers, how many were verified here and at
-// what cost, and every block rejected (with its worker and why).
-nlohmann::json WorkersJson(const FarmReport& r) {
-  return {{"remote_rows", r.remote_rows},
-          {"verified_rows", r.verified_rows},
-          {"verify_seconds", r.verify_seconds},
-          {"remote_build_seconds", r.remote_build_seconds},
-          {"rejected_blocks", r.rejected_blocks},
-          {"rejected", r.rejected}};
 }
 
 // Every iterative method resumes from a checkpoint: jacobi and gauss_seidel from B
@@ -259,7 +249,17 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 
 }  // namespace
 
+nlohmann::json WorkersJson(const FarmReport& r) {
+  return {{"remote_rows", r.remote_rows},
+          {"verified_rows", r.verified_rows},
+          {"verify_seconds", r.verify_seconds},
+          {"remote_build_seconds", r.remote_build_seconds},
+          {"rejected_blocks", r.rejected_blocks},
+          {"rejected", r.rejected}};
+}
+
 absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
+  if (job.options().has_viewfactors()) return RunStoredViewFactorJob(job, c);
   const auto start = Clock::now();
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
       c.scenes->Get(job.scene_sha256(), job.options().import_options());

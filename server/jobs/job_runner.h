@@ -14,6 +14,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "nlohmann/json.hpp"
 #include "radflux/v1/job.pb.h"
 #include "server/jobs/job_hub.h"
 #include "server/jobs/scene_cache.h"
@@ -23,6 +24,7 @@
 namespace radflux {
 
 class RowFarm;
+struct FarmReport;
 
 struct RunContext {
   JobStore* store = nullptr;
@@ -45,6 +47,10 @@ struct RunContext {
   // with that error; the callee sets *stop, so the job stops at its next safe point.
   std::function<void(const absl::Status& error)> fail;
 };
+
+// The report's "workers" section: rows from workers, how many were verified here and at
+// what cost, and every block rejected (with its worker and why).
+nlohmann::json WorkersJson(const FarmReport& report);
 
 // Runs the job to completion and returns its encoded result and its blob file (see
 // result_codec.h); CANCELLED when *stop was set (rows done so far and a checkpoint stay

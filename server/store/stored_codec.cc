@@ -8,6 +8,7 @@ namespace {
 
 constexpr uint32_t kRowBlockTag = 0x52424c31;       // "RBL1"
 constexpr uint32_t kRowBlockGroupTag = 0x52424731;  // "RBG1": count, then sized blocks
+constexpr uint32_t kViewFactorBlockTag = 0x56464231;  // "VFB1": first row, rows, values
 constexpr uint32_t kCheckpointTag = 0x43504b31;     // "CPK1": iteration, B
 constexpr uint32_t kCheckpointTag2 = 0x43504b32;    // "CPK2": iteration, B, method, unshot
 
@@ -68,6 +69,13 @@ class Reader {
 
 std::string EncodeRowBlock(const StoredRowBlock& stored) {
   Writer w;
+  if (stored.view_factors) {
+    w.Put(kViewFactorBlockTag);
+    w.Put(stored.block.first_row);
+    w.Put(stored.block.RowCount());
+    w.PutVector(stored.values);
+    return w.Take();
+  }
   w.Put(kRowBlockTag);
   w.Put(stored.block.first_row);
   w.PutVector(stored.block.row_begin);
@@ -79,11 +87,29 @@ std::string EncodeRowBlock(const StoredRowBlock& stored) {
   return w.Take();
 }
 
+namespace {
+
+// The rest of a view-factor block after its tag (at most 2^20 rows: nothing huge allocated).
+absl::StatusOr<StoredRowBlock> DecodeViewFactorBlock(Reader& r) {
+  StoredRowBlock s;
+  s.view_factors = true;
+  uint32_t rows = 0;
+  if (!r.Get(s.block.first_row) || !r.Get(rows) || !r.GetVector(s.values) || !r.AtEnd() ||
+      rows > (uint32_t{1} << 20)) {
+    return absl::DataLossError("not a view-factor row block");
+  }
+  s.block.row_begin.assign(rows + 1, 0);
+  return s;
+}
+
+}  // namespace
+
 absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
   Reader r(bytes);
   StoredRowBlock s;
   uint32_t tag = 0;
-  const bool ok = r.Get(tag) && tag == kRowBlockTag && r.Get(s.block.first_row) &&
+  if (r.Get(tag) && tag == kViewFactorBlockTag) return DecodeViewFactorBlock(r);
+  const bool ok = tag == kRowBlockTag && r.Get(s.block.first_row) &&
                   r.GetVector(s.block.row_begin) && r.GetVector(s.block.col) &&
                   r.GetVector(s.block.value) && r.Get(s.stats.rays) && r.Get(s.stats.dropped_sum) &&
                   r.Get(s.stats.max_row_dropped) && r.AtEnd();

@@ -18,6 +18,10 @@ namespace radflux {
 struct StoredRowBlock {
   RowBlock block;
   RowBlockStats stats;
+  // A view-factor job's block (SurfaceRowPlan::BuildBlock's values of its rows, bit for
+  // bit): `block` then has only first_row and row_count empty rows, and stats are unset.
+  bool view_factors = false;
+  std::vector<double> values;
 };
 
 std::string EncodeRowBlock(const StoredRowBlock& stored);

@@ -103,4 +103,33 @@ absl::Status VerifyRows(const RowBlock& block, const std::vector<uint32_t>& rows
   return absl::OkStatus();
 }
 
+absl::Status CheckDenseBlock(const StoredRowBlock& block, uint32_t first_row, uint32_t row_count,
+                             const DenseRows& dense, const std::vector<uint32_t>& sample) {
+  if (!block.view_factors || block.block.first_row != first_row ||
+      block.block.RowCount() != row_count) {
+    return absl::InvalidArgumentError(absl::StrCat("not the view-factor rows ", first_row, "+",
+                                                   row_count, " leased"));
+  }
+  if (block.values.size() != dense.values(first_row, row_count)) {
+    return absl::InvalidArgumentError(absl::StrCat(block.values.size(), " values for rows ",
+                                                   first_row, "+", row_count, ", not ",
+                                                   dense.values(first_row, row_count)));
+  }
+  for (size_t k = 0; k < block.values.size(); ++k) {
+    if (!(std::isfinite(block.values[k]) && block.values[k] >= 0)) {
+      return absl::InvalidArgumentError(absl::StrCat("value ", k, " is ", block.values[k]));
+    }
+  }
+  for (uint32_t row : sample) {
+    const std::vector<double> own = dense.rebuild(row);
+    const size_t at = dense.values(first_row, row - first_row);
+    if (own.size() > block.values.size() - at ||
+        std::memcmp(own.data(), block.values.data() + at, own.size() * sizeof(double)) != 0) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("view-factor row ", row, " differs from the server's own"));
+    }
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace radflux

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "server/store/stored_codec.h"
 #include "solver/sparse/csr_matrix.h"
 
 namespace radflux {
@@ -41,5 +42,19 @@ std::vector<uint32_t> SampleRows(uint32_t first, uint32_t count, double fraction
 // row numbers inside `block`) equals the server's own (`rebuild`) bit for bit.
 absl::Status VerifyRows(const RowBlock& block, const std::vector<uint32_t>& rows,
                         const RowRebuilder& rebuild);
+
+// A view-factor job's rows (SurfaceRowPlan): the values a block of rows holds (`values(first,
+// count)`; row r of a block from `first` starts at values(first, r - first)), and the
+// server's own values of one row.
+struct DenseRows {
+  std::function<size_t(uint32_t first, uint32_t count)> values;
+  std::function<std::vector<double>(uint32_t row)> rebuild;
+};
+
+// INVALID_ARGUMENT naming what is wrong unless `block` is a view-factor block with exactly
+// the leased rows, as many values as they hold, every value finite and >= 0, and each row
+// of `sample` (absolute row numbers) equal to the server's own (dense.rebuild) bit for bit.
+absl::Status CheckDenseBlock(const StoredRowBlock& block, uint32_t first_row, uint32_t row_count,
+                             const DenseRows& dense, const std::vector<uint32_t>& sample);
 
 }  // namespace radflux

@@ -184,6 +184,7 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
   absl::StatusOr<StoredRowBlock> unpacked =
       UnpackRowBlock(r, MaxRowBlockBytes(issued.row_count, patch_count));
   if (!unpacked.ok()) return unpacked.status();
+  if (job.spec.dense) return CheckDense(issued, job, *std::move(unpacked), rows);
   const RowBlock& block = unpacked->block;
   absl::StatusOr<std::vector<uint32_t>> high_sum =
       CheckRowBlock(block, issued.first_row, issued.row_count, patch_count, job.spec.max_row_sum);
@@ -208,6 +209,27 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
     if (!same.ok()) return same;
   }
   *rows = *std::move(unpacked);
+  return absl::OkStatus();
+}
+
+absl::Status RowFarm::CheckDense(const Issued& issued, Job& job, StoredRowBlock unpacked,
+                                 StoredRowBlock* rows) {
+  std::vector<uint32_t> sample;
+  {
+    std::lock_guard lock(mu_);
+    sample = SampleRows(issued.first_row, issued.row_count, verify_fraction_, rng_);
+  }
+  const auto start = Clock::now();
+  const absl::Status same =
+      CheckDenseBlock(unpacked, issued.first_row, issued.row_count, *job.spec.dense, sample);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  {
+    std::lock_guard lock(mu_);
+    job.report.verified_rows += sample.size();
+    job.report.verify_seconds += seconds;
+  }
+  if (!same.ok()) return same;
+  *rows = std::move(unpacked);
   return absl::OkStatus();
 }
 

@@ -47,6 +47,9 @@ struct FarmJob {
   // The sum each row may honestly reach (RowContext::MaxRowSum); rows above it are always
   // recomputed (empty: 1).
   std::function<double(uint32_t row)> max_row_sum;
+  // Set for a view-factor job: its blocks carry SurfaceRowPlan's values (StoredRowBlock::
+  // view_factors), checked by CheckDenseBlock (rebuild and max_row_sum are not used).
+  std::optional<DenseRows> dense;
 };
 
 // What the row farm saw of one job's workers, for the job's report and logs.
@@ -142,6 +145,9 @@ class RowFarm {
   };
   absl::Status CheckResult(const Issued& issued, Job& job, const v1::BlockResult& result,
                            StoredRowBlock* rows);
+  // CheckResult of a view-factor block (FarmJob::dense): CheckDenseBlock with a sample.
+  absl::Status CheckDense(const Issued& issued, Job& job, StoredRowBlock unpacked,
+                          StoredRowBlock* rows);
   // Drops a bad block: bans `worker` from the job, releases its blocks, logs and counts it.
   void Reject(uint64_t worker, const Issued& issued, Job& job, const absl::Status& why);
   // Accept's checks and storing, with `job` (null: discard) held open for it.

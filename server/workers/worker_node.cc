@@ -16,6 +16,7 @@
 #include "radflux/v1/worker.grpc.pb.h"
 #include "server/store/job_store.h"
 #include "server/workers/block_wire.h"
+#include "server/workers/view_factor_work.h"
 #include "solver/core/parallel.h"
 #include "solver/pipeline.h"
 #include "wire/grpc_credentials.h"
@@ -38,6 +39,7 @@ struct PreparedWork {
   std::unique_ptr<PreparedJob> job;
   std::unique_ptr<RowBuilder> builder;
   double cutoff = 0;
+  std::unique_ptr<ViewFactorWork> view_factors;  // a view-factor job's (then job is null)
 };
 using WorkOrError = absl::StatusOr<std::shared_ptr<const PreparedWork>>;
 
@@ -97,6 +99,7 @@ class JobCache {
     const auto start = Clock::now();
     absl::StatusOr<StoredScene> stored = FetchScene(stub_, token_, lease.scene_sha256());
     if (!stored.ok()) return stored.status();
+    if (lease.options().has_viewfactors()) return PrepareViewFactors(lease, *std::move(stored));
     absl::StatusOr<JobOptions> options = FromProto(lease.options());
     if (!options.ok()) return options.status();
     absl::StatusOr<ImportOptions> import = FromProto(lease.options().import_options());
@@ -116,6 +119,24 @@ class JobCache {
     work->cutoff = options->form_factors.cutoff;
     spdlog::info("job {}: scene {} prepared, {} patches ({:.2f} s)", lease.job_id(), stored->name,
                  lease.patch_count(), std::chrono::duration<double>(Clock::now() - start).count());
+    return work;
+  }
+
+  // A view-factor job: its surfaces and the plan of rows the lease pins; each block is built
+  // on the one thread that took its lease.
+  static WorkOrError PrepareViewFactors(const v1::BlockLease& lease, StoredScene stored) {
+    absl::StatusOr<std::unique_ptr<ViewFactorWork>> prepared =
+        PrepareViewFactorWork(lease.options(), std::move(stored), /*threads=*/1);
+    if (!prepared.ok()) return prepared.status();
+    if ((*prepared)->surfaces.radiating != lease.patch_count()) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("job ", lease.job_id(), ": ", (*prepared)->surfaces.radiating,
+                       " surfaces, the server has ", lease.patch_count()));
+    }
+    auto work = std::make_shared<PreparedWork>();
+    work->view_factors = *std::move(prepared);
+    spdlog::info("job {}: view-factor model prepared, {} surfaces", lease.job_id(),
+                 lease.patch_count());
     return work;
   }
 
@@ -166,15 +187,18 @@ struct Scratch {
 v1::BlockResult BuildBlock(const v1::BlockLease& lease, const PreparedWork& work, Scratch& scratch,
                            int delay_ms) {
   const auto start = Clock::now();
-  const size_t n = work.job->Unknowns();
-  if (!scratch.row || scratch.n != n) {
-    scratch.row = std::make_unique<RowAccumulator>(n);
-    scratch.n = n;
-  }
-  RowAccumulator* row = scratch.row.get();
   StoredRowBlock rows;
-  rows.block = BuildRowBlock(*work.builder, work.job->rows, work.cutoff, lease.first_row(),
-                             lease.row_count(), *row, rows.stats);
+  if (work.view_factors) {
+    rows = BuildViewFactorBlock(*work.view_factors->plan, lease.first_row(), lease.row_count());
+  } else {
+    const size_t n = work.job->Unknowns();
+    if (!scratch.row || scratch.n != n) {
+      scratch.row = std::make_unique<RowAccumulator>(n);
+      scratch.n = n;
+    }
+    rows.block = BuildRowBlock(*work.builder, work.job->rows, work.cutoff, lease.first_row(),
+                               lease.row_count(), *scratch.row, rows.stats);
+  }
   if (delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   v1::BlockResult result = PackRowBlock(lease, rows);
   result.set_build_seconds(std::chrono::duration<double>(Clock::now() - start).count());

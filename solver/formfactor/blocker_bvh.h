@@ -6,8 +6,11 @@
 //     that passes the exact test (Shaft::MayHold): an unobstructed pair costs a few box tests;
 //   - does a segment between them cross a blocker? A segment descends only into the boxes it
 //     crosses (slab test), so a pair's segments cost O(log n) each, not one test per blocker.
-// Both answers equal testing every blocker: the node tests are conservative (with a margin no
-// smaller than the leaf test's).
+// The hierarchy is four wide, built by the surface area heuristic; a node holds its four
+// children's boxes in single precision (rounded outwards and padded by kFloatPad of the
+// scene's extent), so a segment tests all four at once (SSE). Both answers equal testing
+// every blocker: the node tests are conservative (the pad is far larger than the rounding of
+// the segment to single precision and of the slab arithmetic, and than the leaf test's own).
 #pragma once
 
 #include <cstdint>
@@ -48,26 +51,47 @@ class BlockerBvh {
   // Number of blockers held.
   size_t size() const { return order_.size(); }
 
+  // Node boxes are widened by this fraction of the largest coordinate magnitude in the
+  // scene, R (a segment with an end beyond 2 R tests every blocker instead).
+  static constexpr double kFloatPad = 1.0 / 65536;
+
  private:
-  struct Node {
-    Vec3 lo, hi;             // the box of the node's blockers, widened by pad_
-    uint32_t first = 0;      // leaf: first index into order_; inner: the right child
-    uint32_t count = 0;      // leaf: number of blockers (> 0); inner: 0 (left child is next)
-    uint8_t axis = 0;        // inner: the split axis (left child: the lower centroids)
+  // Four children's boxes, structure of arrays, and what each child is: an inner node
+  // (count 0, `child` its index in nodes_) or a leaf (count > 0 blockers from order_[child]).
+  // The root is a node even when all blockers fit one leaf.
+  struct alignas(16) Node {
+    float lo[3][4], hi[3][4];  // scene units; a lane beyond `lanes` is never hit
+    uint32_t child[4] = {};
+    uint8_t count[4] = {};
+    uint32_t lanes = 0;        // children in use (the first `lanes`), 1 to 4
   };
-  uint32_t Build(uint32_t begin, uint32_t end);
-  // Walks the nodes whose box `meets_box(node)` accepts, the children in the order
-  // `right_first(node)` says, until `blocks(b)` holds for a blocker b other than i and j;
+  struct Range {
+    uint32_t begin = 0, end = 0;  // into order_
+    uint32_t size() const { return end - begin; }
+  };
+  // A node over order_[range], its children built first; returns its index in nodes_.
+  uint32_t BuildNode(Range range, int depth);
+  // Splits `range` in two (reordering order_ within it): by the surface area heuristic, or
+  // at the median centroid when that fails or the hierarchy is already deep.
+  void SplitRange(Range range, int depth, Range& left, Range& right);
+  // Walks the children `meets(node, order)` accepts (it returns how many and puts their
+  // lanes in `order`, nearest first: leaves are tested in that order, inner nodes visited in
+  // it), until `blocks(slot)` holds for the blocker b = order_[slot], b other than i and j;
   // returns b, or kNoBlocker.
-  template <class MeetsBox, class RightFirst, class Blocks>
-  uint32_t AnyBlocker(uint32_t i, uint32_t j, const MeetsBox& meets_box, const RightFirst& right_first,
-                  const Blocks& blocks) const;
+  template <class Meets, class Blocks>
+  uint32_t AnyBlocker(uint32_t i, uint32_t j, const Meets& meets, const Blocks& blocks) const;
 
   const std::vector<SurfaceShape>& shapes_;
   std::vector<uint32_t> order_;  // blocker indices, grouped by leaf
-  std::vector<Node> nodes_;      // depth first, root at 0
+  struct Plane {
+    Vec3 point, normal;          // the blocker's centroid and normal (SegmentCrossesPlane)
+  };
+  std::vector<Plane> planes_;    // of order_[slot], at slot: a leaf's planes side by side
+  std::vector<Node> nodes_;      // root at 0
   double max_diameter_ = 0;      // of the blockers
   double pad_ = 0;               // box widening for the segment test, scene units
+  double reach_ = 0;             // the largest coordinate magnitude of the scene
+  Vec3 lo_, hi_;                 // the box of all blockers, widened by pad_
 };
 
 }  // namespace radflux

@@ -120,8 +120,8 @@ bool SegmentHitsSurface(const Vec3& from, const Vec3& to, const SurfaceShape& k)
   const bool swap = std::tie(to.x, to.y, to.z) < std::tie(from.x, from.y, from.z);
   const Vec3& a = swap ? to : from;
   const Vec3& b = swap ? from : to;
+  if (!SegmentCrossesPlane(a, b, k.centroid, k.normal)) return false;
   const double da = Dot(a - k.centroid, k.normal), db = Dot(b - k.centroid, k.normal);
-  if ((da > 0) == (db > 0) || da == 0 || db == 0) return false;  // not crossing its plane
   const Vec3 q = a + (b - a) * (da / (da - db));
   const size_t n = k.polygon.size();
   for (size_t e = 0; e < n; ++e) {

@@ -17,6 +17,14 @@
 
 namespace radflux {
 
+// Whether the open segment from a to b crosses the plane through `point` with unit `normal`
+// (its ends strictly on either side); the same answer for (b, a). SegmentHitsSurface's first
+// test, with its arithmetic: false here means false there.
+inline bool SegmentCrossesPlane(const Vec3& a, const Vec3& b, const Vec3& point, const Vec3& normal) {
+  const double da = Dot(a - point, normal), db = Dot(b - point, normal);
+  return (da > 0) != (db > 0) && da != 0 && db != 0;
+}
+
 // Whether the open segment from a to b crosses the convex polygon of k; the same answer
 // for (b, a).
 bool SegmentHitsSurface(const Vec3& a, const Vec3& b, const SurfaceShape& k);

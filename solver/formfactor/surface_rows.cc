@@ -26,13 +26,14 @@ double SecondsSince(Clock::time_point start) {
 // segments may meet a blocker. A pair taking one segment (far for its size) traces it at
 // once: its walk through the hierarchy visits no more nodes than the shaft's would (the
 // segment lies in the shaft) and an empty shaft leaves it unblocked, so F is the same. Other
-// pairs are traced only when their shaft may hold a blocker. The segments of a pair test the
-// blocker that hid the previous one first (BlockerBvh::SegmentBlocked's `last`).
+// pairs are traced only when their shaft may hold a blocker. A segment tests the blocker that
+// hid the previous one first (BlockerBvh::SegmentBlocked's `last`), kept across the pairs of
+// a row: the next pair of a row is often a neighbour of the last behind the same building.
 double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
-                  uint32_t j, const PairIntegration& integration, SurfaceRowsStats& stats) {
+                  uint32_t j, const PairIntegration& integration, uint32_t& last,
+                  SurfaceRowsStats& stats) {
   const double f = UnoccludedViewFactor(shapes[i], shapes[j], integration, stats.pairs);
   if (f == 0 || !blockers.PairMayMeetBlockers(i, j)) return f;
-  uint32_t last = BlockerBvh::kNoBlocker;
   const auto blocked = [&](const Vec3& a, const Vec3& b) {
     return blockers.SegmentBlocked(a, b, i, j, last);
   };
@@ -49,8 +50,9 @@ double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blo
 // Row i into `row` (size radiating): each factor times its target's opacity.
 void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers, uint32_t i,
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
+  uint32_t last = BlockerBvh::kNoBlocker;
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, stats) * shapes[j].opacity;
+    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, last, stats) * shapes[j].opacity;
   }
 }
 
@@ -59,11 +61,12 @@ void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blocker
 void BuildTriangleRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blockers,
                       uint32_t i, const PairIntegration& integration, std::span<double> row,
                       SurfaceRowsStats& stats) {
+  uint32_t last = BlockerBvh::kNoBlocker;
   for (uint32_t k = 0; k < row.size(); ++k) {
     const uint32_t j = i + 1 + k;
     const bool i_outer = shapes[i].diameter <= shapes[j].diameter;
     const uint32_t o = i_outer ? i : j, t = i_outer ? j : i;
-    row[k] = shapes[o].area * PairFactor(shapes, blockers, o, t, integration, stats);
+    row[k] = shapes[o].area * PairFactor(shapes, blockers, o, t, integration, last, stats);
   }
 }
 
@@ -85,6 +88,8 @@ void PrintProgress(const char* what, size_t done, size_t total, Clock::time_poin
 }
 
 size_t TriangleSize(size_t n) { return n * (n - 1) / 2; }
+
+absl::Status StoppedError() { return absl::CancelledError("view-factor rows stopped"); }
 
 // Offset of pair (i, j), i < j, in the packed upper triangle of an n x n matrix.
 size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) / 2 + (j - i - 1); }
@@ -150,6 +155,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
       }
     });
     for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+    if (options.on_rows && !options.on_rows(first + count, n)) return StoppedError();
     const size_t done = TriangleSize(n) - TriangleSize(n - first - count);
     if (options.progress && (SecondsSince(last_print) > 1 || first + count == n)) {
       PrintProgress("pairs", done, TriangleSize(n), start);
@@ -207,6 +213,7 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
       }
     });
     for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+    if (options.on_rows && !options.on_rows(first + count, radiating)) return StoppedError();
     for (size_t r = 0; r < count; ++r) {
       absl::Status s = sink(std::span<const double>(rows.data() + r * radiating, radiating));
       if (!s.ok()) return s;
@@ -218,6 +225,76 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   }
   stats.rows_seconds = SecondsSince(start);
   return absl::OkStatus();
+}
+
+SurfaceRowPlan::SurfaceRowPlan(const std::vector<SurfaceShape>& shapes, size_t radiating,
+                               const SurfaceRowsOptions& options, SurfaceRowsStats& stats)
+    : shapes_(shapes), radiating_(radiating), options_(options) {
+  const auto start = Clock::now();
+  blockers_ = std::make_unique<BlockerBvh>(shapes, PotentialBlockers(shapes));
+  stats.blockers = blockers_->size();
+  stats.cull_seconds = SecondsSince(start);
+  stats.budget = SurfaceRowsBudget(options.memory_limit);
+  stats.triangle = TriangleBytes(radiating);
+  stats.reciprocal = reciprocal_ = radiating > 1 && stats.triangle <= stats.budget;
+}
+
+SurfaceRowPlan::~SurfaceRowPlan() = default;
+
+size_t SurfaceRowPlan::RowWidth(size_t i) const {
+  return reciprocal_ ? radiating_ - i - 1 : radiating_;
+}
+
+size_t SurfaceRowPlan::BlockValues(size_t first, size_t count) const {
+  if (!reciprocal_) return count * radiating_;
+  return TriangleSize(radiating_ - first) - TriangleSize(radiating_ - first - count);
+}
+
+void SurfaceRowPlan::BuildBlock(size_t first, size_t count, std::span<double> values,
+                                SurfaceRowsStats& stats) const {
+  std::vector<SurfaceRowsStats> per_thread(DefaultThreadCount() + 1);
+  ParallelFor(static_cast<int64_t>(count), 1, options_.threads, [&](int64_t b, int64_t e) {
+    for (int64_t r = b; r < e; ++r) {
+      const size_t i = first + static_cast<size_t>(r);
+      const std::span<double> row = values.subspan(BlockValues(first, i - first), RowWidth(i));
+      if (reciprocal_) {
+        BuildTriangleRow(shapes_, *blockers_, static_cast<uint32_t>(i), options_.integration,
+                         row, per_thread[ThreadIndex()]);
+      } else {
+        BuildRow(shapes_, *blockers_, static_cast<uint32_t>(i), options_.integration, row,
+                 per_thread[ThreadIndex()]);
+      }
+    }
+  });
+  for (const SurfaceRowsStats& s : per_thread) stats.Merge(s);
+}
+
+absl::Status SurfaceRowPlan::Emit(
+    size_t block_rows, const std::function<absl::StatusOr<std::vector<double>>(size_t first)>& block,
+    const SurfaceRowSink& sink) const {
+  const size_t n = radiating_;
+  std::vector<double> triangle;
+  if (reciprocal_) triangle.reserve(TriangleSize(n));
+  for (size_t first = 0; first < n; first += block_rows) {
+    const size_t count = std::min(block_rows, n - first);
+    absl::StatusOr<std::vector<double>> values = block(first);
+    if (!values.ok()) return values.status();
+    if (values->size() != BlockValues(first, count)) {
+      return absl::InternalError("view-factor block of rows " + std::to_string(first) +
+                                 " has the wrong number of values");
+    }
+    if (reciprocal_) {
+      triangle.insert(triangle.end(), values->begin(), values->end());
+      continue;
+    }
+    for (size_t r = 0; r < count; ++r) {
+      if (absl::Status s = sink(std::span<const double>(values->data() + r * n, n)); !s.ok()) {
+        return s;
+      }
+    }
+  }
+  if (!reciprocal_) return absl::OkStatus();
+  return EmitTriangleRows(shapes_, n, triangle, options_.threads, sink);
 }
 
 }  // namespace radflux

@@ -11,10 +11,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "solver/formfactor/surface_pair_integrator.h"
 
 namespace radflux {
@@ -25,6 +27,9 @@ struct SurfaceRowsOptions {
   uint64_t memory_limit = 0;         // bytes for rows in flight, a hard bound; 0 = 64 rows per
                                      // thread (and the triangle within SurfaceRowsBudget(0))
   bool progress = false;             // print rows done and ETA to stderr
+  // Called after each block of rows (of the pair triangle's rows when reciprocal) with the
+  // rows done and their total; returning false stops the build: CANCELLED.
+  std::function<bool(size_t done, size_t total)> on_rows;
 };
 
 // The bytes of rows BuildSurfaceRows may hold: `memory_limit` when given (> 0), else
@@ -62,5 +67,49 @@ using SurfaceRowSink = std::function<absl::Status(std::span<const double> row)>;
 absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t radiating,
                               const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
                               SurfaceRowsStats& stats);
+
+class BlockerBvh;
+
+// BuildSurfaceRows a block of rows at a time, in any order, by anyone (the service's view-
+// factor jobs, checkpointed per block): the rows it gives are those of BuildSurfaceRows,
+// bit for bit, however they are split into blocks. When reciprocal(), row i of a block is
+// the pair triangle's row i (A F to the surfaces after i: RowWidth(i) = n - i - 1 values),
+// else row i of F (n values); Emit turns all rows' values into the rows of F.
+class SurfaceRowPlan {
+ public:
+  // The shapes are referenced, not copied: they must outlive the plan. Builds the blockers'
+  // hierarchy and decides reciprocal() as BuildSurfaceRows does (stats: blockers, budget,
+  // triangle, reciprocal, cull_seconds).
+  SurfaceRowPlan(const std::vector<SurfaceShape>& shapes, size_t radiating,
+                 const SurfaceRowsOptions& options, SurfaceRowsStats& stats);
+  ~SurfaceRowPlan();
+  SurfaceRowPlan(const SurfaceRowPlan&) = delete;
+  SurfaceRowPlan& operator=(const SurfaceRowPlan&) = delete;
+
+  bool reciprocal() const { return reciprocal_; }
+  size_t radiating() const { return radiating_; }
+  // Values of row i: n - i - 1 when reciprocal, else n.
+  size_t RowWidth(size_t i) const;
+  // Values of rows [first, first + count).
+  size_t BlockValues(size_t first, size_t count) const;
+  // Rows [first, first + count) into `values` (BlockValues of them), on options.threads;
+  // adds the pairs' counts to `stats`.
+  void BuildBlock(size_t first, size_t count, std::span<double> values,
+                  SurfaceRowsStats& stats) const;
+  // The rows of F to `sink` in order, given every row's values in row order, one block at a
+  // time from `block(first)` (the values of the block starting at row `first`, which holds
+  // block_rows rows or the rest): when reciprocal the triangle is assembled first (it fits
+  // the budget), else each block's rows go straight to the sink.
+  absl::Status Emit(size_t block_rows,
+                    const std::function<absl::StatusOr<std::vector<double>>(size_t first)>& block,
+                    const SurfaceRowSink& sink) const;
+
+ private:
+  const std::vector<SurfaceShape>& shapes_;
+  size_t radiating_;
+  SurfaceRowsOptions options_;
+  std::unique_ptr<BlockerBvh> blockers_;
+  bool reciprocal_ = false;
+};
 
 }  // namespace radflux

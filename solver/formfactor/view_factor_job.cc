@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 
+#include "absl/strings/str_format.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
@@ -37,14 +38,7 @@ absl::Status WriteDense(std::vector<std::vector<double>>& factor, ViewFactorSurf
   return (*writer)->Close();
 }
 
-// The surfaces when each is one face: the radiating faces' shapes in order, then the
-// obstruction faces'; nullopt when some surface has several faces.
-struct FaceSurfaces {
-  std::vector<SurfaceShape> shapes;
-  size_t radiating = 0;
-  std::vector<std::string> names;
-  std::vector<double> emittance;
-};
+}  // namespace
 
 std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by) {
   if (!EverySurfaceIsOneFace(scene, by)) return std::nullopt;
@@ -70,6 +64,8 @@ std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGroupin
   return out;
 }
 
+namespace {
+
 absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
                                              const ViewFactorJobOptions& options) {
   ViewFactorReport report;
@@ -82,10 +78,11 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     area.push_back(surfaces.shapes[k].area * surfaces.shapes[k].opacity);
   ViewFactorSurfaces out = MakeSurfaces(surfaces.names, area, surfaces.emittance, options);
   SurfaceRowsStats stats;
+  const SurfaceRowsBuilder build = options.build_rows ? options.build_rows : BuildSurfaceRows;
   const auto start = std::chrono::steady_clock::now();
   if (options.enclosure) {  // the adjustment needs the whole matrix
     std::vector<std::vector<double>> factor;
-    absl::Status built = BuildSurfaceRows(
+    absl::Status built = build(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
         [&](std::span<const double> row) {
           check(row);
@@ -100,7 +97,7 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
     absl::StatusOr<std::unique_ptr<ViewFactorWriter>> writer =
         ViewFactorWriter::Open(options.output, std::move(out));
     if (!writer.ok()) return writer.status();
-    absl::Status built = BuildSurfaceRows(
+    absl::Status built = build(
         surfaces.shapes, surfaces.radiating, options.surface_rows,
         [&](std::span<const double> row) {
           check(row);
@@ -160,6 +157,13 @@ void RowSumCheck::Add(size_t index, std::span<const double> row) {
     worst_sum = sum;
     worst_row = index;
   }
+}
+
+std::string RowSumCheck::OverMessage() const {
+  return absl::StrFormat(
+      "%zu row(s) sum above 1 + %.3g (worst: %s, sum %.4f): view factors overestimated, a "
+      "blocker missed or a cluttered pair's visibility (outputs written)",
+      rows_over, allowance, worst_name, worst_sum);
 }
 
 bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by) {

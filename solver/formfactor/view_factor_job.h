@@ -3,6 +3,7 @@
 // needed (a material's reflectance gives only View3D's emittance column, 1 - rho).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +21,12 @@ namespace radflux {
 // surface to be one face), or from patch rows (the form-factor options, any scene).
 enum class ViewFactorIntegration { kAuto, kAdaptive, kPatches };
 
+// BuildSurfaceRows' contract (surface_rows.h): what adaptive integration builds its rows with.
+using SurfaceRowsBuilder =
+    std::function<absl::Status(const std::vector<SurfaceShape>& shapes, size_t radiating,
+                               const SurfaceRowsOptions& options, const SurfaceRowSink& sink,
+                               SurfaceRowsStats& stats)>;
+
 struct ViewFactorJobOptions {
   ViewFactorIntegration integration = ViewFactorIntegration::kAuto;  // auto: adaptive when
                                                                      // every surface is one face
@@ -29,6 +36,9 @@ struct ViewFactorJobOptions {
   bool enclosure = false;  // adjust for closure and reciprocity (View3D's encl=1)
   bool emittances_flag = false;  // View3D header's emit flag (from a .vs3 C record)
   ViewFactorOutput output;
+  // Adaptive rows from this instead of BuildSurfaceRows when set (the service builds them a
+  // block at a time with SurfaceRowPlan, checkpointed); the same rows either way.
+  SurfaceRowsBuilder build_rows;
 };
 
 // Rows whose sum exceeds 1 by more than their error allowance (kRowSumSlack, or the adaptive
@@ -43,6 +53,8 @@ struct RowSumCheck {
   std::string worst_name;           // its surface's name
   // Counts `row` (surface `index`).
   void Add(size_t index, std::span<const double> row);
+  // One line naming the rows over and the worst (when rows_over > 0).
+  std::string OverMessage() const;
 };
 
 struct ViewFactorReport {
@@ -57,6 +69,18 @@ struct ViewFactorReport {
 // Whether every surface of `scene` (by `by`) that is not an obstruction is one face: what
 // adaptive integration needs, and what kAuto chooses it by.
 bool EverySurfaceIsOneFace(const Scene& scene, SurfaceGrouping by);
+
+// The surfaces when each is one face (what adaptive integration integrates): the radiating
+// faces' shapes in order, then the obstruction faces'.
+struct FaceSurfaces {
+  std::vector<SurfaceShape> shapes;
+  size_t radiating = 0;
+  std::vector<std::string> names;
+  std::vector<double> emittance;
+};
+
+// FaceSurfaces of `scene` by `by`; nullopt when some surface has several faces.
+std::optional<FaceSurfaces> SurfacesOfOneFace(const Scene& scene, SurfaceGrouping by);
 
 // Computes the view factors of `scene` between its surfaces (options.by) and writes them.
 // INVALID_ARGUMENT for a bad scene or options (file:line), errors naming the output file.

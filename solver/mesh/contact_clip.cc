@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
 #include <tuple>
 
 #include "solver/scene/polygon_triangulation.h"
@@ -192,6 +193,12 @@ Polygon Simplified(const Polygon& piece, const Vec3& normal, double eps) {
   return p;
 }
 
+// The patches PieceEmitter makes of a piece of `corners` corners: one for a triangle or an
+// uncut quad, else a fan of corners - 2 triangles.
+size_t PiecePatches(size_t corners, bool cut) {
+  return corners == 4 && !cut ? 1 : corners - 2;
+}
+
 // Adds the face's patches for the pieces, sharing equal points.
 class PieceEmitter {
  public:
@@ -199,11 +206,12 @@ class PieceEmitter {
 
   // A triangle or quad as one patch; a cut piece of more than three corners as a fan of
   // triangles (a cut quad is rarely a parallelogram, and only a triangle's or a
-  // parallelogram's midpoint split, which refinement uses, gives four equal quarters).
+  // parallelogram's midpoint split, which refinement uses, gives four equal quarters):
+  // PiecePatches(piece.size(), cut) patches.
   void Emit(const Polygon& piece, bool cut, const Patch& source) {
     std::vector<uint32_t> ids;
     for (const Vec3& p : piece) ids.push_back(Id(p));
-    if (ids.size() == 4 && !cut) {
+    if (PiecePatches(ids.size(), cut) == 1 && ids.size() == 4) {
       Add({ids[0], ids[1], ids[2], ids[3]}, source);
       return;
     }
@@ -345,6 +353,22 @@ std::vector<Piece> PatchPieces(const Polygon& corners, double area, const Cuts& 
   return out;
 }
 
+// Calls piece_of(patch, piece) for every piece of the patches [first_patch, end) of `mesh`
+// (positions from first_vertex) that `cuts` leave.
+template <typename PieceOf>
+void ForEachPiece(const Cuts& cuts, const Vec3& normal, std::span<const Patch> patches,
+                  std::span<const Vec3> positions, uint32_t first_vertex, PieceOf&& piece_of) {
+  Polygon corners;
+  for (const Patch& patch : patches) {
+    corners.clear();
+    for (int k = 0; k < patch.VertexCount(); ++k)
+      corners.push_back(positions[patch.v[k] - first_vertex]);
+    for (const Piece& piece : PatchPieces(corners, patch.area, cuts, normal)) {
+      piece_of(patch, piece);
+    }
+  }
+}
+
 }  // namespace
 
 void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double reach,
@@ -356,15 +380,24 @@ void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double re
   mesh.patches.resize(first_patch);
   mesh.positions.resize(first_vertex);
   PieceEmitter emitter(mesh, normal);
-  Polygon corners;
-  for (const Patch& patch : patches) {
-    corners.clear();
-    for (int k = 0; k < patch.VertexCount(); ++k)
-      corners.push_back(positions[patch.v[k] - first_vertex]);
-    for (const Piece& piece : PatchPieces(corners, patch.area, cuts, normal)) {
-      emitter.Emit(piece.corners, piece.cut, patch);
-    }
-  }
+  ForEachPiece(cuts, normal, patches, positions, first_vertex,
+               [&](const Patch& patch, const Piece& piece) {
+                 emitter.Emit(piece.corners, piece.cut, patch);
+               });
+}
+
+size_t ClippedPatchCount(const FaceContacts& contacts, const Vec3& normal, double reach,
+                         uint32_t first_patch, uint32_t first_vertex, const PatchMesh& mesh) {
+  const Cuts cuts = MakeCuts(contacts, normal, reach);
+  const size_t unclipped = mesh.patches.size() - first_patch;
+  if (cuts.feet.empty() && cuts.lines.empty()) return unclipped;
+  size_t count = 0;
+  ForEachPiece(cuts, normal, std::span(mesh.patches).subspan(first_patch),
+               std::span(mesh.positions).subspan(first_vertex), first_vertex,
+               [&](const Patch&, const Piece& piece) {
+                 count += PiecePatches(piece.corners.size(), piece.cut);
+               });
+  return count;
 }
 
 }  // namespace radflux

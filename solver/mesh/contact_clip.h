@@ -5,6 +5,7 @@
 // shading around it).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -37,5 +38,10 @@ namespace radflux {
 // face, which the shading mesh resolves like one between faces).
 void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double reach,
                      uint32_t first_patch, uint32_t first_vertex, PatchMesh& mesh);
+
+// The number of patches ClipFacePatches would leave of the same face (same arguments), without
+// building them: choosing the edge length for a target count meshes the cut faces many times.
+size_t ClippedPatchCount(const FaceContacts& contacts, const Vec3& normal, double reach,
+                         uint32_t first_patch, uint32_t first_vertex, const PatchMesh& mesh);
 
 }  // namespace radflux

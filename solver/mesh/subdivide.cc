@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "absl/strings/str_cat.h"
@@ -173,14 +174,23 @@ class FaceMesher {
 
 // The h in [lo, hi] (log-scale bisection, `iterations` steps) whose count(h) is closest to
 // target; count must fall as h grows.
+// count(lo) and count(hi) are only counted again when no step moved them (count can be
+// costly: ContactAwareEdgeLength meshes the cut faces for it).
 template <typename Count>
 double BisectEdgeLength(Count&& count, int64_t target, double lo, double hi, int iterations) {
+  std::optional<int64_t> above, below;  // count(lo), count(hi) when known
   for (int it = 0; it < iterations; ++it) {
     const double mid = std::sqrt(lo * hi);
-    (count(mid) > target ? lo : hi) = mid;
+    const int64_t at = count(mid);
+    if (at > target) {
+      lo = mid, above = at;
+    } else {
+      hi = mid, below = at;
+    }
   }
-  const int64_t above = count(lo), below = count(hi);
-  return (above - target < target - below) ? lo : hi;
+  if (!above) above = count(lo);
+  if (!below) below = count(hi);
+  return (*above - target < target - *below) ? lo : hi;
 }
 
 double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOptions& options) {
@@ -200,12 +210,10 @@ double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOption
   return BisectEdgeLength(count, options.target_patches, longest * 1e-7, hi, 100);
 }
 
-// Meshes face f at edge length h into `mesh` (its patches and positions appended), cut
-// along its contacts.
-void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
-              const FaceExtent& extent, double h, const FaceContacts& contacts, PatchMesh& mesh) {
-  const uint32_t first_patch = static_cast<uint32_t>(mesh.patches.size());
-  const uint32_t first_vertex = static_cast<uint32_t>(mesh.positions.size());
+// Meshes face f at edge length h into `mesh` (its patches and positions appended), before
+// any cut along its contacts; returns the face's unit normal.
+Vec3 MeshFaceGrid(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
+                  const FaceExtent& extent, double h, PatchMesh& mesh) {
   const auto [nu, nv] = FaceSteps(extent, h);
   const Vec3 normal = Normalize(PolygonNewellNormal(polygon));
   FaceMesher mesher(mesh, f, normal, scene.materials[scene.faces[f].material]);
@@ -214,6 +222,16 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
   } else {
     mesher.Fan(polygon, nu);
   }
+  return normal;
+}
+
+// Meshes face f at edge length h into `mesh` (its patches and positions appended), cut
+// along its contacts.
+void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
+              const FaceExtent& extent, double h, const FaceContacts& contacts, PatchMesh& mesh) {
+  const uint32_t first_patch = static_cast<uint32_t>(mesh.patches.size());
+  const uint32_t first_vertex = static_cast<uint32_t>(mesh.positions.size());
+  const Vec3 normal = MeshFaceGrid(scene, f, polygon, extent, h, mesh);
   if (!contacts.empty()) {
     ClipFacePatches(contacts, normal, FaceEdgeLength(extent, h), first_patch, first_vertex, mesh);
   }
@@ -238,8 +256,10 @@ double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>&
     for (uint32_t f : touched) {
       PatchMesh face_mesh;
       FacePolygonInto(scene, scene.faces[f], polygon);
-      MeshFace(scene, f, polygon, extents[f], edge, contacts[f], face_mesh);
-      total += static_cast<int64_t>(face_mesh.size()) - FacePatchCount(extents[f], edge);
+      const Vec3 normal = MeshFaceGrid(scene, f, polygon, extents[f], edge, face_mesh);
+      const size_t cut = ClippedPatchCount(contacts[f], normal, FaceEdgeLength(extents[f], edge),
+                                           0, 0, face_mesh);
+      total += static_cast<int64_t>(cut) - FacePatchCount(extents[f], edge);
     }
     return total;
   };

@@ -5,19 +5,25 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 
 namespace radflux {
 namespace {
 
-constexpr int kGrid = 6;               // probe points per box axis
-constexpr int kProbeRays = 64;         // rays per probe point
-constexpr int kAzimuths = 16;          // horizontal rays from the chosen point
-constexpr double kInsideLimit = 0.25;  // most rays that may escape or see a back face
-constexpr double kEyeHeight = 0.55;    // fraction of the floor-to-ceiling height
-constexpr double kBackOff = 0.9;       // fraction of the way to the wall behind
-constexpr double kSnapDegrees = 10;    // a long axis this close to a box axis is that axis
-constexpr int kOpeningRays = 3;        // horizontal rays that escape through a missing side
-                                       // (a window or a door lets fewer through)
+constexpr int kGrid = 6;                // probe points per box axis
+constexpr int kProbeRays = 64;          // rays per probe point
+constexpr int kAzimuths = 16;           // horizontal rays from the chosen point
+constexpr double kInsideLimit = 0.25;   // most rays that may escape or see a back face
+constexpr double kLitShare = 0.5;       // fewest rays that must meet a lit patch (not the
+                                        // dark inside of a closed solid or of a luminaire)
+constexpr double kEyeHeight = 0.55;     // fraction of the floor-to-ceiling height
+constexpr double kBackOff = 0.9;        // fraction of the way to the wall behind
+constexpr double kSnapDegrees = 10;     // a long axis this close to a box axis is that axis
+constexpr int kOpenAzimuths = 8;        // azimuths an open scene is tried from
+constexpr int kOpenProbeWidth = 32;     // pixels across the pictures they are compared by
+constexpr double kNearFraction = 1e-3;  // nearest corner's depth, fraction of the box diagonal
+constexpr int kOpeningRays = 3;         // horizontal rays that escape through a missing side
+                                        // (a window or a door lets fewer through)
 
 struct Box {
   Vec3 lo, hi;
@@ -58,16 +64,24 @@ Vec3 SphereDirection(int i, int n) {
 struct Cast {
   bool escaped = false;
   bool back = false;  // hit the back of a one-sided patch
+  bool lit = false;   // hit the front of a patch with B > 0 in some band
   double distance = 0;
 };
 
-Cast CastFrom(const PatchMesh& mesh, const RayCaster& caster, const Vec3& origin,
-              const Vec3& unit) {
-  const Hit hit = caster.Intersect({origin, unit, 0, std::numeric_limits<double>::infinity()});
-  if (hit.patch == kNoPatch || hit.patch >= mesh.size()) return {true, false, 0};
-  const Patch& patch = mesh.patches[hit.patch];
-  return {false, Dot(unit, patch.normal) >= 0 && !patch.two_sided, hit.t};
-}
+// The scene as the rule's rays see it.
+struct Probe {
+  const PatchMesh& mesh;
+  const RayCaster& caster;
+  std::span<const Rgb> radiosity;  // per patch
+
+  Cast operator()(const Vec3& origin, const Vec3& unit) const {
+    const Hit hit = caster.Intersect({origin, unit, 0, std::numeric_limits<double>::infinity()});
+    if (hit.patch == kNoPatch || hit.patch >= mesh.size()) return {true, false, false, 0};
+    const Patch& patch = mesh.patches[hit.patch];
+    const bool back = Dot(unit, patch.normal) >= 0 && !patch.two_sided;
+    return {false, back, !back && MaxComponent(radiosity[hit.patch]) > 0, hit.t};
+  }
+};
 
 // Distance from p (inside the box) to the box's boundary along unit d.
 double DistanceToBox(const Box& box, const Vec3& p, const Vec3& d) {
@@ -80,8 +94,7 @@ double DistanceToBox(const Box& box, const Vec3& p, const Vec3& d) {
 }
 
 // The probe point with the largest mean free distance among those inside, if any.
-std::optional<Vec3> LargestOpenVolume(const PatchMesh& mesh, const RayCaster& caster,
-                                      const Box& box) {
+std::optional<Vec3> LargestOpenVolume(const Probe& probe, const Box& box) {
   std::optional<Vec3> best;
   double best_distance = -1;
   const Vec3 e = box.Extent();
@@ -89,45 +102,96 @@ std::optional<Vec3> LargestOpenVolume(const PatchMesh& mesh, const RayCaster& ca
     const Vec3 f{(i % kGrid + 0.5) / kGrid, (i / kGrid % kGrid + 0.5) / kGrid,
                  (i / (kGrid * kGrid) + 0.5) / kGrid};
     const Vec3 p = box.lo + Vec3{e.x * f.x, e.y * f.y, e.z * f.z};
-    int outside = 0, hits = 0;
+    int outside = 0, hits = 0, lit = 0;
     double sum = 0;
     for (int k = 0; k < kProbeRays; ++k) {
-      const Cast c = CastFrom(mesh, caster, p, SphereDirection(k, kProbeRays));
+      const Cast c = probe(p, SphereDirection(k, kProbeRays));
       if (c.escaped || c.back) {
         ++outside;
       } else {
-        ++hits, sum += c.distance;
+        ++hits, sum += c.distance, lit += c.lit;
       }
     }
-    if (outside > kInsideLimit * kProbeRays || hits == 0) continue;
+    if (outside > kInsideLimit * kProbeRays || lit < kLitShare * kProbeRays) continue;
     if (sum / hits > best_distance) best_distance = sum / hits, best = p;
   }
   return best;
 }
 
-// Looking at the box's centre along box axis `forward` from outside: the box's cross-section
-// fitted in the picture (`fill` false) or filling it (`fill` true: no background shows
-// around an opening).
-Camera Framed(const Box& box, Camera camera, const Vec3& forward, bool fill) {
+// Looking at the box's centre along box axis `forward` from outside, the box's cross-section
+// filling the picture (no background shows around an opening).
+Camera Filled(const Box& box, Camera camera, const Vec3& forward) {
   const int f = NearestAxis(forward), u = NearestAxis(camera.up), side = 3 - f - u;
   const Vec3 e = box.Extent();
   const double half_height = e[u] / 2, half_width = e[side] / 2 * camera.height / camera.width;
-  const double half = fill ? std::min(half_height, half_width) : std::max(half_height, half_width);
+  const double half = std::min(half_height, half_width);
   const double distance = half / std::tan(camera.vertical_fov_degrees * std::numbers::pi / 360);
   camera.look_at = box.Centre();
   camera.position = camera.look_at - forward * (e[f] / 2 + distance);
   return camera;
 }
 
-// Outside framing of an open scene: along +z, or +y when z is up.
-Vec3 OutsideAxis(const Vec3& up) { return NearestAxis(up) == 2 ? Vec3{0, 1, 0} : Vec3{0, 0, 1}; }
+// Distance from the box's centre, back along unit `forward`, at which every corner of the
+// box is in the picture (and in front of the eye).
+double FittingDistance(const Box& box, const Camera& camera, const Vec3& forward) {
+  const Vec3 right = Normalize(Cross(forward, camera.up)), up = Cross(right, forward);
+  const double tan_v = std::tan(camera.vertical_fov_degrees * std::numbers::pi / 360);
+  const double tan_h = tan_v * camera.width / camera.height;
+  double distance = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 r = Vec3{i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y,
+                        i & 4 ? box.hi.z : box.lo.z} -
+                   box.Centre();
+    const double fit = std::max(std::abs(Dot(r, right)) / tan_h, std::abs(Dot(r, up)) / tan_v);
+    distance =
+        std::max(distance, std::max(fit, kNearFraction * Length(box.Extent())) - Dot(r, forward));
+  }
+  return distance;
+}
+
+// Pixels of a kOpenProbeWidth-wide picture of `camera` that see a lit patch.
+int LitPixels(const Probe& probe, Camera camera) {
+  camera.height = std::max(1, kOpenProbeWidth * camera.height / camera.width);
+  camera.width = kOpenProbeWidth;
+  const PinholeProjection projection(camera);
+  int lit = 0;
+  for (int y = 0; y < camera.height; ++y) {
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = projection.RayThrough(x + 0.5, y + 0.5);
+      lit += probe(ray.origin, ray.direction).lit;
+    }
+  }
+  return lit;
+}
+
+// An open scene seen from outside (see the header's rule): of the views of the box's centre
+// from 8 azimuths around up at elevations +30, 0 and -30 degrees, each with the whole box in
+// the picture, the first with the most lit pixels.
+Camera OpenView(const Probe& probe, const Box& box, Camera camera) {
+  const Vec3 up = Normalize(camera.up);
+  const Vec3 axis = NearestAxis(up) == 2 ? Vec3{0, 1, 0} : Vec3{0, 0, 1};
+  const Vec3 h1 = Normalize(axis - up * Dot(axis, up)), h2 = Cross(up, h1);
+  Camera best = camera;
+  int best_lit = -1;
+  for (const double elevation : {30.0, 0.0, -30.0}) {
+    const double e = elevation * std::numbers::pi / 180;
+    for (int k = 0; k < kOpenAzimuths; ++k) {
+      const double a = 2 * std::numbers::pi * k / kOpenAzimuths;
+      const Vec3 forward = (h1 * std::cos(a) + h2 * std::sin(a)) * std::cos(e) - up * std::sin(e);
+      camera.look_at = box.Centre();
+      camera.position = camera.look_at - forward * FittingDistance(box, camera, forward);
+      const int lit = LitPixels(probe, camera);
+      if (lit > best_lit) best_lit = lit, best = camera;
+    }
+  }
+  return best;
+}
 
 // The view from inside, around open point p (see the header's rule).
-Camera InteriorView(const PatchMesh& mesh, const RayCaster& caster, const Box& box, Camera camera,
-                    const Vec3& p) {
+Camera InteriorView(const Probe& probe, const Box& box, Camera camera, const Vec3& p) {
   const Vec3 up = Normalize(camera.up);
   auto free = [&](const Vec3& from, const Vec3& d) {
-    const Cast c = CastFrom(mesh, caster, from, d);
+    const Cast c = probe(from, d);
     return c.escaped ? DistanceToBox(box, from, d) : c.distance;
   };
   const double below = free(p, -up), above = free(p, up);
@@ -141,7 +205,7 @@ Camera InteriorView(const PatchMesh& mesh, const RayCaster& caster, const Box& b
   for (int k = 0; k < kAzimuths; ++k) {
     const double angle = 2 * std::numbers::pi * k / kAzimuths;
     dirs[k] = h1 * std::cos(angle) + h2 * std::sin(angle);
-    const Cast c = CastFrom(mesh, caster, eye, dirs[k]);
+    const Cast c = probe(eye, dirs[k]);
     distance[k] = c.escaped ? DistanceToBox(box, eye, dirs[k]) : c.distance;
     if (c.escaped) opening += dirs[k], ++escaped;
   }
@@ -149,7 +213,7 @@ Camera InteriorView(const PatchMesh& mesh, const RayCaster& caster, const Box& b
     Vec3 in = -opening;
     in = in - up * Dot(in, up);
     const int axis = NearestAxis(in);
-    return Framed(box, camera, Axis(axis, in[axis] >= 0 ? 1 : -1), true);
+    return Filled(box, camera, Axis(axis, in[axis] >= 0 ? 1 : -1));
   }
   // The principal axis of the horizontal hit points around the eye: the long axis.
   double mx = 0, my = 0, cxx = 0, cxy = 0, cyy = 0;
@@ -185,18 +249,18 @@ Vec3 SceneUpAxis(const PatchMesh& mesh) {
   return facing_z > facing_y ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
 }
 
-Camera DefaultCamera(const PatchMesh& mesh, const RayCaster& caster, const Camera& camera,
-                     const Vec3& up) {
+Camera DefaultCamera(const PatchMesh& mesh, const RayCaster& caster, std::span<const Rgb> radiosity,
+                     const Camera& camera, const Vec3& up) {
+  const Probe probe{mesh, caster, radiosity};
   Camera view = camera;
-  const bool given = Length(up) > 0;
-  view.up = given ? up : Vec3{0, 1, 0};
+  view.up = Length(up) > 0 ? up : SceneUpAxis(mesh);
   const Box box = Bounds(mesh);
-  const Camera outside = Framed(box, view, OutsideAxis(view.up), false);
-  const std::optional<Vec3> open = LargestOpenVolume(mesh, caster, box);
-  if (!open) return outside;
-  if (!given) view.up = SceneUpAxis(mesh);
-  const Camera inside = InteriorView(mesh, caster, box, view, *open);
-  return ValidateCamera(inside).ok() ? inside : outside;
+  const std::optional<Vec3> open = LargestOpenVolume(probe, box);
+  if (open) {
+    const Camera inside = InteriorView(probe, box, view, *open);
+    if (ValidateCamera(inside).ok()) return inside;
+  }
+  return OpenView(probe, box, view);
 }
 
 }  // namespace radflux

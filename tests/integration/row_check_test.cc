@@ -5,6 +5,8 @@
 // with a null pointer passed to memcpy.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "server/store/stored_codec.h"
 #include "server/workers/row_check.h"
 
@@ -65,6 +67,50 @@ TEST(RowCheck, EmptyRowBlockRoundTripsThroughItsEncoding) {
   EXPECT_EQ(decoded->block.RowCount(), 1u);
   EXPECT_TRUE(decoded->block.col.empty());
   EXPECT_TRUE(CheckRowBlock(decoded->block, 7, 1, 64).ok());
+}
+
+// A view-factor block (issue 23, CheckDenseBlock): rows of widths 3, 2, 1 (a pair triangle's);
+// the honest block passes, its encoding round-trips bit for bit, and a block with a wrong
+// value count, a negative or NaN value, or one bit changed in a sampled row is refused.
+TEST(RowCheck, ViewFactorBlockIsCheckedValueByValueAndSampledRowsBitForBit) {
+  const std::vector<double> values = {0.1, 0.2, 0.3, 0.25, 0.125, 1.0 / 3};
+  const DenseRows dense{
+      [](uint32_t first, uint32_t count) {  // widths 3, 2, 1 from row 0
+        size_t n = 0;
+        for (uint32_t r = first; r < first + count; ++r) n += 3 - r;
+        return n;
+      },
+      [&](uint32_t row) {
+        const size_t at[] = {0, 3, 5};
+        return std::vector<double>(values.begin() + at[row], values.begin() + at[row] + 3 - row);
+      }};
+  StoredRowBlock block;
+  block.view_factors = true;
+  block.block.first_row = 0;
+  block.block.row_begin.assign(4, 0);
+  block.values = values;
+  const absl::StatusOr<StoredRowBlock> decoded = DecodeRowBlock(EncodeRowBlock(block));
+  ASSERT_TRUE(decoded.ok()) << decoded.status();
+  EXPECT_TRUE(decoded->view_factors);
+  EXPECT_EQ(decoded->values, values);
+  EXPECT_TRUE(CheckDenseBlock(*decoded, 0, 3, dense, {0, 1, 2}).ok());
+  EXPECT_FALSE(CheckDenseBlock(*decoded, 0, 2, dense, {}).ok()) << "another lease's rows";
+  StoredRowBlock bad = block;
+  bad.values.pop_back();
+  EXPECT_FALSE(CheckDenseBlock(bad, 0, 3, dense, {}).ok()) << "a value missing";
+  bad = block;
+  bad.values[4] = -0.5;
+  EXPECT_FALSE(CheckDenseBlock(bad, 0, 3, dense, {}).ok()) << "a negative value";
+  bad.values[4] = std::nan("");
+  EXPECT_FALSE(CheckDenseBlock(bad, 0, 3, dense, {}).ok()) << "NaN";
+  bad = block;
+  bad.values[4] = std::nextafter(values[4], 1.0);  // row 1, one bit off
+  EXPECT_TRUE(CheckDenseBlock(bad, 0, 3, dense, {0, 2}).ok()) << "row 1 not sampled";
+  const absl::Status lie = CheckDenseBlock(bad, 0, 3, dense, {1});
+  EXPECT_EQ(lie.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(lie.message().find("view-factor row 1 differs from the server's own"),
+            std::string::npos)
+      << lie;
 }
 
 }  // namespace

@@ -61,6 +61,49 @@ TEST(BlockerBvh, AnswersAsTestingEachBlocker) {
   EXPECT_GT(blocked, 1000);
 }
 
+// Far from the origin single precision cannot place a segment within a blocker's size, and
+// segments aimed at a blocker's vertices and edge midpoints graze its box: the padded
+// single-precision node boxes still keep every blocker the exact test finds (and a segment
+// with an end far outside the scene, tested against every blocker, answers alike).
+TEST(BlockerBvh, AnswersAsTestingEachBlockerFarFromTheOrigin) {
+  std::vector<SurfaceShape> shapes;
+  for (SurfaceShape& s : RandomSquares(80, 13)) {
+    std::vector<Vec3> moved = s.polygon;
+    for (Vec3& p : moved) p = p + Vec3{3.7e5, -2.1e5, 1.3e4};
+    shapes.push_back(MakeSurfaceShape(moved));
+  }
+  const std::vector<uint32_t> blockers = PotentialBlockers(shapes);
+  const BlockerBvh bvh(shapes, blockers);
+  int blocked = 0;
+  for (uint32_t i = 0; i < shapes.size(); ++i) {
+    for (uint32_t k = 0; k < shapes.size(); ++k) {
+      if (k == i) continue;
+      const Vec3 a = shapes[i].centroid;
+      const std::vector<Vec3>& q = shapes[k].polygon;
+      for (size_t v = 0; v < 2 * q.size(); ++v) {  // through k's vertices and edge midpoints
+        const Vec3 aim = v % 2 == 0 ? q[v / 2] : (q[v / 2] + q[(v / 2 + 1) % q.size()]) * 0.5;
+        const Vec3 b = a + (aim - a) * (v < 4 ? 2.0 : 1.5);
+        const uint32_t j = (i + k + v) % shapes.size() == i ? k : (i + k + v) % shapes.size();
+        bool hit = false;
+        for (uint32_t c : blockers) {
+          hit = hit || (c != i && c != j && SegmentHitsSurface(a, b, shapes[c]) &&
+                        MayBlockPair(shapes[i], shapes[j], shapes[c]));
+        }
+        ASSERT_EQ(bvh.SegmentBlocked(a, b, i, j), hit) << i << " " << k << " " << v;
+        blocked += hit;
+      }
+    }
+  }
+  EXPECT_GT(blocked, 1000);
+  const Vec3 far = shapes[0].centroid * 3;  // beyond twice the scene's reach
+  bool hit = false;
+  for (uint32_t c : blockers) {
+    hit = hit || (c != 0 && c != 1 && SegmentHitsSurface(far, shapes[1].centroid, shapes[c]) &&
+                  MayBlockPair(shapes[0], shapes[1], shapes[c]));
+  }
+  EXPECT_EQ(bvh.SegmentBlocked(far, shapes[1].centroid, 0, 1), hit);
+}
+
 // SegmentBlocked with a remembered blocker (`last`, kept across a pair's segments) answers as
 // without it; after a blocked segment it names a blocker that blocks that segment.
 TEST(BlockerBvh, TheRememberedBlockerChangesNoAnswer) {

@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "solver/mesh/contact_clip.h"
 #include "solver/mesh/contact_footprints.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
 #include "tests/unit/test_scenes.h"
 
 namespace radflux {
@@ -258,6 +260,49 @@ TEST(ContactMeshing, FloorPatchesFollowAPartitionsOpenFootAndItsDarkSideGetsNoLi
     }
     EXPECT_TRUE(found) << corner.x << " " << corner.z;
   }
+}
+
+// Face f of `mesh` alone, its vertex indices from 0 (ClipFacePatches and ClippedPatchCount
+// take the last face meshed).
+PatchMesh FaceAlone(const PatchMesh& mesh, uint32_t f) {
+  PatchMesh face;
+  const uint32_t first_vertex = mesh.face_first_vertex[f];
+  face.positions.assign(mesh.positions.begin() + first_vertex,
+                        mesh.positions.begin() + mesh.face_first_vertex[f + 1]);
+  for (uint32_t p = mesh.face_first_patch[f]; p < mesh.face_first_patch[f + 1]; ++p) {
+    Patch patch = mesh.patches[p];
+    for (uint32_t& v : patch.v) v -= first_vertex;
+    face.patches.push_back(patch);
+  }
+  return face;
+}
+
+// The count the edge length is chosen by is the count the cut faces get: the Cornell box's
+// floor (both blocks' footprints, refined beside them) and ceiling (the lamp's outline) at
+// several edge lengths, against ClipFacePatches itself.
+TEST(ContactMeshing, ClippedPatchCountIsThePatchesTheCutLeaves) {
+  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(scene.ok()) << scene.status();
+  const std::vector<FaceContacts> contacts = FindContacts(*scene);
+  int cut_faces = 0;
+  for (double h : {20.0, 37.0, 50.0, 81.0}) {
+    MeshOptions options;
+    options.max_edge = h;
+    options.follow_contacts = false;
+    absl::StatusOr<PatchMesh> mesh = SubdivideScene(*scene, options);
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    for (uint32_t f = 0; f < scene->faces.size(); ++f) {
+      if (contacts[f].empty()) continue;
+      PatchMesh face = FaceAlone(*mesh, f);
+      const Vec3 normal = face.patches[0].normal;
+      const size_t unclipped = face.size();
+      const size_t counted = ClippedPatchCount(contacts[f], normal, h, 0, 0, face);
+      ClipFacePatches(contacts[f], normal, h, 0, 0, face);
+      EXPECT_EQ(counted, face.size()) << "face " << f << " at h = " << h;
+      cut_faces += face.size() != unclipped ? 1 : 0;
+    }
+  }
+  EXPECT_GE(cut_faces, 8);  // floor and ceiling at every h
 }
 
 }  // namespace

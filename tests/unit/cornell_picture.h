@@ -1,6 +1,6 @@
-// The Cornell box solved at the CLI's defaults and rendered as `radflux solve --render` does
-// (welded shading mesh, per-vertex radiosity, one ray per pixel): what the picture tests
-// measure.
+// A scene (the Cornell box, or any loaded scene) solved at the CLI's defaults and rendered
+// as `radflux solve --render` does (welded shading mesh, per-vertex radiosity, one ray per
+// pixel): what the picture tests measure.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -15,17 +15,17 @@
 
 namespace radflux::testing {
 
-// A solved Cornell box (scenes/cornell_box.obj, --patches 2000 as the CLI's default).
-struct SolvedCornell {
+// A solved scene (--patches 2000 as the CLI's default).
+struct SolvedScene {
   std::unique_ptr<JobResult> result;  // result->job: scene, mesh and caster
   std::vector<Rgb> vertex_radiosity;  // per PatchMesh position, as the renderer takes it
 
   const PreparedJob& job() const { return *result->job; }
 };
 
-inline SolvedCornell SolveCornellDefaults() {
-  SolvedCornell out;
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+// `scene` solved (empty on failure, with a test failure).
+inline SolvedScene SolveDefaults(absl::StatusOr<Scene> scene) {
+  SolvedScene out;
   EXPECT_TRUE(scene.ok()) << scene.status();
   if (!scene.ok()) return out;
   const std::vector<uint32_t> materials = FaceMaterials(*scene);
@@ -46,10 +46,16 @@ inline SolvedCornell SolveCornellDefaults() {
   return out;
 }
 
-// The solved box's radiance picture through `camera` (empty on failure, with a test failure).
-inline Image RenderCornell(const SolvedCornell& cornell, const Camera& camera) {
-  absl::StatusOr<Image> image = RenderRadiance(cornell.job().mesh, *cornell.job().caster,
-                                               cornell.vertex_radiosity, camera, {});
+// scenes/cornell_box.obj solved.
+inline SolvedScene SolveCornellDefaults() {
+  return SolveDefaults(LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"));
+}
+
+// The solved scene's radiance picture through `camera` (empty on failure, with a test
+// failure).
+inline Image RenderSolved(const SolvedScene& solved, const Camera& camera) {
+  absl::StatusOr<Image> image =
+      RenderRadiance(solved.job().mesh, *solved.job().caster, solved.vertex_radiosity, camera, {});
   EXPECT_TRUE(image.ok()) << image.status();
   return image.ok() ? *std::move(image) : Image{};
 }

@@ -103,7 +103,7 @@ FloorBands MeasureFloor(const PreparedJob& job, const Camera& camera, const Imag
 }
 
 TEST(OutputContactCornell, ADarkContactLineUnderEachBlockAsInThePathTracedReference) {
-  const testing::SolvedCornell cornell = testing::SolveCornellDefaults();
+  const testing::SolvedScene cornell = testing::SolveCornellDefaults();
   ASSERT_FALSE(cornell.vertex_radiosity.empty());
   // The box fitted in the picture from -z: the camera of bench/cornell_vs_cycles.sh, at which
   // the Cycles figures above were measured.
@@ -112,7 +112,7 @@ TEST(OutputContactCornell, ADarkContactLineUnderEachBlockAsInThePathTracedRefere
   camera.look_at = {278, 274.4, 279.6};
   camera.vertical_fov_degrees = 39.3077;
   camera.width = camera.height = 256;
-  const Image image = testing::RenderCornell(cornell, camera);
+  const Image image = testing::RenderSolved(cornell, camera);
   ASSERT_EQ(image.width, 256);
   const FloorBands bands = MeasureFloor(cornell.job(), camera, image);
   // The bands' pixel counts at this camera (bench/contact_band.py: 112 and 57; 252 and 113).

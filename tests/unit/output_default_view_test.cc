@@ -1,16 +1,22 @@
 // The default view's rule (solver/output/default_view.h) on the Cornell box (open at the
 // front) and on the conference room of ../shared/scenes (an interior): the picture
 // shows the scene. Every patch is given B = 1, so a pixel is lit exactly when its ray
-// meets the front of a patch: black means background or the back of a wall.
+// meets the front of a patch: black means background or the back of a wall. And on open
+// RenderPark scenes, solved: the default picture shows what is lit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
 
 #include "solver/mesh/subdivide.h"
 #include "solver/output/default_view.h"
 #include "solver/output/render.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "solver/scene/load_scene.h"
+#include "tests/unit/cornell_picture.h"
 #include "tests/unit/output_test_meshes.h"
 
 namespace radflux {
@@ -41,7 +47,8 @@ Viewed ViewDefault(const std::string& path, const ImportOptions& import, int64_t
   Camera request;
   request.width = request.height = 64;
   request.vertical_fov_degrees = 39.3077;  // the CLI's default
-  v.camera = DefaultCamera(v.mesh, **caster, request, Vec3{});
+  v.camera = DefaultCamera(v.mesh, **caster, std::vector<Rgb>(v.mesh.size(), Rgb{1, 1, 1}), request,
+                           Vec3{});
   EXPECT_TRUE(ValidateCamera(v.camera).ok());
   const std::vector<Rgb> ones(v.mesh.positions.size(), Rgb{1, 1, 1});
   auto image = RenderRadiance(v.mesh, **caster, ones, v.camera, {});
@@ -94,6 +101,8 @@ TEST(OutputDefaultView, ConferenceRoomIsSeenFromInside) {
   EXPECT_EQ(v.camera.look_at.y, v.camera.position.y);
 }
 
+std::vector<Rgb> Ones(const PatchMesh& mesh) { return {mesh.size(), Rgb{1, 1, 1}}; }
+
 // A room x in [0, 10], y in [0, 6], z in [0, 3], every wall facing in; with `window`, the
 // wall y = 0 has a 2 x 1.5 hole at x in [4, 6], z in [1, 2.5]: one or two of the 16
 // horizontal rays from the eye escape through it.
@@ -125,7 +134,7 @@ TEST(OutputDefaultView, AClosedZUpRoomIsSeenAlongItsLongestAxisAtEyeHeight) {
   ASSERT_TRUE(caster.ok());
   Camera request;
   request.width = request.height = 32;
-  const Camera camera = DefaultCamera(mesh, **caster, request, Vec3{});
+  const Camera camera = DefaultCamera(mesh, **caster, Ones(mesh), request, Vec3{});
   EXPECT_EQ(camera.up, Vec3(0, 0, 1));
   EXPECT_NEAR(camera.position.z, 0.55 * z, 1e-5);  // eye height (Embree: floats)
   const Vec3 view = camera.look_at - camera.position;
@@ -142,12 +151,12 @@ TEST(OutputDefaultView, AWindowIsNotAnOpeningToLookInThrough) {
   ASSERT_TRUE(caster.ok());
   Camera request;
   request.width = request.height = 32;
-  const Camera camera = DefaultCamera(mesh, **caster, request, Vec3{});
+  const Camera camera = DefaultCamera(mesh, **caster, Ones(mesh), request, Vec3{});
   EXPECT_GT(camera.position.y, 0);  // inside, not outside the window's wall
   EXPECT_NEAR(std::abs((camera.look_at - camera.position).x), 1, 1e-12);
 }
 
-TEST(OutputDefaultView, AnOpenSceneIsFramedFromOutsideAsBefore) {
+TEST(OutputDefaultView, AnOpenSceneIsSeenFromTheSideItsLitFaceFaces) {
   PatchMesh mesh;  // one quad facing -z: nothing encloses any probe point
   output_testing::AddFace(mesh, {{0, 0, 0}, {0, 2, 0}, {4, 2, 0}, {4, 0, 0}}, {{0, 1, 2, 3}},
                           {0, 0, -1});
@@ -156,11 +165,79 @@ TEST(OutputDefaultView, AnOpenSceneIsFramedFromOutsideAsBefore) {
   Camera request;
   request.width = 200, request.height = 100;
   request.vertical_fov_degrees = 90;
-  const Camera camera = DefaultCamera(mesh, **caster, request, Vec3{});
+  // Up +y given: the first horizontal view, along +z, sees its front straight on, the box
+  // fitted: half height max(2/2, 4/2 * 100/200) = 1 at tan(45 degrees) = 1.
+  const Camera camera = DefaultCamera(mesh, **caster, Ones(mesh), request, Vec3{0, 1, 0});
   EXPECT_EQ(camera.up, Vec3(0, 1, 0));
   EXPECT_EQ(camera.look_at, Vec3(2, 1, 0));
-  // The box fitted: half height max(2/2, 4/2 * 100/200) = 1 at tan(45 degrees) = 1.
   EXPECT_NEAR(Length(camera.position - Vec3(2, 1, -1)), 0, 1e-12);
+  // Up left to the rule: +z (the quad's area faces along z). The horizontal views see it
+  // edge-on, those from above (+30 degrees) its back: it is seen from below, 30 degrees.
+  const Camera chosen = DefaultCamera(mesh, **caster, Ones(mesh), request, Vec3{});
+  EXPECT_EQ(chosen.up, Vec3(0, 0, 1));
+  EXPECT_NEAR(Normalize(chosen.look_at - chosen.position).z, std::sin(std::numbers::pi / 6), 1e-12);
+}
+
+// A RenderPark scene solved at the CLI's defaults, through its default camera (80 x 60).
+struct SolvedView {
+  Camera camera;
+  double lit = 0;  // fraction of the picture's pixels with radiance > 0
+  Vec3 lo, hi;     // the mesh's bounding box
+};
+
+SolvedView SolveAndViewDefault(const std::string& path) {
+  SolvedView v;
+  const testing::SolvedScene solved = testing::SolveDefaults(LoadScene(path, {}));
+  if (solved.vertex_radiosity.empty()) return v;
+  const PatchMesh& mesh = solved.job().mesh;
+  Camera request;
+  request.width = 80, request.height = 60;
+  request.vertical_fov_degrees = 39.3077;  // the CLI's default
+  v.camera =
+      DefaultCamera(mesh, *solved.job().caster, solved.result->solve.radiosity, request, Vec3{});
+  const Image image = testing::RenderSolved(solved, v.camera);
+  int lit = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float* rgb = image.Pixel(x, y);
+      lit += std::max({rgb[0], rgb[1], rgb[2]}) > 0;
+    }
+  }
+  v.lit = lit / double(request.width * request.height);
+  v.lo = v.hi = mesh.positions.at(0);
+  for (const Vec3& p : mesh.positions) {
+    v.lo = {std::min(v.lo.x, p.x), std::min(v.lo.y, p.y), std::min(v.lo.z, p.z)};
+    v.hi = {std::max(v.hi.x, p.x), std::max(v.hi.y, p.y), std::max(v.hi.z, p.z)};
+  }
+  return v;
+}
+
+bool OutsideBox(const SolvedView& v) {
+  for (int i : {0, 1, 2}) {
+    if (v.camera.position[i] < v.lo[i] || v.camera.position[i] > v.hi[i]) return true;
+  }
+  return false;
+}
+
+// A floor with a lamp above it, a ball and a two-sided closed box on it: the dark insides
+// of the ball and the box are not rooms (the rule before looked out from inside the ball:
+// a black picture). Seen from outside, above the floor, its lit part shows.
+TEST(OutputDefaultView, AnOpenFloorSceneIsSeenFromAboveNotFromInsideAClosedSolid) {
+  const SolvedView v =
+      SolveAndViewDefault(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/floor_gloss.mgf");
+  EXPECT_EQ(v.camera.up, Vec3(0, 0, 1));
+  EXPECT_TRUE(OutsideBox(v));
+  EXPECT_GT(v.camera.position.z, v.lo.z);  // above the floor
+  EXPECT_GE(v.lit, 0.2);                   // 27% at this commit
+}
+
+// A lone luminaire (lamps inside a housing whose outside nothing lights): the dark inside
+// of the housing is not a room; from outside, the lamps show.
+TEST(OutputDefaultView, ALoneLuminaireIsSeenFromOutsideWithItsLampsInView) {
+  const SolvedView v =
+      SolveAndViewDefault(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/examp1.mgf");
+  EXPECT_TRUE(OutsideBox(v));
+  EXPECT_GE(v.lit, 0.03);  // 3.8% at this commit: the lamps between the vanes
 }
 
 }  // namespace

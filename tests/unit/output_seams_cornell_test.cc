@@ -64,14 +64,15 @@ double Quantile(std::vector<double> v, double q) {
 }
 
 TEST(OutputSeamsCornell, NoJumpAcrossTheRedWallsFaceEdgeBeyondTheRowsNoise) {
-  const testing::SolvedCornell cornell = testing::SolveCornellDefaults();
+  const testing::SolvedScene cornell = testing::SolveCornellDefaults();
   ASSERT_FALSE(cornell.vertex_radiosity.empty());
   const PreparedJob& job = cornell.job();
   Camera request;
   request.width = request.height = 256;
   request.vertical_fov_degrees = 39.3077;
-  const Camera camera = DefaultCamera(job.mesh, *job.caster, request, Vec3{});
-  const Image image = testing::RenderCornell(cornell, camera);
+  const Camera camera =
+      DefaultCamera(job.mesh, *job.caster, cornell.result->solve.radiosity, request, Vec3{});
+  const Image image = testing::RenderSolved(cornell, camera);
   ASSERT_EQ(image.width, 256);
   const SeamSteps steps = RedWallKinks(RedWallFaces(job, camera), image);
   ASSERT_GT(steps.across.size(), 100u);  // the diagonal crosses most rows of the wall
