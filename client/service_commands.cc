@@ -118,7 +118,11 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
   if (absl::Status s = WriteFile(args.output.report, result->report + "\n"); !s.ok()) {
     return Fail(s, client.flags());
   }
-  std::cout << result->patch_count << " patches\n";
+  if (result->job.options().has_viewfactors()) {
+    std::cout << result->job.patches() << " surfaces (a view-factor job: -o FILE writes them)\n";
+  } else {
+    std::cout << result->patch_count << " patches\n";
+  }
   const int verdict = SucceededJobExitCode(result->job);
   if (verdict != 0 && say_shortfall)
     return ReportJobShortfall("result", job_id, result->job.message(), verdict);

@@ -185,6 +185,9 @@ absl::Status RowFarm::CheckResult(const Issued& issued, Job& job, const v1::Bloc
       UnpackRowBlock(r, MaxRowBlockBytes(issued.row_count, patch_count));
   if (!unpacked.ok()) return unpacked.status();
   if (job.spec.dense) return CheckDense(issued, job, *std::move(unpacked), rows);
+  if (unpacked->view_factors) {
+    return absl::InvalidArgumentError("a view-factor block for a form-factor job's lease");
+  }
   const RowBlock& block = unpacked->block;
   absl::StatusOr<std::vector<uint32_t>> high_sum =
       CheckRowBlock(block, issued.first_row, issued.row_count, patch_count, job.spec.max_row_sum);

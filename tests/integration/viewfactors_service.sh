@@ -90,6 +90,10 @@ assert adaptive["surfaces"] == 8 and adaptive["integration"] == "adaptive", adap
 assert adaptive["adaptive"]["reciprocal"] is True, adaptive["adaptive"]
 assert patches["integration"] == "patches" and patches["patches"] > 8, patches
 PY
+# `result` without files names the job's surfaces.
+room_job=$(tail -n 1 "$DIR/room-csv.job")
+"$CLI" result "$room_job" "${server[@]}" | grep -q "^8 surfaces" ||
+  { echo "result of a view-factor job without -o: $("$CLI" result "$room_job" "${server[@]}")"; exit 1; }
 # One sky view factor per surface after the header line.
 [ "$(wc -l <"$DIR/room-csv.local.svf")" -eq 9 ] && [ "$(wc -l <"$DIR/canyon-csv.local.svf")" -eq 7 ] ||
   { echo "sky view factor files: $(wc -l "$DIR"/*-csv.local.svf)"; exit 1; }
