@@ -2,6 +2,7 @@
 """Block error of a final-gathered picture against a path-traced reference.
 
 Usage: final_gather.py RADFLUX.pfm REPORT.json REF_SEED1.npy REF_SEED2.npy [--block 4] [--tol 0.03]
+                      [--png PREFIX]
 
 The picture and the reference (two Cycles renders with different seeds, n1 and n2 samples per
 pixel read from the .json beside each .npy, linear radiance, row 0 = top, combined as their
@@ -14,7 +15,9 @@ difference: sigma = |h1 - h2| sqrt(n1 n2) / (n1 + n2), as a fraction, its RMS ov
 the fraction within TOL against each render alone and against their mean (n1, n2 and n1 + n2
 samples), and its straight-line fit in 1/n taken to n = 16,384 (the goal's reference: noise in
 the reference only spreads the errors, so the fraction rises as 1/n falls); and the final
-gather's and the solve's seconds from REPORT.
+gather's and the solve's seconds from REPORT. With --png, writes PREFIX_radflux.png and
+PREFIX_reference.png: both pictures at the same exposure (the reference's 95th-percentile
+pixel value, over the three bands, is white), sRGB, clipped.
 """
 import json
 import sys
@@ -50,9 +53,20 @@ def summary(name, e, tol):
           f"error median {p[0] * 100:.2f}%, 90th {p[1] * 100:.2f}%, 99th {p[2] * 100:.2f}%")
 
 
+def write_pngs(prefix, radflux, ref):
+    """The two pictures, one exposure (see the docstring)."""
+    from PIL import Image
+    white = np.percentile(ref, 95)
+    for name, image in (("radflux", radflux), ("reference", ref)):
+        x = np.clip(image / white, 0, 1)
+        srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+        Image.fromarray(np.round(srgb * 255).astype(np.uint8)).save(f"{prefix}_{name}.png")
+    print(f"wrote {prefix}_radflux.png and {prefix}_reference.png (white = {white:.4g})")
+
+
 def main():
     args = sys.argv[1:]
-    opts = {"--block": "4", "--tol": "0.03"}
+    opts = {"--block": "4", "--tol": "0.03", "--png": ""}
     for k in list(opts):
         if k in args:
             i = args.index(k)
@@ -80,6 +94,8 @@ def main():
     within, at_16k = fraction_at_16k(t, halves, (n1, n2), keep, block, tol)
     print("within " + ", ".join(f"{v * 100:.2f}% at {n} spp" for n, v in within.items()) +
           f" of the reference; fit in 1/n at 16384 spp: {at_16k * 100:.2f}%")
+    if opts["--png"]:
+        write_pngs(opts["--png"], radflux, ref)
     seconds = json.load(open(args[1]))["seconds"]
     print(f"final gather {seconds.get('gather', 0):.3f} s; rows {seconds['rows']:.3f} s, "
           f"solve {seconds['solve']:.3f} s")

@@ -18,6 +18,8 @@
 # Usage: bench/final_gather.sh [extra radflux solve flags...]
 #   GATHER=128 (rays per pixel), SEEDS="1 2 3", REF=/work/notes/gather, OUT=/tmp/radflux-gather,
 #   SPP=4096 (per seed, when the bench renders them), BIN=build/ci/client/radflux
+# The pictures side by side at one exposure: bench/final_gather.py ... --png PREFIX
+# (bench/results/cornell_gather128_{radflux,reference}.png: seed 1 and the reference).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 gather=${GATHER:-128}

@@ -164,7 +164,12 @@ nlohmann::json SpillJson(const RowStore& store, const JobOptions& options) {
 nlohmann::json ImportJson(const ImportLog& log) {
   nlohmann::json fixups = nlohmann::json::array();
   for (const ImportFixup& f : log.fixups()) {
-    fixups.push_back({{"kind", f.kind}, {"message", f.Text()}, {"count", f.count}, {"first", f.first}});
+    nlohmann::json fixup = {
+        {"kind", f.kind}, {"message", f.Text()}, {"count", f.count}, {"first", f.first}};
+    if (!f.share_of.empty()) {
+      fixup["share"] = {{"mean", f.ShareMean()}, {"max", f.share_max}};
+    }
+    fixups.push_back(fixup);
   }
   return fixups;
 }

@@ -40,13 +40,16 @@ struct FaceContacts {
 // - the loop's faces are of one object, and a face of that object facing away from the
 //   receiver lies above the loop's centroid (a lid: an open tube's inside stays lit).
 // A face lying in front of the receiver with its back to it (facing the same way, every
-// corner in front by more than that tolerance and at most 1% of the face's size, the square
+// corner in front by more than that tolerance and at most 2% of the face's size, the square
 // root of its area) also gives a footprint: its outline projected onto the receiver (a light
 // hung 0.5 mm below a ceiling hides the ceiling above it; without the cut, the ceiling's
 // patches under its edge averaged the dark and the lit parts and shaded the lit part dark).
 // Every other contact edge (a partition's foot, an open polyline of panels, a loop that is no
 // foot) is a line, once however many faces share it, and none along a footprint's edge.
-// Edges are found through a uniform grid of face bounding boxes, not all pairs.
-std::vector<FaceContacts> FindContacts(const Scene& scene);
+// Only faces of at least `min_receiver_area` (scene units^2) are receivers; the others get no
+// contacts (a scene of many small faces needs the contacts of its large ones only, and finding
+// every face's costs far more). Edges are found through a uniform grid of face bounding boxes,
+// not all pairs.
+std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_area = 0);
 
 }  // namespace radflux

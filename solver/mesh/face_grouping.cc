@@ -210,7 +210,8 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
   const double target_area = TotalFaceArea(scene) / static_cast<double>(options.target_patches);
   MeshOptions split;
   split.max_edge = kSplitEdge * std::sqrt(target_area);
-  split.follow_contacts = false;  // the unknowns are groups of faces: no outline to follow
+  split.follow_contacts = options.follow_contacts;
+  split.min_contact_area = target_area;  // faces of a patch or more (face_grouping.h)
   absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, split);
   if (!mesh.ok()) return mesh.status();
   out.mesh = *std::move(mesh);

@@ -4,7 +4,10 @@
 // with a* = (total face area) / N:
 //  - faces are split to an edge length of kSplitEdge * sqrt(a*) (large faces become patches
 //    of about a*; emitters keep subdivide.h's cap), and every emitting patch is an unknown
-//    of its own (light sampling needs emitters as single polygons);
+//    of its own (light sampling needs emitters as single polygons); faces of area a* or more
+//    are cut along their contacts and lose the area under solids and covers hung against
+//    them (contact_footprints.h; with follow_contacts): a wall's patch that straddled a
+//    board's outline averaged the dark behind it into the lit strip beside it;
 //  - the other patches are put, per (object, material, two-sidedness), in a binary tree by top-down
 //    median splits (a BVH build): a node whose normals spread beyond kMaxConeDegrees of their
 //    area-weighted mean and whose centroids span at most kMaxExtent sqrt(a*) is split along

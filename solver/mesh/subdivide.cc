@@ -284,7 +284,7 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
                       (options.target_patches <= 0 ||
                        static_cast<int64_t>(scene.faces.size()) < options.target_patches);
   const std::vector<FaceContacts> contacts =
-      follow ? FindContacts(scene) : std::vector<FaceContacts>(scene.faces.size());
+      follow ? FindContacts(scene, options.min_contact_area) : std::vector<FaceContacts>(scene.faces.size());
   const double h = ContactAwareEdgeLength(scene, extents, contacts, options,
                                           ChooseEdgeLength(extents, options));
   PatchMesh mesh;

@@ -77,23 +77,30 @@ Material ConvertMgfMaterial(const std::string& name, const MgfMaterialState& sta
   const bool moved_e = DesaturateIntoGamut(m.emission, emitted_y);
   if (moved_r || moved_e) {
     log.Add("mgf_colour_out_of_gamut",
-            "MGF {material|materials} with a colour outside the RGB gamut, desaturated at the same luminance",
+            "MGF {material|materials} with a colour outside the RGB gamut, desaturated at the same "
+            "luminance",
             where);
   }
+  // Each part left out, as a share of all the light the material scatters.
+  const double scattered = state.rd + state.rs + state.td + state.ts;
+  const std::string share_of = "of the light {it scatters|they scatter} (rd + rs + td + ts)";
   if (state.rs > 0) {
-    log.Add("mgf_specular_reflection_left_out",
-            "MGF {material|materials} with a specular reflection part (rs) left out of the diffuse solve",
-            where);
+    log.AddShare("mgf_specular_reflection_left_out",
+                 "MGF {material|materials} with a specular reflection part (rs) left out of the "
+                 "diffuse solve",
+                 where, state.rs / scattered, share_of);
   }
   if (state.ts > 0) {
-    log.Add("mgf_specular_transmission_left_out",
-            "MGF {material|materials} with a specular transmission part (ts) left out of the diffuse solve",
-            where);
+    log.AddShare("mgf_specular_transmission_left_out",
+                 "MGF {material|materials} with a specular transmission part (ts) left out of the "
+                 "diffuse solve",
+                 where, state.ts / scattered, share_of);
   }
   if (state.td > 0) {
-    log.Add("mgf_diffuse_transmission_left_out",
-            "MGF {material|materials} with a diffuse transmission part (td) left out of the diffuse solve",
-            where);
+    log.AddShare("mgf_diffuse_transmission_left_out",
+                 "MGF {material|materials} with a diffuse transmission part (td) left out of the "
+                 "diffuse solve",
+                 where, state.td / scattered, share_of);
   }
   return m;
 }

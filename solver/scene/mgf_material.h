@@ -9,7 +9,9 @@
 // - two_sided = `sides 2` (the MGF default); `sides 1` is one-sided.
 // - The specular reflection `rs`, specular transmission `ts` and diffuse transmission `td`
 //   are read and checked but a diffuse solve has no place for them: each material that has
-//   one is counted in the scene's import log (one line per kind).
+//   one is counted in the scene's import log (one line per kind), with the part's share of
+//   all the light the material scatters, rs / (rd + rs + td + ts) for rs (the mean and the
+//   largest over the materials are on the line and in the report).
 // - A colour outside the RGB gamut (a negative band) is moved toward the neutral colour at
 //   the same luminance until its lowest band is 0, so rd and ed keep their meaning; such
 //   materials are counted too. (Bands above 1 are left to the import rules' clamp.)

@@ -32,6 +32,11 @@ kinds = [f["kind"] for f in report["import"]]
 assert len(kinds) == len(set(kinds)), f"{name}: a kind listed twice: {kinds}"
 lines = open(lines_path).read().splitlines()
 assert len(lines) == len(kinds), f"{name}: {len(lines)} import lines for {len(kinds)} kinds"
+for f in report["import"]:  # a part a diffuse solve leaves out comes with its share
+    if f["kind"].endswith("_left_out"):
+        share = f["share"]
+        assert 0 < share["mean"] <= share["max"] <= 1, f"{name}: {f}"
+        assert "of the light" in f["message"], f"{name}: {f['message']}"
 assert report["solve"]["converged"], f"{name}: not converged"
 assert report["energy_balance"]["ok"], f"{name}: energy balance off: {report['energy_balance']}"
 with open(pfm_path, "rb") as f:

@@ -60,4 +60,16 @@ inline Image RenderSolved(const SolvedScene& solved, const Camera& camera) {
   return image.ok() ? *std::move(image) : Image{};
 }
 
+// The share of `image`'s pixels with radiance > 0 in some band (0 for an empty image).
+inline double LitShare(const Image& image) {
+  int lit = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float* rgb = image.Pixel(x, y);
+      lit += rgb[0] > 0 || rgb[1] > 0 || rgb[2] > 0;
+    }
+  }
+  return image.width * image.height > 0 ? lit / double(image.width * image.height) : 0;
+}
+
 }  // namespace radflux::testing

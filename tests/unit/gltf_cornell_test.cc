@@ -16,10 +16,12 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
+#include "solver/output/default_view.h"
 #include "solver/pipeline.h"
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/obj_loader.h"
 #include "solver/solve/energy_balance.h"
+#include "tests/unit/cornell_picture.h"
 #include "tests/unit/gltf_test_builder.h"
 #include "tests/unit/texture_test_png.h"
 
@@ -266,6 +268,23 @@ TEST(GltfCornellBox, TexturedAsObjWithMapKdAndAsGltfGiveBitIdenticalRadiosity) {
   }
   EXPECT_GE(white.size(), 10u);
   EXPECT_EQ(white.count(Rgb{0.75, 0.75, 0.75}), 0u);
+}
+
+// The glTF export's default picture (`radflux solve cornell.glb --render` at the CLI's
+// defaults) shows the lit box: the view in through its open side is lit in every pixel.
+TEST(GltfCornellBox, TheGltfExportsDefaultPictureIsTheLitBox) {
+  absl::StatusOr<Scene> original = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  ASSERT_TRUE(original.ok()) << original.status();
+  const testing::SolvedScene solved = testing::SolveDefaults(
+      LoadGltfData(FannedGltf(*original, Fan(*original), false).Glb(), "cornell.glb", {}));
+  ASSERT_FALSE(solved.vertex_radiosity.empty());
+  EXPECT_TRUE(solved.result->solve.converged);
+  Camera request;
+  request.width = 64, request.height = 48;
+  request.vertical_fov_degrees = 39.3077;  // the CLI's default
+  const Camera camera = DefaultCamera(solved.job().mesh, *solved.job().caster,
+                                      solved.result->solve.radiosity, request, Vec3{});
+  EXPECT_EQ(testing::LitShare(testing::RenderSolved(solved, camera)), 1.0);
 }
 
 }  // namespace

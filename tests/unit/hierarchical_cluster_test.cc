@@ -21,10 +21,11 @@ using testing::GatheredFormFactor;
 using testing::ObjectMean;
 using testing::SolvedHierarchical;
 
-// Links per leaf at n = 4, 8, 16 (103, 391, 1543 faces): one initial link and faces - 1
-// clusters at every size; links per leaf grow at most like faces^0.5 from the smallest to the
-// largest (measured: 5.7, 7.0, 12.8 links per leaf, exponent 0.30; without clusters the
-// initial links alone grow like faces^2: 1715, 17539 and 254371).
+// Links per leaf at n = 4, 8, 16 (103, 391, 1543 faces; the roots are 7 more: the light hung
+// 1% of its size under the ceiling hides the ceiling there, which is cut into 8 pieces
+// around it): one initial link and roots - 1 clusters at every size; links per leaf grow at
+// most like faces^0.5 from the smallest to the largest (measured: 5.4, 7.5, 15.0 links per
+// leaf, exponent 0.39; without clusters the initial links alone grow like faces^2).
 TEST(HierarchicalClusters, LinksPerLeafGrowFarSlowerThanFaces) {
   std::vector<double> faces, per_leaf;
   for (int n : {4, 8, 16}) {
@@ -33,7 +34,7 @@ TEST(HierarchicalClusters, LinksPerLeafGrowFarSlowerThanFaces) {
     std::printf("n=%d: %zu faces, %zu clusters, %zu initial links, %zu links, %zu leaves\n", n,
                 r.stats.roots, r.stats.clusters, r.stats.initial_links, r.stats.links,
                 r.stats.leaves);
-    EXPECT_EQ(r.stats.roots, 6u * n * n + 7);
+    EXPECT_EQ(r.stats.roots, 6u * n * n + 7 + 7);
     EXPECT_EQ(r.stats.clusters, r.stats.roots - 1);
     EXPECT_EQ(r.stats.initial_links, 1u);
     faces.push_back(static_cast<double>(r.stats.roots));

@@ -152,6 +152,21 @@ TEST(ImportRules, ALineSaysOneInTheSingularAndOtherCountsInThePlural) {
   EXPECT_EQ((ImportFixup{"k", "a {b|c", 1, ""}.Text()), "a {b|c") << "unclosed: left as written";
 }
 
+TEST(ImportRules, ALineWithSharesSaysTheirMeanAndLargest) {
+  ImportLog log;
+  const std::string of = "of the light {it scatters|they scatter}";
+  log.AddShare("left", "{material|materials} with a part left out", "a.mgf:3", 0.2, of);
+  EXPECT_EQ(log.Lines()[0],
+            "import: 1 material with a part left out: 20% of the light it scatters (first at "
+            "a.mgf:3)");
+  log.AddShare("left", "{material|materials} with a part left out", "a.mgf:9", 0.6, of);
+  EXPECT_EQ(log.Lines()[0],
+            "import: 2 materials with a part left out: 40% of the light they scatter on "
+            "average, 60% at most (first at a.mgf:3)");
+  EXPECT_NEAR(log.fixups()[0].ShareMean(), 0.4, 1e-15);
+  EXPECT_EQ(log.fixups()[0].share_max, 0.6);
+}
+
 TEST(ImportRules, CoplanarOverlapsAreReportedAndEdgeNeighboursAreNot) {
   // Two unit squares side by side in z = 0 (sharing an edge), and a third square on the same
   // plane facing down (-z) over half of the first: one overlapping pair.

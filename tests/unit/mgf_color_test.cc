@@ -108,6 +108,12 @@ TEST(MgfMaterial, ConversionOfValuesAndLeftOutParts) {
   EXPECT_EQ(scene.import_log.fixups()[0].kind, "mgf_specular_reflection_left_out");
   EXPECT_EQ(scene.import_log.fixups()[0].first, "x.mgf:7");
   EXPECT_EQ(scene.import_log.fixups()[1].kind, "mgf_diffuse_transmission_left_out");
+  // Each part's share of what the material scatters, rd + rs + td = 0.55.
+  EXPECT_NEAR(scene.import_log.fixups()[0].ShareMean(), 0.1 / 0.55, 1e-15);
+  EXPECT_NEAR(scene.import_log.fixups()[1].ShareMean(), 0.2 / 0.55, 1e-15);
+  EXPECT_EQ(scene.import_log.Lines()[0],
+            "import: 1 MGF material with a specular reflection part (rs) left out of the diffuse "
+            "solve: 18% of the light it scatters (rd + rs + td + ts) (first at x.mgf:7)");
   // Same name, same values: the same material; changed values: a second one.
   EXPECT_EQ(ctx.Intern(scene, "x.mgf:8"), index);
   ASSERT_TRUE(ctx.Apply({"rd", "0.5"}).ok());

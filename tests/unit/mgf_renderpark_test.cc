@@ -3,6 +3,7 @@
 // from their f statements and primitives at 16 segments), emitters present, and what the conversion
 // left out logged.
 #include <string>
+#include <tuple>
 
 #include "gtest/gtest.h"
 #include "solver/scene/load_scene.h"
@@ -71,6 +72,25 @@ TEST(MgfRenderPark, SpecularPartsAreLoggedOncePerKind) {
   // Faces 7 on are the first array of lights, one face per element.
   EXPECT_EQ(corridor->objects[corridor->faces[6].object], "murenrechts");
   EXPECT_EQ(corridor->objects[corridor->faces[10].object], "lights.a3");
+}
+
+// The share of the light they scatter that the diffuse solve leaves out, from the files:
+// examp1's aluminium (rs .75, rs .9; no rd) is all specular; floor_gloss's "rood" has rd 0.1
+// and rs 0.5.
+TEST(MgfRenderPark, SpecularSharesLeftOutAreCounted) {
+  for (const auto& [file, count, share] :
+       {std::tuple{"examp1.mgf", 2u, 1.0}, std::tuple{"floor_gloss.mgf", 1u, 0.5 / 0.6}}) {
+    absl::StatusOr<Scene> scene = LoadMgfFile(kDir + file, ImportOptions{});
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const ImportFixup* specular = nullptr;
+    for (const ImportFixup& f : scene->import_log.fixups()) {
+      if (f.kind == "mgf_specular_reflection_left_out") specular = &f;
+    }
+    ASSERT_NE(specular, nullptr) << file;
+    EXPECT_EQ(specular->count, count) << file;
+    EXPECT_NEAR(specular->ShareMean(), share, 1e-12) << file;
+    EXPECT_NEAR(specular->share_max, share, 1e-12) << file;
+  }
 }
 
 TEST(MgfRenderPark, LoadSceneReadsMgfByItsExtension) {

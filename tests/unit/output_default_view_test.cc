@@ -195,15 +195,7 @@ SolvedView SolveAndViewDefault(const std::string& path) {
   request.vertical_fov_degrees = 39.3077;  // the CLI's default
   v.camera =
       DefaultCamera(mesh, *solved.job().caster, solved.result->solve.radiosity, request, Vec3{});
-  const Image image = testing::RenderSolved(solved, v.camera);
-  int lit = 0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      const float* rgb = image.Pixel(x, y);
-      lit += std::max({rgb[0], rgb[1], rgb[2]}) > 0;
-    }
-  }
-  v.lit = lit / double(request.width * request.height);
+  v.lit = testing::LitShare(testing::RenderSolved(solved, v.camera));
   v.lo = v.hi = mesh.positions.at(0);
   for (const Vec3& p : mesh.positions) {
     v.lo = {std::min(v.lo.x, p.x), std::min(v.lo.y, p.y), std::min(v.lo.z, p.z)};

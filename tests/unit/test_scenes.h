@@ -40,6 +40,28 @@ inline std::string ObjQuad(const std::string& object, const std::string& materia
   return s + "\n";
 }
 
+// The parallelogram corner + [0,1] u + [0,1] v as m x m cells of two triangles each (OBJ
+// faces, counter-clockwise seen from the side u x v points to).
+inline std::string TessellatedQuad(const std::string& object, const std::string& material,
+                            const Vec3& corner, const Vec3& u, const Vec3& v, int m, int& next) {
+  std::string s = "o " + object + "\nusemtl " + material + "\n";
+  auto vertex = [&](int i, int j) {
+    const Vec3 p = corner + u * (double(i) / m) + v * (double(j) / m);
+    s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  };
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1);
+      const int a = next;
+      s += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 2) +
+           "\nf " + std::to_string(a) + " " + std::to_string(a + 2) + " " + std::to_string(a + 3) +
+           "\n";
+      next += 4;
+    }
+  }
+  return s;
+}
+
 // A scene ready for row building: mesh, attributes, Embree, context.
 struct RowFixture {
   Scene scene;
