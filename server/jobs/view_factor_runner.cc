@@ -1,7 +1,5 @@
 #include "server/jobs/view_factor_runner.h"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
