@@ -6,8 +6,8 @@ View3D reads the same triangles as .vs3. Prints each tool's wall and CPU time an
 and radflux's per-row relative L1 error against View3D. --skip-view3d times radflux alone
 (View3D grows as n^2 and takes hours at 23k facets).
 
-usage: city_compare.py --view3d PATH --radflux PATH --facets N [--workdir DIR]
-                       [--skip-view3d] [--sparse] [--repeat K]
+usage: city_compare.py --radflux PATH --facets N (--view3d PATH | --skip-view3d)
+                       [--workdir DIR] [--sparse] [--repeat K]
 """
 import argparse
 import os
@@ -21,7 +21,7 @@ from view3d_compare import read_view3d, row_errors, run  # noqa: E402
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument('--view3d', required=True)
+    ap.add_argument('--view3d', help='View3D binary (required unless --skip-view3d)')
     ap.add_argument('--radflux', required=True)
     ap.add_argument('--facets', type=int, required=True)
     ap.add_argument('--workdir', default='/tmp/city_compare')
@@ -29,6 +29,8 @@ def main():
     ap.add_argument('--sparse', action='store_true', help='time the sparse + svf outputs instead')
     ap.add_argument('--repeat', type=int, default=1, help='alternate the two tools K times')
     a = ap.parse_args()
+    if not a.skip_view3d and not a.view3d:
+        ap.error('--view3d PATH is required unless --skip-view3d')
     os.makedirs(a.workdir, exist_ok=True)
     stem = os.path.join(a.workdir, 'city%d' % a.facets)
     here = os.path.dirname(os.path.abspath(__file__))
