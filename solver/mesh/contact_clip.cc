@@ -6,6 +6,7 @@
 #include <span>
 #include <tuple>
 
+#include "solver/mesh/footprint_polygons.h"
 #include "solver/scene/polygon_triangulation.h"
 
 namespace radflux {
@@ -33,16 +34,6 @@ struct ConvexPart {
   std::vector<HalfPlane> span;
 };
 
-bool IsConvex(const Polygon& p, const Vec3& normal) {
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec3& a = p[i];
-    const Vec3& b = p[(i + 1) % p.size()];
-    const Vec3& c = p[(i + 2) % p.size()];
-    if (Dot(Cross(b - a, c - b), normal) < 0) return false;
-  }
-  return true;
-}
-
 ConvexPart MakePart(const Polygon& p, const Vec3& normal) {
   ConvexPart part{{}, p[0], p[0], {}};
   for (size_t i = 0; i < p.size(); ++i) {
@@ -61,7 +52,7 @@ ConvexPart MakePart(const Polygon& p, const Vec3& normal) {
 std::vector<Polygon> ConvexPolygons(const std::vector<Footprint>& footprints, const Vec3& normal) {
   std::vector<Polygon> polygons;
   for (const Footprint& f : footprints) {
-    if (IsConvex(f, normal)) {
+    if (IsConvexPolygon(f, normal)) {
       polygons.push_back(f);
       continue;
     }
@@ -208,15 +199,16 @@ class PieceEmitter {
   // triangles (a cut quad is rarely a parallelogram, and only a triangle's or a
   // parallelogram's midpoint split, which refinement uses, gives four equal quarters):
   // PiecePatches(piece.size(), cut) patches.
-  void Emit(const Polygon& piece, bool cut, const Patch& source) {
+  // Its patches are hidden (Patch::hidden) when `hidden`.
+  void Emit(const Polygon& piece, bool cut, bool hidden, const Patch& source) {
     std::vector<uint32_t> ids;
     for (const Vec3& p : piece) ids.push_back(Id(p));
     if (PiecePatches(ids.size(), cut) == 1 && ids.size() == 4) {
-      Add({ids[0], ids[1], ids[2], ids[3]}, source);
+      Add({ids[0], ids[1], ids[2], ids[3]}, hidden, source);
       return;
     }
     for (size_t i = 1; i + 1 < ids.size(); ++i)
-      Add({ids[0], ids[i], ids[i + 1], ids[i + 1]}, source);
+      Add({ids[0], ids[i], ids[i + 1], ids[i + 1]}, hidden, source);
   }
 
  private:
@@ -229,12 +221,13 @@ class PieceEmitter {
     return it->second;
   }
 
-  void Add(std::array<uint32_t, 4> v, const Patch& source) {
+  void Add(std::array<uint32_t, 4> v, bool hidden, const Patch& source) {
     Patch patch;
     patch.v = v;
     patch.face = source.face;
     patch.two_sided = source.two_sided;
     patch.opacity = source.opacity;
+    patch.hidden = hidden;
     FinishPatch(mesh_.positions, normal_, patch);
     mesh_.patches.push_back(patch);
   }
@@ -247,6 +240,7 @@ class PieceEmitter {
 // What a face's patches are cut by, in its plane.
 struct Cuts {
   std::vector<ConvexPart> feet;   // left out
+  std::vector<ConvexPart> slots;  // kept, the pieces inside hidden
   std::vector<ConvexPart> lines;  // each side of a foot as a line, both sides kept, for
                                   // patches near the foot (its box grown by the reach); each
                                   // contact line, for patches over its bounding box
@@ -302,15 +296,20 @@ Cuts MakeCuts(const FaceContacts& contacts, const Vec3& normal, double reach) {
     size = std::max(size, Length(foot.hi - foot.lo));
   }
   AddLines(contacts.lines, normal, reach, cuts, size);
+  for (const Polygon& p : ConvexPolygons(contacts.slots, normal)) {
+    const ConvexPart& slot = cuts.slots.emplace_back(MakePart(p, normal));
+    size = std::max(size, Length(slot.hi - slot.lo));
+  }
   cuts.eps = 1e-9 * size;
   return cuts;
 }
 
 // The pieces of one patch (corners `corners`) outside the feet, each with whether a cut
-// shaped it (else it is the patch or a quarter of it, as it was).
+// shaped it (else it is the patch or a quarter of it, as it was) and whether it lies in a slot.
 struct Piece {
   Polygon corners;
   bool cut = false;
+  bool hidden = false;
 };
 
 // `corners` split in four where it is near a foot, and the pieces split again (kSplitLevels).
@@ -345,10 +344,20 @@ std::vector<Piece> PatchPieces(const Polygon& corners, double area, const Cuts& 
   };
   for (const ConvexPart& part : cuts.feet) split_all(part, false);
   for (const ConvexPart& line : cuts.lines) split_all(line, true);
+  std::vector<Polygon> hidden;  // pieces inside a slot, split no further
+  for (const ConvexPart& slot : cuts.slots) {
+    next.clear();
+    for (const Polygon& piece : pieces) {
+      Split(piece, slot, normal, cuts.eps, min_area, next, &hidden);
+    }
+    pieces.swap(next);
+  }
   std::vector<Piece> out;
-  for (Polygon& piece : pieces) {
-    const bool cut = std::find(whole.begin(), whole.end(), piece) == whole.end();
-    out.push_back({cut ? Simplified(piece, normal, cuts.eps) : std::move(piece), cut});
+  for (bool in_slot : {false, true}) {
+    for (Polygon& piece : in_slot ? hidden : pieces) {
+      const bool cut = std::find(whole.begin(), whole.end(), piece) == whole.end();
+      out.push_back({cut ? Simplified(piece, normal, cuts.eps) : std::move(piece), cut, in_slot});
+    }
   }
   return out;
 }
@@ -374,7 +383,7 @@ void ForEachPiece(const Cuts& cuts, const Vec3& normal, std::span<const Patch> p
 void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double reach,
                      uint32_t first_patch, uint32_t first_vertex, PatchMesh& mesh) {
   const Cuts cuts = MakeCuts(contacts, normal, reach);
-  if (cuts.feet.empty() && cuts.lines.empty()) return;
+  if (cuts.feet.empty() && cuts.lines.empty() && cuts.slots.empty()) return;
   const std::vector<Patch> patches(mesh.patches.begin() + first_patch, mesh.patches.end());
   const std::vector<Vec3> positions(mesh.positions.begin() + first_vertex, mesh.positions.end());
   mesh.patches.resize(first_patch);
@@ -382,7 +391,7 @@ void ClipFacePatches(const FaceContacts& contacts, const Vec3& normal, double re
   PieceEmitter emitter(mesh, normal);
   ForEachPiece(cuts, normal, patches, positions, first_vertex,
                [&](const Patch& patch, const Piece& piece) {
-                 emitter.Emit(piece.corners, piece.cut, patch);
+                 emitter.Emit(piece.corners, piece.cut, piece.hidden, patch);
                });
 }
 
@@ -390,7 +399,7 @@ size_t ClippedPatchCount(const FaceContacts& contacts, const Vec3& normal, doubl
                          uint32_t first_patch, uint32_t first_vertex, const PatchMesh& mesh) {
   const Cuts cuts = MakeCuts(contacts, normal, reach);
   const size_t unclipped = mesh.patches.size() - first_patch;
-  if (cuts.feet.empty() && cuts.lines.empty()) return unclipped;
+  if (cuts.feet.empty() && cuts.lines.empty() && cuts.slots.empty()) return unclipped;
   size_t count = 0;
   ForEachPiece(cuts, normal, std::span(mesh.patches).subspan(first_patch),
                std::span(mesh.positions).subspan(first_vertex), first_vertex,

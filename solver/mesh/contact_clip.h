@@ -28,7 +28,9 @@ namespace radflux {
 //   is cut along its line, both sides kept (so no patch straddles a partition's foot; the
 //   cut may run on past the segment's end within a patch it crosses), and for a line at
 //   least 3 patches long the patches within reach of it are split as beside a footprint;
-// - the parts inside a footprint are left out.
+// - the parts inside a footprint are left out;
+// - the parts inside a slot (after the cuts above) are kept, as patches with Patch::hidden,
+//   the parts outside as the other patches.
 // A patch clear of all this keeps its corners, a quarter of one is a quad, and a piece a cut
 // shaped becomes a fan of triangles (its refinement then splits into equal quarters); slivers
 // under 1e-9 of their patch's area are dropped. Afterwards the face's positions are exactly the

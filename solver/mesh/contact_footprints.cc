@@ -6,6 +6,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "solver/mesh/footprint_polygons.h"
+
 namespace radflux {
 namespace {
 
@@ -26,6 +28,9 @@ struct FaceGeometry {
   std::vector<Vec3> polygon;
   Vec3 normal;  // unit
   Box box;
+  double area = 0;     // scene units^2
+  double width = 0;    // twice the area over the longest edge (scene units)
+  bool emits = false;  // its material is an emitter
 };
 
 bool Overlap(const Box& a, const Box& b) {
@@ -114,6 +119,14 @@ struct ContactEdge {
   uint32_t face = 0;
 };
 
+double LongestEdge(const std::vector<Vec3>& polygon) {
+  double longest = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    longest = std::max(longest, Length(polygon[(i + 1) % polygon.size()] - polygon[i]));
+  }
+  return longest;
+}
+
 double PlaneDistance(const FaceGeometry& receiver, const Vec3& p) {
   return Dot(p - receiver.polygon[0], receiver.normal);
 }
@@ -157,20 +170,38 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
 // boards hang 3.6 units off the wall and are triangles of 255 units: 1.4%.
 constexpr double kCoverGap = 0.02;
 
-// `cover`'s polygon projected onto `receiver`'s plane when `cover` lies in front of the
-// receiver with its back to it (facing the same way, every corner more than tol and at most
-// kCoverGap x its size in front): a light hung just below a ceiling, a poster on a wall.
-// Empty otherwise.
-Footprint CoverFootprint(const FaceGeometry& receiver, const FaceGeometry& cover, double tol) {
-  if (Dot(receiver.normal, cover.normal) <= 0) return {};
-  const double gap = kCoverGap * std::sqrt(Length(PolygonNewellNormal(cover.polygon)) / 2);
-  Footprint polygon;
+// The farthest in front of `receiver` a face may lie and still hide it (kHides) or make a
+// slot of it (kSlot), scene units (contact_footprints.h).
+double HidingGap(const FaceGeometry& cover) { return kCoverGap * std::sqrt(cover.area); }
+double SlotGap(const FaceGeometry& receiver, const FaceGeometry& cover) {
+  return std::min(cover.width, kCoverGap * std::sqrt(receiver.area));
+}
+
+// What a face lying in front of a receiver makes of the receiver's part under it.
+enum class CoverKind { kNone, kHides, kSlot };
+
+struct Cover {
+  CoverKind kind = CoverKind::kNone;
+  Footprint polygon;  // `cover`'s outline projected onto the receiver, ccw about its normal
+};
+
+// What `cover` makes of `receiver` (contact_footprints.h): with its back to it (facing the
+// same way), every corner more than tol and at most HidingGap in front, it hides the part
+// under it (a light hung just below a ceiling, a poster on a wall); emitting and facing it,
+// every corner more than tol and at most SlotGap in front, it makes a slot of it.
+Cover CoverOf(const FaceGeometry& receiver, const FaceGeometry& cover, double tol) {
+  const double cos = Dot(receiver.normal, cover.normal);
+  if (cos == 0 || (cos < 0 && !cover.emits)) return {};
+  const CoverKind kind = cos < 0 ? CoverKind::kSlot : CoverKind::kHides;
+  const double gap = kind == CoverKind::kSlot ? SlotGap(receiver, cover) : HidingGap(cover);
+  Cover out{kind, {}};
   for (const Vec3& q : cover.polygon) {
     const double d = PlaneDistance(receiver, q);
     if (d <= tol || d > gap) return {};
-    polygon.push_back(q - receiver.normal * d);
+    out.polygon.push_back(q - receiver.normal * d);
   }
-  return polygon;
+  if (cos < 0) std::reverse(out.polygon.begin(), out.polygon.end());
+  return out;
 }
 
 // Closed loops of `edges` (chained end to start within tol), as the loops' edges' indices.
@@ -290,7 +321,6 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
   std::vector<FaceContacts> contacts(scene.faces.size());
   if (scene.faces.empty()) return contacts;
   std::vector<FaceGeometry> faces(scene.faces.size());
-  std::vector<double> areas(faces.size());
   std::vector<uint32_t> all(faces.size()), receivers;
   Box scene_box;
   for (uint32_t f = 0; f < faces.size(); ++f) {
@@ -299,26 +329,33 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
     for (const Vec3& p : faces[f].polygon) faces[f].box.Add(p);
     scene_box.Add(faces[f].box.lo);
     scene_box.Add(faces[f].box.hi);
-    areas[f] = Length(PolygonNewellNormal(faces[f].polygon)) / 2;
+    faces[f].area = Length(PolygonNewellNormal(faces[f].polygon)) / 2;
+    faces[f].width = 2 * faces[f].area / std::max(LongestEdge(faces[f].polygon), 1e-300);
+    faces[f].emits = scene.materials[scene.faces[f].material].IsEmitter();
     all[f] = f;
-    if (areas[f] >= min_receiver_area) receivers.push_back(f);
+    if (faces[f].area >= min_receiver_area) receivers.push_back(f);
   }
   const double diagonal = Length(scene_box.hi - scene_box.lo);
   const double tol = 1e-5 * diagonal;
   FaceGrid receiver_grid(faces, scene_box, receivers);
   std::vector<std::vector<ContactEdge>> edges(faces.size());
   for (uint32_t s = 0; s < faces.size(); ++s) {
-    receiver_grid.ForBox(faces[s].box.Padded(std::max(tol, kCoverGap * std::sqrt(areas[s]))),
-                         [&](uint32_t r) {
-                           if (r == s) return;
-                           AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
-                           Footprint cover = CoverFootprint(faces[r], faces[s], tol);
-                           if (!cover.empty()) contacts[r].footprints.push_back(std::move(cover));
-                         });
+    const double reach = std::max({tol, HidingGap(faces[s]), faces[s].emits ? faces[s].width : 0});
+    receiver_grid.ForBox(faces[s].box.Padded(reach), [&](uint32_t r) {
+      if (r == s) return;
+      AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
+      Cover cover = CoverOf(faces[r], faces[s], tol);
+      if (cover.kind == CoverKind::kHides) {
+        contacts[r].footprints.push_back(std::move(cover.polygon));
+      } else if (cover.kind == CoverKind::kSlot) {
+        contacts[r].slots.push_back(std::move(cover.polygon));
+      }
+    });
   }
   FaceGrid lid_grid(faces, scene_box, std::move(all));
   for (uint32_t r : receivers) {
     AddFootprintsAndLines(scene, faces, lid_grid, r, edges[r], diagonal, tol, contacts[r]);
+    contacts[r].slots = JoinedConvexPolygons(std::move(contacts[r].slots), faces[r].normal, tol);
   }
   return contacts;
 }

@@ -26,7 +26,9 @@ struct ContactSegment {
 struct FaceContacts {
   std::vector<Footprint> footprints;  // feet of solids: cut along and left out
   std::vector<ContactSegment> lines;  // the other contact edges: cut along, both sides kept
-  bool empty() const { return footprints.empty() && lines.empty(); }
+  std::vector<Footprint> slots;       // under an emitter facing the face: cut along, kept,
+                                      // hidden from view (Patch::hidden)
+  bool empty() const { return footprints.empty() && lines.empty() && slots.empty(); }
 };
 
 // Contacts per scene face (most empty). A contact edge is an edge of another face lying in
@@ -44,6 +46,14 @@ struct FaceContacts {
 // root of its area) also gives a footprint: its outline projected onto the receiver (a light
 // hung 0.5 mm below a ceiling hides the ceiling above it; without the cut, the ceiling's
 // patches under its edge averaged the dark and the lit parts and shaded the lit part dark).
+// An emitting face facing the receiver, every corner in front by more
+// than the tolerance and at most its width (twice its area over its longest edge) and 2% of
+// the receiver's size, gives a slot instead: the receiver's part under it is a narrow cavity
+// that the emitter lights far more than the rest (the conference room's screen, 1.5 units
+// behind the emitting bars of its frame, read B/pi 48 there against 20.6 beside them), seen
+// from the room only through the slits along its sides; it is cut along and kept, so that
+// its light is exchanged and leaks out as it does, but its patches are hidden from the
+// shading of their visible neighbours.
 // Every other contact edge (a partition's foot, an open polyline of panels, a loop that is no
 // foot) is a line, once however many faces share it, and none along a footprint's edge.
 // Only faces of at least `min_receiver_area` (scene units^2) are receivers; the others get no

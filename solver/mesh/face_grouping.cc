@@ -162,12 +162,14 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
                            PatchClusters* cells) {
   const uint32_t n = static_cast<uint32_t>(mesh.size());
   std::vector<uint32_t> group_of(n, kUnassigned);
-  // The non-emitting patches, sorted by (object, material, sidedness): a tree per run.
+  // The patches that are not unknowns of their own (emitters, hidden patches), sorted by
+  // (object, material, sidedness): a tree per run.
   std::vector<uint32_t> small;
-  uint32_t emitters = 0;
+  uint32_t singles = 0;
   for (uint32_t p = 0; p < n; ++p) {
-    if (scene.materials[scene.faces[mesh.patches[p].face].material].IsEmitter()) {
-      group_of[p] = emitters++;
+    if (mesh.patches[p].hidden ||
+        scene.materials[scene.faces[mesh.patches[p].face].material].IsEmitter()) {
+      group_of[p] = singles++;
     } else {
       small.push_back(p);
     }
@@ -181,7 +183,7 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   double small_area = 0;
   for (uint32_t p : small) small_area += mesh.patches[p].area;
   GroupTree trees(mesh, small,
-                  small_area / static_cast<double>(std::max<int64_t>(unknowns - emitters, 1)));
+                  small_area / static_cast<double>(std::max<int64_t>(unknowns - singles, 1)));
   for (size_t begin = 0; begin < small.size();) {
     size_t end = begin + 1;
     while (end < small.size() && set_of(small[end]) == set_of(small[begin])) ++end;
@@ -190,12 +192,12 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   }
   if (cells != nullptr) {
     std::vector<uint32_t> cell_of = group_of;
-    uint32_t count = emitters;
-    trees.Number(trees.CutNodes(kDirectCellsPerUnknown * (unknowns - emitters)), cell_of, count);
+    uint32_t count = singles;
+    trees.Number(trees.CutNodes(kDirectCellsPerUnknown * (unknowns - singles)), cell_of, count);
     *cells = NumberByFirstPatch(mesh, cell_of, count);
   }
-  uint32_t groups = emitters;
-  trees.Number(trees.CutNodes(unknowns - emitters), group_of, groups);
+  uint32_t groups = singles;
+  trees.Number(trees.CutNodes(unknowns - singles), group_of, groups);
   return NumberByFirstPatch(mesh, group_of, groups);
 }
 

@@ -4,7 +4,8 @@
 // with a* = (total face area) / N:
 //  - faces are split to an edge length of kSplitEdge * sqrt(a*) (large faces become patches
 //    of about a*; emitters keep subdivide.h's cap), and every emitting patch is an unknown
-//    of its own (light sampling needs emitters as single polygons); faces of area a* or more
+//    of its own (light sampling needs emitters as single polygons), as is every hidden patch
+//    (in a slot under an emitter: its light is not its neighbours'); faces of area a* or more
 //    are cut along their contacts and lose the area under solids and covers hung against
 //    them (contact_footprints.h; with follow_contacts): a wall's patch that straddled a
 //    board's outline averaged the dark behind it into the lit strip beside it;
@@ -62,7 +63,7 @@ struct GroupedMesh {
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
-// per emitting patch and per (object, material, two-sidedness); or fewer: when every group is
+// per emitting or hidden patch and per (object, material, two-sidedness); or fewer: when every group is
 // one patch) by the rule above. A group never spans two objects, so per-object means stay
 // each object's own. With `cells`, also the direct-light cells: the same cut with
 // kDirectCellsPerUnknown times the budget of non-emitting groups, a refinement of the groups

@@ -20,6 +20,9 @@ struct Patch {
   uint32_t face = 0;            // source face in the Scene
   bool two_sided = false;       // its face has a back-face twin: hits on its back are ignored
   float opacity = 1;            // its material's Material::opacity: rays pass with 1 - opacity
+  bool hidden = false;          // in a slot under an emitter facing it (contact_footprints.h):
+                                // an unknown of its own, kept out of its visible neighbours'
+                                // shading (vertex_radiosity.h)
   Vec3 centroid;                // area-weighted centroid
   Vec3 normal;                  // unit normal of the source face (front side)
   double area = 0;              // scene units^2

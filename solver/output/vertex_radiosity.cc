@@ -74,24 +74,41 @@ bool CentroidsSpanThePlane(const PatchMesh& mesh, const std::vector<uint32_t>& p
   return half_trace - root > 1e-6 * (half_trace + root);
 }
 
+// Drops the hidden patches (Patch::hidden) of `patches` when `shown_only`.
+void KeepShown(const PatchMesh& mesh, bool shown_only, std::vector<uint32_t>& patches) {
+  if (!shown_only) return;
+  std::erase_if(patches, [&](uint32_t p) { return mesh.patches[p].hidden; });
+}
+
 // The patches a vertex's value is fitted to: those around it (using it as a corner or
 // holding it on an edge); for a boundary vertex (the angles around it do not close to a
 // full turn) also the patches around their corners, and a ring more (at most twice) while
-// their centroids lie on a line.
+// their centroids lie on a line. A vertex that a shown patch uses is fitted to shown patches
+// only (a hidden patch's light stays in its slot), so it is a boundary vertex when hidden
+// ones are around it.
 void FitPatches(const PatchMesh& mesh, const ShadingMesh& s, const JunctionPatches& junctions,
                 uint32_t w, std::vector<uint32_t>& out) {
   out.assign(s.vertex_patches.begin() + s.first_patch[w],
              s.vertex_patches.begin() + s.first_patch[w + 1]);
-  double turn = std::numbers::pi * (junctions.first[w + 1] - junctions.first[w]);
-  for (uint32_t p : out) turn += CornerAngle(mesh, s, p, w);
   out.insert(out.end(), junctions.patches.begin() + junctions.first[w],
              junctions.patches.begin() + junctions.first[w + 1]);
+  const bool shown_only =
+      std::any_of(out.begin(), out.end(), [&](uint32_t p) { return !mesh.patches[p].hidden; });
+  double turn = 0;
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (shown_only && mesh.patches[out[i]].hidden) continue;
+    const bool on_edge = i >= s.first_patch[w + 1] - s.first_patch[w];
+    turn += on_edge ? std::numbers::pi : CornerAngle(mesh, s, out[i], w);
+  }
+  KeepShown(mesh, shown_only, out);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   if (std::abs(turn - 2 * std::numbers::pi) <= 1e-3) return;
   GrowRing(mesh, s, junctions, out);
+  KeepShown(mesh, shown_only, out);
   for (int more = 0; more < 2 && !CentroidsSpanThePlane(mesh, out, s.normals[w]); ++more) {
     GrowRing(mesh, s, junctions, out);
+    KeepShown(mesh, shown_only, out);
   }
 }
 
