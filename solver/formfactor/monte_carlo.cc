@@ -1,13 +1,16 @@
-// monte_carlo: k cosine-weighted rays from stratified points on patch i; each ray
-// that hits the front of patch j adds 1/k to F_ij. Emitter columns come from light
+// monte_carlo: k_i cosine-weighted rays from stratified points on patch i (k on average,
+// in proportion to the patch's area: row_rays.h); each ray that hits the front of patch j
+// adds 1/k_i to F_ij. Emitter columns come from light
 // sampling instead (their direct light would be the noisiest term): a fixed budget of
 // light samples per row, whatever the number of emitter patches (light_sampling.h). MC
 // hits on emitters are dropped, so the two never double count.
+#include <map>
 #include <vector>
 
 #include "solver/core/sampling.h"
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/light_sampling.h"
+#include "solver/formfactor/row_rays.h"
 
 namespace radflux {
 namespace {
@@ -16,21 +19,36 @@ constexpr uint64_t kShiftStream = 11;
 constexpr uint32_t kPositionPattern = 0x2545f491u;
 constexpr uint32_t kDirectionPattern = 0x9e3779b9u;
 
+// The k position samples and k paired direction samples of a row with k rays: one
+// correlated multi-jittered set.
+struct RaySet {
+  std::vector<Point2> positions;
+  std::vector<float> direction_x, direction_y;  // the unshifted direction samples, in float
+};
+
+RaySet MakeRaySet(uint32_t k) {
+  RaySet set;
+  for (uint32_t r = 0; r < k; ++r) {
+    set.positions.push_back(MultiJitteredSample(r, k, kPositionPattern));
+    const Point2 d =
+        MultiJitteredSample(PermuteIndex(r, k, kDirectionPattern), k, kDirectionPattern);
+    set.direction_x.push_back(static_cast<float>(d.x));
+    set.direction_y.push_back(static_cast<float>(d.y));
+  }
+  return set;
+}
+
 class MonteCarloBuilder final : public RowBuilder {
  public:
-  // The k position samples and k paired direction samples are one correlated
-  // multi-jittered set, computed once; each patch shifts both toroidally by its own
-  // random offsets (Cranley-Patterson rotation), which keeps them stratified and
+  // One ray set per row size in use, computed once; each patch shifts its set toroidally by
+  // its own random offsets (Cranley-Patterson rotation), which keeps it stratified and
   // makes the estimate unbiased at a few additions per ray.
   MonteCarloBuilder(const RowContext& context, const FormFactorOptions& options)
       : context_(context), options_(options), lights_(context) {
-    const uint32_t k = static_cast<uint32_t>(options.rays);
-    for (uint32_t r = 0; r < k; ++r) {
-      positions_.push_back(MultiJitteredSample(r, k, kPositionPattern));
-      const Point2 d =
-          MultiJitteredSample(PermuteIndex(r, k, kDirectionPattern), k, kDirectionPattern);
-      direction_x_.push_back(static_cast<float>(d.x));
-      direction_y_.push_back(static_cast<float>(d.y));
+    sets_.emplace(Rays(0), MakeRaySet(Rays(0)));  // a context without unknowns' areas
+    for (uint32_t u = 0; u < context.needs_row.size(); ++u) {
+      const uint32_t k = Rays(u);
+      if (!sets_.contains(k)) sets_.emplace(k, MakeRaySet(k));
     }
   }
 
@@ -38,15 +56,16 @@ class MonteCarloBuilder final : public RowBuilder {
     const uint32_t shift = PatternSeed(options_.seed, i, kShiftStream);
     const Point2 ps = RandomShift(shift, 0);
     const Point2 ds = RandomShift(shift, 2);
+    const RaySet& set = sets_.at(Rays(i));
     thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
-    stream.resize(positions_.size());
+    stream.resize(set.positions.size());
     if (context_.SinglePatch(i)) {
-      PatchRays(context_.FirstPatch(i), ps, ds, stream);
+      PatchRays(context_.FirstPatch(i), set, ps, ds, stream);
     } else {
-      GroupRays(i, ps, ds, stream);
+      GroupRays(i, set, ps, ds, stream);
     }
     context_.caster->IntersectStream(stream);
-    const double weight = 1.0 / static_cast<double>(positions_.size());
+    const double weight = 1.0 / static_cast<double>(set.positions.size());
     for (const StreamRay& ray : stream) {
       const uint32_t hit = ray.FrontPatch();  // a back side absorbs the ray
       if (hit == kNoPatch) continue;
@@ -73,13 +92,21 @@ class MonteCarloBuilder final : public RowBuilder {
   }
 
  private:
-  // The k rays of one patch p, shifted by (ps, ds).
-  void PatchRays(uint32_t p, Point2 ps, Point2 ds, std::vector<StreamRay>& stream) const {
+  // Unknown u's rays (row_rays.h).
+  uint32_t Rays(uint32_t u) const {
+    return RowRayCount(options_.rays,
+                       u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
+                       context_.mean_row_area);
+  }
+
+  // The rays of `set` from one patch p, shifted by (ps, ds).
+  void PatchRays(uint32_t p, const RaySet& set, Point2 ps, Point2 ds,
+                 std::vector<StreamRay>& stream) const {
     const PatchMesh& mesh = *context_.mesh;
     const Patch& patch = mesh.patches[p];
     const Frame frame = Frame::FromNormal(patch.normal);
     const Vec3 lift = patch.normal * context_.ray_epsilon;
-    const size_t k = positions_.size();
+    const size_t k = set.positions.size();
     // The k directions first, in float and in a loop of their own, which GCC vectorises
     // (this file is built with -fno-math-errno for the sqrt): per-thread scratch, x then y
     // then z, reused row to row.
@@ -88,8 +115,8 @@ class MonteCarloBuilder final : public RowBuilder {
     float* __restrict wx = directions.data();
     float* __restrict wy = wx + k;
     float* __restrict wz = wy + k;
-    const float* ux = direction_x_.data();
-    const float* uy = direction_y_.data();
+    const float* ux = set.direction_x.data();
+    const float* uy = set.direction_y.data();
     const float dsx = static_cast<float>(ds.x), dsy = static_cast<float>(ds.y);
     const auto f = [](double v) { return static_cast<float>(v); };
     const float sx = f(frame.s.x), sy = f(frame.s.y), sz = f(frame.s.z);
@@ -105,20 +132,23 @@ class MonteCarloBuilder final : public RowBuilder {
     const PatchPointSampler sample_point(mesh, p);
     for (size_t r = 0; r < k; ++r) {
       StreamRay& ray = stream[r];
-      ray.SetOrigin(sample_point(CranleyPattersonShift(positions_[r], ps)) + lift);
+      ray.SetOrigin(sample_point(CranleyPattersonShift(set.positions[r], ps)) + lift);
       ray.dir_x = wx[r], ray.dir_y = wy[r], ray.dir_z = wz[r];
       ray.ResetHit();
     }
   }
 
-  // The k rays of a group of patches: each ray's origin is drawn over the members by area
-  // (UnknownPointSampler) and its direction is cosine-weighted about that member's normal.
-  void GroupRays(uint32_t u, Point2 ps, Point2 ds, std::vector<StreamRay>& stream) const {
+  // The rays of `set` from a group of patches: each ray's origin is drawn over the members
+  // by area (UnknownPointSampler) and its direction is cosine-weighted about that member's
+  // normal.
+  void GroupRays(uint32_t u, const RaySet& set, Point2 ps, Point2 ds,
+                 std::vector<StreamRay>& stream) const {
     const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, u);
-    for (size_t r = 0; r < positions_.size(); ++r) {
-      const SurfacePoint at = sample_point(CranleyPattersonShift(positions_[r], ps));
-      const Vec3 w = Frame::FromNormal(at.n).ToWorld(SampleCosineHemisphere(
-          {WrapShift(double{direction_x_[r]}, ds.x), WrapShift(double{direction_y_[r]}, ds.y)}));
+    for (size_t r = 0; r < set.positions.size(); ++r) {
+      const SurfacePoint at = sample_point(CranleyPattersonShift(set.positions[r], ps));
+      const Vec3 w = Frame::FromNormal(at.n).ToWorld(
+          SampleCosineHemisphere({WrapShift(double{set.direction_x[r]}, ds.x),
+                                  WrapShift(double{set.direction_y[r]}, ds.y)}));
       StreamRay& ray = stream[r];
       ray.SetOrigin(at.x + at.n * context_.ray_epsilon);
       ray.SetDirection(w);
@@ -129,8 +159,7 @@ class MonteCarloBuilder final : public RowBuilder {
   const RowContext& context_;
   FormFactorOptions options_;
   LightSampler lights_;  // the emitter columns
-  std::vector<Point2> positions_;
-  std::vector<float> direction_x_, direction_y_;  // the unshifted direction samples, in float
+  std::map<uint32_t, RaySet> sets_;  // by rays per row
 };
 
 }  // namespace

@@ -43,6 +43,8 @@ struct RowContext {
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;
                                    // empty: every emitter counts as 1)
   std::vector<double> reflectance;  // rho, max over bands, per unknown (empty: 1 for all)
+  std::vector<double> opaque_area;  // PatchAttributes::area per unknown, scene units^2
+  double mean_row_area = 0;         // MeanRowArea over the unknowns with rows (row_rays.h)
   double ray_epsilon = 0;          // ray origin offset along the normal, scene units
 
   // The number of unknowns: rows and columns.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "solver/formfactor/row_rays.h"
+
 namespace radflux {
 
 RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attributes,
@@ -23,6 +25,8 @@ RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attribut
     context.emitter[p] = MaxComponent(attributes.emission[p]) > 0;
     for (int b = 0; b < kBands; ++b) context.emission[p] += attributes.emission[p][b];
   }
+  context.opaque_area = attributes.area;
+  context.mean_row_area = MeanRowArea(context.opaque_area, context.needs_row);
   if (context.clusters != nullptr && cells != nullptr && !cells->empty()) {
     context.cells = cells;
     context.cell_first.assign(n + 1, 0);

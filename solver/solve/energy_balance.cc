@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "absl/strings/str_format.h"
+#include "solver/formfactor/row_rays.h"
 
 namespace radflux {
 namespace {
@@ -35,7 +36,10 @@ int64_t PairSlot(const PatchAttributes& p, uint32_t i, uint32_t j) {
 // Row i (a patch with a row): its power along the row, the row-less patches' power along
 // its columns, its cosine rays' multinomial variance and its emitter pairs' imbalance.
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
-            const RowSampling& sampling, BalancePass& pass, EnergyBalance& out) {
+            const RowSampling& sampling, double mean_row_area, BalancePass& pass,
+            EnergyBalance& out) {
+  const double rays =
+      sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area) : 0;
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
   for (int band = 0; band < kBands; ++band) {
@@ -60,12 +64,12 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
       if (slot < 0) continue;
       const double term = p.area[i] * f * w;
       pass.pairs[static_cast<size_t>(slot)][band] += term;
-      if (!Emits(p, j) && sampling.rays > 0 && f < 1)
-        pass.pairs_ray_variance[band] += term * term * (1 - f) / (f * sampling.rays);
+      if (!Emits(p, j) && rays > 0 && f < 1)
+        pass.pairs_ray_variance[band] += term * term * (1 - f) / (f * rays);
     }
     out.escaped[band] += outgoing * (1 - row_sum);
-    if (sampling.rays > 0) {
-      pass.variance[band] += p.area[i] * p.area[i] / sampling.rays *
+    if (rays > 0) {
+      pass.variance[band] += p.area[i] * p.area[i] / rays *
                              std::max(0.0, mean_w2 - mean_w * mean_w);
     }
   }
@@ -131,10 +135,13 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
   EnergyBalance out;
   BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}),
                    std::vector<Rgb>(p.size(), Rgb{}), Rgb{}};
+  std::vector<uint8_t> has_row(p.size());
+  for (uint32_t i = 0; i < p.size(); ++i) has_row[i] = HasRow(p, i);
+  const double mean_row_area = MeanRowArea(p.area, has_row);
   const absl::Status read =
       ForEachRows(system.form_factors, system.row_store, [&](const RowsView& rows) {
         for (uint32_t i = rows.first_row; i < rows.EndRow(); ++i) {
-          if (HasRow(p, i)) AddRow(p, radiosity, rows, i, sampling, pass, out);
+          if (has_row[i]) AddRow(p, radiosity, rows, i, sampling, mean_row_area, pass, out);
         }
       });
   if (!read.ok()) return read;

@@ -63,7 +63,8 @@ struct EnergyBalance {
 
 // How the rows were sampled, for EnergyBalance::noise: both 0 for rows that are not.
 struct RowSampling {
-  int rays = 0;           // k of Monte Carlo rows (their non-emitter entries are hits / k)
+  int rays = 0;           // k of Monte Carlo rows: row i's non-emitter entries are hits / k_i,
+                          // k_i = RowRayCount(k, area_i, mean row area) (row_rays.h)
   int light_samples = 0;  // light samples behind a row's emitter columns (0: not sampled)
 };
 

@@ -120,12 +120,19 @@ TEST_F(SpilledCornell, MethodsNeedingEveryRowAreRefused) {
 
 TEST_F(SpilledCornell, EnergyBalanceStreamsToTheSameNumbers) {
   const SolveResult solved = SolveWith(InMemory(), SolverMethod::kGaussSeidel);
-  const EnergyBalance memory = ComputeEnergyBalance(InMemory(), solved.radiosity);
-  const absl::StatusOr<EnergyBalance> spilled = StreamEnergyBalance(Spilled(), solved.radiosity);
+  const FormFactorOptions rows;  // the defaults the rows were built with
+  const RowSampling sampling{SampledRays(rows), LightSamplesPerRow(rows)};
+  const EnergyBalance memory = ComputeEnergyBalance(InMemory(), solved.radiosity, sampling);
+  const absl::StatusOr<EnergyBalance> spilled =
+      StreamEnergyBalance(Spilled(), solved.radiosity, sampling);
   ASSERT_TRUE(spilled.ok()) << spilled.status();
   EXPECT_EQ(spilled->absorbed, memory.absorbed);
   EXPECT_EQ(spilled->escaped, memory.escaped);
-  EXPECT_LT(memory.RelativeImbalance(), 0.01);
+  EXPECT_EQ(spilled->noise, memory.noise);
+  // Within the rows' own noise (each row's k_i rays and its light samples: a fixed 1% was one
+  // draw of an imbalance whose spread over seeds is about 0.5% per band at these 600 patches,
+  // seeds 1-3 of the area-proportional rows 1.2% in blue).
+  EXPECT_TRUE(memory.Ok()) << memory.RelativeImbalance() << " tolerance " << memory.Tolerance();
 }
 
 // RunJob with --memory-limit: the whole pipeline on spilled rows, same B as in memory.

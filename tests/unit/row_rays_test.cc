@@ -1,0 +1,49 @@
+// Rays per Monte Carlo row (solver/formfactor/row_rays.h): in proportion to the row's area,
+// k on average, within [max(k / 4, min(k, kLeastRowRays)), 4 k].
+#include "solver/formfactor/row_rays.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace radflux {
+namespace {
+
+TEST(RowRays, MeanAreaCountsOnlyTheRowsThatExist) {
+  const std::vector<double> area = {1, 2, 3, 100};
+  const std::vector<uint8_t> has_row = {1, 1, 1, 0};  // the last patch is black: no row
+  EXPECT_DOUBLE_EQ(MeanRowArea(area, has_row), 2.0);
+  EXPECT_DOUBLE_EQ(MeanRowArea(area, std::vector<uint8_t>(4, 0)), 0.0);
+}
+
+TEST(RowRays, InProportionToAreaWithinTheClamp) {
+  EXPECT_EQ(RowRayCount(64, 1.0, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(64, 1.5, 1.0), 96u);
+  EXPECT_EQ(RowRayCount(64, 0.5, 1.0), 32u);
+  EXPECT_EQ(RowRayCount(64, 0.01, 1.0), 16u);   // k / 4
+  EXPECT_EQ(RowRayCount(64, 100.0, 1.0), 256u);  // 4 k
+  EXPECT_EQ(RowRayCount(256, 0.01, 1.0), 64u);   // k / 4 above kLeastRowRays
+  // Below 64, k / 4 would leave a small row fewer than kLeastRowRays rays.
+  EXPECT_EQ(RowRayCount(16, 0.01, 1.0), static_cast<uint32_t>(kLeastRowRays));
+  EXPECT_EQ(RowRayCount(16, 2.0, 1.0), 32u);
+  EXPECT_EQ(RowRayCount(8, 0.01, 1.0), 8u);  // never more than k at the low end
+  EXPECT_EQ(RowRayCount(1, 0.01, 1.0), 1u);
+  EXPECT_EQ(RowRayCount(64, 1.0, 0.0), 64u);  // no rows with area: k
+}
+
+// Unclamped, the rays add up to k per row, and every unit of area gets the same rays.
+TEST(RowRays, TheBudgetIsKPerRowAndFollowsArea) {
+  const std::vector<double> area = {0.5, 0.75, 1.0, 1.25, 1.5};
+  const std::vector<uint8_t> has_row(area.size(), 1);
+  const double mean = MeanRowArea(area, has_row);
+  uint32_t total = 0;
+  for (double a : area) {
+    const uint32_t k = RowRayCount(128, a, mean);
+    total += k;
+    EXPECT_NEAR(k / a, 128 / mean, 0.5 / a);  // rounding only
+  }
+  EXPECT_NEAR(total, 128.0 * area.size(), 2.5);
+}
+
+}  // namespace
+}  // namespace radflux
