@@ -7,30 +7,13 @@
 #include "solver/core/spherical_sampling.h"
 
 namespace radflux {
+namespace {
 
-double ClippedPolygonFormFactor(const Vec3* v, int count, const Vec3& x, const Vec3& n) {
-  // Sutherland-Hodgman against n . (p - x) >= 0: at most count + 1 vertices.
-  std::array<Vec3, 8> clipped;
-  int m = 0;
-  for (int i = 0; i < count; ++i) {
-    const Vec3 &a = v[i], &b = v[(i + 1) % count];
-    const double ha = Dot(n, a - x), hb = Dot(n, b - x);
-    if (ha >= 0) clipped[m++] = a - x;
-    if ((ha >= 0) != (hb >= 0)) clipped[m++] = a - x + (b - a) * (ha / (ha - hb));
-  }
-  if (m < 3) return 0;
-  // Lambert: F = 1/(2 pi) sum over edges of the angle they subtend times n . (edge plane's
-  // unit normal); the sign follows the winding, hence the absolute value.
-  double sum = 0;
-  for (int i = 0; i < m; ++i) {
-    const Vec3 a = Normalize(clipped[i]), b = Normalize(clipped[(i + 1) % m]);
-    const Vec3 c = Cross(a, b);
-    const double s = Length(c);
-    if (s <= 0) continue;
-    sum += std::atan2(s, Dot(a, b)) * Dot(n, c) / s;
-  }
-  return std::min(1.0, std::abs(sum) / (2 * std::numbers::pi));
-}
+// The least cosine an emitter's weight takes at either end (a polygon whose centroid is
+// below a point's horizon may still light it with its upper part).
+constexpr double kMinCosine = 0.05;
+
+}  // namespace
 
 ReferenceEmitters::ReferenceEmitters(const Scene& scene, const PatchMesh& mesh)
     : mesh_(mesh), index_(mesh.size(), -1) {
@@ -47,9 +30,18 @@ double ReferenceEmitters::Weight(size_t k, const Vec3& x, const Vec3& n) const {
   const Patch& patch = mesh_.patches[patches_[k]];
   const Vec3 v0 = mesh_.positions[patch.v[0]];
   if (Dot(patch.normal, x - v0) <= 0) return 0;  // x is behind the emitter: it sends nothing
-  std::array<Vec3, 4> corners;
-  for (int i = 0; i < patch.VertexCount(); ++i) corners[i] = mesh_.positions[patch.v[i]];
-  return luminance_[k] * ClippedPolygonFormFactor(corners.data(), patch.VertexCount(), x, n);
+  bool above = false;  // any corner above x's horizon: then some of it can light x
+  for (int i = 0; i < patch.VertexCount(); ++i)
+    above = above || Dot(n, mesh_.positions[patch.v[i]] - x) > 0;
+  if (!above) return 0;
+  // The form factor of the patch's centroid as a disc of its area seen head-on at r^2 +
+  // A / pi (<= 1 however near), its cosines kept from falling below kMinCosine, so that the
+  // weight is positive wherever the emitter can light x.
+  const Vec3 d = patch.centroid - x;
+  const double r2 = Dot(d, d), r = std::sqrt(r2);
+  const double cx = std::max(kMinCosine, Dot(n, d) / r);
+  const double cy = std::max(kMinCosine, -Dot(patch.normal, d) / r);
+  return luminance_[k] * patch.area * cx * cy / (std::numbers::pi * r2 + patch.area);
 }
 
 double ReferenceEmitters::Weights(const Vec3& x, const Vec3& n, std::vector<double>& weights) const {

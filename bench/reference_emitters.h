@@ -1,8 +1,8 @@
 // The emitters as bench/object_reference samples them (issue 21): at each path vertex an
-// emitting patch is chosen in proportion to the irradiance it would give there unoccluded
-// (Lambert's closed form for a polygon, clipped to the vertex's horizon), and a direction
-// towards it uniform in the solid angle it subtends (Arvo's spherical triangles). The
-// estimate of direct light then varies only with visibility and the cosine at the vertex:
+// emitting patch is chosen in proportion to an estimate of the irradiance it gives there
+// unoccluded (positive wherever it can light the vertex), and a direction towards it uniform
+// in the solid angle it subtends (Arvo's spherical triangles). The estimate of direct light
+// then varies only with visibility, the cosine at the vertex and the estimate's error:
 // a point 2 cm from a lamp (RenderPark's corridor) or one lit by one of 24 tubes inside
 // housings (the classroom) is not a 1/r^2 tail nor a lottery over the scene's lamps.
 #pragma once
@@ -19,11 +19,6 @@
 
 namespace radflux {
 
-// The point-to-polygon form factor from a point x with unit normal n to the planar polygon
-// `v` (count vertices, any winding), the polygon clipped to x's upper half-space first:
-// in [0, 1]; 0 when nothing of the polygon is above x's horizon.
-double ClippedPolygonFormFactor(const Vec3* v, int count, const Vec3& x, const Vec3& n);
-
 // The emitting patches of a mesh (one patch per face), with the per-vertex choice above.
 class ReferenceEmitters {
  public:
@@ -39,7 +34,7 @@ class ReferenceEmitters {
   };
 
   size_t size() const { return patches_.size(); }
-  // Each emitter's weight at x (normal n): its unoccluded form factor x luminance of E;
+  // Each emitter's weight at x (normal n): about its unoccluded form factor x luminance of E;
   // `weights` is resized to size(). Returns their sum (0: no emitter can light x).
   double Weights(const Vec3& x, const Vec3& n, std::vector<double>& weights) const;
   // A sample towards an emitter chosen in proportion to `weights` (summing to `total` > 0).
