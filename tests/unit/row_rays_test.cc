@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace radflux {
@@ -29,6 +31,30 @@ TEST(RowRays, InProportionToAreaWithinTheClamp) {
   EXPECT_EQ(RowRayCount(8, 0.01, 1.0), 8u);  // never more than k at the low end
   EXPECT_EQ(RowRayCount(1, 0.01, 1.0), 1u);
   EXPECT_EQ(RowRayCount(64, 1.0, 0.0), 64u);  // no rows with area: k
+}
+
+// Light-sample points follow area like rays, with no floor of 16: k / 4 (at least 1) to 4 k.
+TEST(RowRays, LightPointsInProportionToAreaWithinTheClamp) {
+  EXPECT_EQ(RowLightPoints(4, 1.0, 1.0), 4u);
+  EXPECT_EQ(RowLightPoints(4, 2.0, 1.0), 8u);
+  EXPECT_EQ(RowLightPoints(4, 0.23, 1.0), 1u);   // the Cornell floor's contact patches
+  EXPECT_EQ(RowLightPoints(4, 0.01, 1.0), 1u);   // never below one point
+  EXPECT_EQ(RowLightPoints(64, 0.01, 1.0), 16u);  // k / 4 (a group's 16 s points)
+  EXPECT_EQ(RowLightPoints(4, 100.0, 1.0), 16u);  // 4 k
+  EXPECT_EQ(RowLightPoints(4, 1.0, 0.0), 4u);     // no rows with area: the budget
+}
+
+// A share that is not a finite number >= 0 (an infinite or NaN area) gets the budget, never
+// an undefined conversion of NaN to an integer (0 rays: a row of nothing but its emitters).
+TEST(RowRays, ANonFiniteShareGetsTheBudget) {
+  const double nan = std::nan("");
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(RowRayCount(64, nan, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(64, inf, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(64, 1.0, inf), 64u);
+  EXPECT_EQ(RowRayCount(64, -1.0, 1.0), 64u);
+  EXPECT_EQ(RowLightPoints(4, nan, 1.0), 4u);
+  EXPECT_EQ(RowRayCount(0, 1.0, 1.0), 1u);  // a zero budget: one ray, not an inverted clamp
 }
 
 // Unclamped, the rays add up to k per row, and every unit of area gets the same rays.
