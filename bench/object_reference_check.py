@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""Closed-form checks of bench/object_reference (issue 21): a closed unit cube, rho = 0.5
+everywhere, seen from inside.
+
+Usage: bench/object_reference_check.py [--build build/ci]
+
+1. Every wall emits E = pi: every wall's B is E / (1 - rho) = 2 pi.
+2. Only the floor emits E = pi: the walls differ, but in a closed box all light that leaves a
+   wall lands on one, so sum of A B = A_floor E / (1 - rho) = 2 pi; and the four side walls
+   agree with each other (symmetry).
+Each is asserted within 4 of the reference's own standard errors (plus 0.05% for what the
+standard error of a stratified mean can miss); exit 1 and one line per failure otherwise.
+"""
+import csv
+import io
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WALLS = {"floor": [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+         "ceiling": [(0, 0, 1), (0, 1, 1), (1, 1, 1), (1, 0, 1)],
+         "south": [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)],
+         "north": [(0, 1, 0), (1, 1, 0), (1, 1, 1), (0, 1, 1)],
+         "west": [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
+         "east": [(1, 0, 0), (1, 0, 1), (1, 1, 1), (1, 1, 0)]}
+
+
+def box(directory, lit):
+    """Writes the cube (faces facing inwards) with the walls in `lit` emitting; its path."""
+    with open(os.path.join(directory, "box.mtl"), "w") as f:
+        f.write("newmtl lit\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl wall\nKd 0.5 0.5 0.5\n")
+    lines, first = ["mtllib box.mtl"], 1
+    for name, quad in WALLS.items():
+        lines += [f"o {name}", "usemtl " + ("lit" if name in lit else "wall")]
+        lines += ["v %g %g %g" % v for v in quad] + [f"f {first} {first + 1} {first + 2} {first + 3}"]
+        first += 4
+    path = os.path.join(directory, "box.obj")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def run(build, path):
+    """Object -> (B, standard error) from object_reference at 65,536 paths an object."""
+    out = subprocess.run([os.path.join(build, "bench", "object_reference"), path, "65536", "1",
+                          "0.0005"], check=True, capture_output=True, text=True).stdout
+    return {r["object"]: ((float(r["r"]) + float(r["g"]) + float(r["b"])) / 3, float(r["stderr"]))
+            for r in csv.DictReader(io.StringIO(out))}
+
+
+def check(what, got, want, se, failures):
+    ok = abs(got - want) <= 4 * se + 5e-4 * abs(want)
+    print(f"{what}: {got:.5f} against {want:.5f} (standard error {se:.5f}) {'ok' if ok else 'FAILED'}")
+    if not ok:
+        failures.append(what)
+
+
+def main():
+    build = sys.argv[sys.argv.index("--build") + 1] if "--build" in sys.argv else os.path.join(ROOT, "build", "ci")
+    failures = []
+    with tempfile.TemporaryDirectory() as directory:
+        every = run(build, box(directory, set(WALLS)))
+        for name, (b, se) in every.items():
+            check(f"all walls emit, {name}", b, 2 * math.pi, se, failures)
+        floor = run(build, box(directory, {"floor"}))
+        total = sum(b for b, _ in floor.values())
+        check("floor emits, sum of A B", total, 2 * math.pi,
+              math.sqrt(sum(se * se for _, se in floor.values())), failures)
+        sides = [floor[k] for k in ("south", "north", "west", "east")]
+        mean = sum(b for b, _ in sides) / 4
+        for name, (b, se) in zip(("south", "north", "west", "east"), sides):
+            check(f"floor emits, {name} wall against the side walls' mean", b, mean, se, failures)
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
