@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Cost per row against the number of emitter patches (issue 20: direct light at any number
 of emitters). A closed 4 x 3 x 4 room whose walls and floor are 48 x 48 faces each (one patch
-per face), lit by (a) one small lamp patch, (b) a luminous ceiling of N x N faces, (c) the
-same ceiling split into 2 N^2 triangles; every run has the same non-emitter rows. Prints,
+per face: --max-edge 1e9), lit by (a) one small lamp patch, (b) a luminous ceiling of one
+face, (c) the ceiling as N x N faces, (d) the same split into 2 N^2 triangles; every run has
+the same non-emitter rows, and (b)-(d) the same light, so their cost per row compares the
+number of emitter patches alone. Prints,
 per case: emitter patches, rows (the white faces; the lamp case has a white ceiling too),
 rays per row, rows seconds and microseconds per row (from the report, median of RUNS runs).
 
@@ -37,8 +39,8 @@ def grid(material, origin, ex, ey, g, out, triangles=False):
 
 
 def room(path, ceiling, n):
-    """The room with ceiling 'lamp' (one small lamp patch under a white ceiling),
-    'quads' (N x N emitting faces) or 'triangles' (2 N^2)."""
+    """The room with ceiling 'lamp' (one small lamp patch under a white ceiling), 'face' (one
+    emitting face), 'quads' (N x N emitting faces) or 'triangles' (2 N^2)."""
     out = {"lines": [f"mtllib {os.path.basename(path)[:-4]}.mtl"], "next": 1}
     w, h, d, g = 4.0, 3.0, 4.0, 48
     grid("white", (0, 0, 0), (0, 0, d), (w, 0, 0), g, out)        # floor, facing +y
@@ -50,7 +52,8 @@ def room(path, ceiling, n):
         grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)    # white ceiling, facing -y
         grid("lamp", (1.8, h - 0.01, 1.8), (0.4, 0, 0), (0, 0, 0.4), 1, out)
     else:
-        grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), n, out, ceiling == "triangles")
+        faces = 1 if ceiling == "face" else n
+        grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), faces, out, ceiling == "triangles")
     with open(path, "w") as f:
         f.write("\n".join(out["lines"]) + "\n")
     with open(path[:-4] + ".mtl", "w") as f:
@@ -68,17 +71,18 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     print(f"{'case':28s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} {'rows s':>8s} "
           f"{'us/row':>7s}")
-    for ceiling in ("lamp", "quads", "triangles"):
+    for ceiling in ("lamp", "face", "quads", "triangles"):
         scene = os.path.join(a.out, f"room_{ceiling}.obj")
         room(scene, ceiling, a.n)
         report = os.path.join(a.out, f"room_{ceiling}.json")
         seconds = []
         for _ in range(a.runs):
             subprocess.run([a.bin, "solve", scene, "-q", "--threads", str(a.threads),
+                            "--max-edge", "1e9",
                             "--report", report], check=True)
             r = json.load(open(report))
             seconds.append(r["seconds"]["rows"])
-        emitters = {"lamp": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n}[ceiling]
+        emitters = {"lamp": 1, "face": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n}[ceiling]
         rows = (6 if ceiling == "lamp" else 5) * 48 * 48  # the white faces: one row each
         rays = r["rays"]
         median = statistics.median(seconds)

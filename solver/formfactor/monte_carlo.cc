@@ -1,9 +1,8 @@
 // monte_carlo: k_i cosine-weighted rays from stratified points on patch i (k on average,
 // in proportion to the patch's area: row_rays.h); each ray that hits the front of patch j
 // adds 1/k_i to F_ij. Emitter columns come from light
-// sampling instead (their direct light would be the noisiest term): a budget of light
-// samples per row, s points on average in proportion to the row's area like its rays,
-// whatever the number of emitter patches (light_sampling.h). MC
+// sampling instead (their direct light would be the noisiest term): a fixed budget of
+// light samples per row, whatever the number of emitter patches (light_sampling.h). MC
 // hits on emitters are dropped, so the two never double count.
 #include <map>
 #include <vector>
@@ -75,13 +74,11 @@ class MonteCarloBuilder final : public RowBuilder {
     }
     // A group's irradiance varies across its members far more than across one patch (some
     // face a lamp, some do not): its light samples each take a point of their own, so the
-    // budget is spread over the whole group instead of 4 spots that mostly miss the lit ones.
+    // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const bool group = !context_.SinglePatch(i);
-    const int per_point = group ? 1 : kLightSamplesPerPoint;
-    const uint32_t points = RowLightPoints(options_.samples * (kLightSamplesPerPoint / per_point),
-                                           AreaOf(i), context_.mean_row_area);
-    const uint64_t light_rays =
-        lights_.AddEmitterColumns(i, static_cast<int>(points), per_point, options_.seed, row);
+    const int per_point = group ? 1 : kLightSamplesAtAPoint;
+    const uint64_t light_rays = lights_.AddEmitterColumns(
+        i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row);
     // The two parts are independent estimates: where emitters fill much of the hemisphere
     // their noise can add up to more than 1. Only a row that would then return more light
     // than kMaxRowGain is scaled back (rho F B must converge for every rho < 1): scaling
@@ -97,11 +94,9 @@ class MonteCarloBuilder final : public RowBuilder {
  private:
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays, AreaOf(u), context_.mean_row_area);
-  }
-  // Unknown u's opaque area (0 in a context without areas: then every row gets the budget).
-  double AreaOf(uint32_t u) const {
-    return u < context_.opaque_area.size() ? context_.opaque_area[u] : 0;
+    return RowRayCount(options_.rays,
+                       u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
+                       context_.mean_row_area);
   }
 
   // The rays of `set` from one patch p, shifted by (ps, ds).

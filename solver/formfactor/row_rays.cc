@@ -35,8 +35,5 @@ uint32_t RowRayCount(int k, double area, double mean_area) {
   return InProportion(k, area, mean_area, std::max({1, k / 4, std::min(k, kLeastRowRays)}));
 }
 
-uint32_t RowLightPoints(int points, double area, double mean_area) {
-  return InProportion(points, area, mean_area, std::max(1, points / 4));
-}
 
 }  // namespace radflux

@@ -1,6 +1,5 @@
-// How many cosine rays a Monte Carlo row casts, and at how many points it samples the
-// emitters: k (--rays) and s (--samples) on average over the unknowns with rows, each in
-// proportion to its area. A surface's mean B (and the power it reflects) is an
+// How many cosine rays a Monte Carlo row casts: k (--rays) on average over the unknowns with
+// rows, each in proportion to its area. A surface's mean B (and the power it reflects) is an
 // area-weighted sum of its rows' estimates, whose variance for a fixed total of rays is least
 // with rays in proportion to area; one k for every row spent most of the Cornell box's rays
 // on the floor's small contact patches (53% of the rows, a tenth of the others' size) and
@@ -21,16 +20,9 @@ inline constexpr int kLeastRowRays = 16;
 double MeanRowArea(std::span<const double> area, std::span<const uint8_t> has_row);
 
 // The rays of a row of `area` (scene units^2, the opaque area of PatchAttributes): k * area /
-// mean_area rounded, within [max(1, k / 4, min(k, kLeastRowRays)), 4 k]; k when mean_area is
-// not positive. The clamp keeps a sliver's row from a handful of rays and a huge face's from
-// most of the budget.
+// mean_area rounded, within [max(1, k / 4, min(k, kLeastRowRays)), 4 k]; k (at least 1) when
+// mean_area is not a finite number > 0 or area / mean_area not one >= 0. The clamp keeps a
+// sliver's row from a handful of rays and a huge face's from most of the budget.
 uint32_t RowRayCount(int k, double area, double mean_area);
-
-// The points at which a row of `area` samples the emitters (light_sampling.h), for a budget
-// of `points` per row: points * area / mean_area rounded, within [max(1, points / 4),
-// 4 points]; `points` when mean_area is not positive. A surface's direct light, too, is an
-// area-weighted sum of its rows' estimates: a budget per row spent half the Cornell box's
-// light samples on the floor's small contact patches (53% of the rows, 12% of the area).
-uint32_t RowLightPoints(int points, double area, double mean_area);
 
 }  // namespace radflux

@@ -33,17 +33,6 @@ TEST(RowRays, InProportionToAreaWithinTheClamp) {
   EXPECT_EQ(RowRayCount(64, 1.0, 0.0), 64u);  // no rows with area: k
 }
 
-// Light-sample points follow area like rays, with no floor of 16: k / 4 (at least 1) to 4 k.
-TEST(RowRays, LightPointsInProportionToAreaWithinTheClamp) {
-  EXPECT_EQ(RowLightPoints(4, 1.0, 1.0), 4u);
-  EXPECT_EQ(RowLightPoints(4, 2.0, 1.0), 8u);
-  EXPECT_EQ(RowLightPoints(4, 0.23, 1.0), 1u);   // the Cornell floor's contact patches
-  EXPECT_EQ(RowLightPoints(4, 0.01, 1.0), 1u);   // never below one point
-  EXPECT_EQ(RowLightPoints(64, 0.01, 1.0), 16u);  // k / 4 (a group's 16 s points)
-  EXPECT_EQ(RowLightPoints(4, 100.0, 1.0), 16u);  // 4 k
-  EXPECT_EQ(RowLightPoints(4, 1.0, 0.0), 4u);     // no rows with area: the budget
-}
-
 // A share that is not a finite number >= 0 (an infinite or NaN area) gets the budget, never
 // an undefined conversion of NaN to an integer (0 rays: a row of nothing but its emitters).
 TEST(RowRays, ANonFiniteShareGetsTheBudget) {
@@ -53,7 +42,6 @@ TEST(RowRays, ANonFiniteShareGetsTheBudget) {
   EXPECT_EQ(RowRayCount(64, inf, 1.0), 64u);
   EXPECT_EQ(RowRayCount(64, 1.0, inf), 64u);
   EXPECT_EQ(RowRayCount(64, -1.0, 1.0), 64u);
-  EXPECT_EQ(RowLightPoints(4, nan, 1.0), 4u);
   EXPECT_EQ(RowRayCount(0, 1.0, 1.0), 1u);  // a zero budget: one ray, not an inverted clamp
 }
 
