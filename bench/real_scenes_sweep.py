@@ -56,7 +56,7 @@ set output '{png_path}'
 set datafile separator ','
 set logscale xy
 set xlabel 'CPU seconds of radflux solve (user + sys)'
-set ylabel 'median |error| of per-object mean B, %, objects the reference knows within 0.25%'
+set ylabel 'median |error| of object mean B, % (objects known within 0.25%)'
 set title '{name}: radflux settings against the per-object path-traced reference'
 set grid
 set arrow from {rs.RPK_SECONDS[name]}, graph 0 to {rs.RPK_SECONDS[name]}, graph 1 nohead dt 2
