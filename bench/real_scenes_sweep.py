@@ -71,7 +71,7 @@ plot '< grep -v timeout {csv_path}' every ::1 using 5:15:2 with labels left offs
 def main():
     args = sys.argv[1:]
     opt = {"--build": os.path.join(rs.ROOT, "build", "ci"), "--cache": "/tmp/radflux-real",
-           "--paths": "1048576", "--relative-error": "0.001", "--scenes": ",".join(rs.SCENES),
+           "--paths": "", "--relative-error": "0.001", "--scenes": ",".join(rs.SCENES),
            "--out": os.path.join(rs.ROOT, "bench", "results", "real"), "--timeout": "600"}
     for i in range(0, len(args), 2):
         opt[args[i]] = args[i + 1]
