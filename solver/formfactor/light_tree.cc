@@ -289,6 +289,20 @@ bool LightTree::Opens(uint32_t index, const Vec3& x) const {
   return Dot(d, d) < kNearField * kNearField * node.radius * node.radius;
 }
 
+bool LightTree::CanLight(const Node& node, const Vec3& x, const Vec3& n) const {
+  if (node.planar && !(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return false;
+  if (node.emitter >= 0) {
+    const EmitterShape& e = emitters_[node.emitter];
+    if (!(Dot(x - e.corner[0], e.normal) > 0)) return false;
+  }
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
+                      k & 4 ? node.hi.z : node.lo.z};
+    if (Dot(corner - x, n) > 0) return true;
+  }
+  return false;
+}
+
 LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
   Cut cut;
   if (nodes_.empty()) return cut;
@@ -391,7 +405,7 @@ double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
     const double distance = BoxDistance(x, node.lo, node.hi);
-    if (distance >= best || !(Importance(node, x, n) > 0)) continue;
+    if (distance >= best || !CanLight(node, x, n)) continue;
     if (IsSampled(node)) {
       best = distance;
     } else {
