@@ -170,6 +170,7 @@ void LightTree::MarkTiled(double area, Node& node) {
   shape.area = node.bounds_area;
   shape.power = node.power;
   shape.rectangle = true;
+  SetEmitterBounds(shape);
   node.tiled = static_cast<int64_t>(tiles_.size());
   tiles_.push_back(shape);
 }

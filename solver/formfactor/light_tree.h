@@ -78,6 +78,11 @@ class LightTree {
   // normal n by u in [0, 1), from the cut at (x, n) (CutAt): a cut node in proportion to
   // importance, then the walk below it; nothing when no emitter can light x.
   std::optional<Choice> Choose(const Cut& cut, const Vec3& x, const Vec3& n, double u) const;
+  // Whether `cut` holds a single sampled node (one emitter, one tiled plane): Choose then
+  // picks it whatever u.
+  bool OneChoice(const Cut& cut) const {
+    return cut.size == 1 && IsSampled(nodes_[cut.nodes[0].node]);
+  }
   // The probability that Choose picks Sampled(k) at (x, n) from `cut` (for tests).
   double Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint32_t k) const;
 
