@@ -3,9 +3,12 @@
 
 Usage: conference_regions.py RADFLUX.pfm CYCLES_SEED1.npy [CYCLES_SEED2.npy ...]
 
-Both pictures are 160x120 from the same camera (issue 21: --camera-pos 1550,400,-300
---camera-look-at 0,200,-200 --camera-up 0,1,0 --fov-deg 60 --size 160x120; Cycles by
-../shared/tools/cycles_reference.py). For each region of the issue's table and band-mean
+Both pictures are from the same camera (issue 21: --camera-pos 1550,400,-300
+--camera-look-at 0,200,-200 --camera-up 0,1,0 --fov-deg 60; Cycles at --size 160x120 by
+../shared/tools/cycles_reference.py). A radflux picture n times that size in both directions is
+box-averaged down to it (n x n samples per pixel, as Cycles' box filter spans the pixel; at
+n = 1 a pixel takes its centre, and a pixel across a thin bright edge, the screen's emitting
+frame, reads the edge or the dark beside it, not their mix). For each region of the issue's table and band-mean
 radiance: Cycles (the mean of the seeds), radflux, and radflux's relative difference; with two
 or more seeds, the seeds' own spread (max relative difference of one seed from their mean).
 """
@@ -13,7 +16,7 @@ import sys
 
 import numpy as np
 
-from cornell_vs_cycles import read_pfm
+from cornell_vs_cycles import box_down, read_pfm
 
 # name: (first row, last row + 1, first column, last column + 1) of the 160x120 picture
 REGIONS = {
@@ -33,8 +36,8 @@ def region_mean(image, box):
 def main():
     if len(sys.argv) < 3:
         raise SystemExit(__doc__)
-    radflux = read_pfm(sys.argv[1])
     seeds = [np.load(p).astype(np.float64) for p in sys.argv[2:]]
+    radflux = box_down(read_pfm(sys.argv[1]), seeds[0].shape)
     for s in seeds:
         if s.shape != radflux.shape:
             raise SystemExit(f"shapes differ: radflux {radflux.shape}, cycles {s.shape}")

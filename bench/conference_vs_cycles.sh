@@ -5,8 +5,11 @@
 # seed of SEEDS (default "1"), with EXTRA flags added (e.g. EXTRA="--gather 16"), and print the
 # issue's region means for each, the phases' seconds from the report, and wall and CPU
 # (user + sys) seconds. A cleaned scene and references are kept in /work/notes/cluster.
+# radflux's picture is SS (default 4) times the references' 160x120 in both directions and
+# box-averaged down in the comparison, as Cycles' box filter spans the pixel (SS=1: pixel
+# centres; the screen's one-pixel emitting frame then reads 20-30% off in its rows).
 #
-#   [SEEDS="1 2 3"] [EXTRA="..."] bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
+#   [SEEDS="1 2 3"] [EXTRA="..."] [SS=4] bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -14,8 +17,9 @@ out=${1:?usage: conference_vs_cycles.sh OUT_DIR [PATCHES ...]}
 shift
 mkdir -p "$out"
 radflux=${RADFLUX:-$root/build/ci/client/radflux}
+ss=${SS:-4}
 cam=(--camera-pos 1550,400,-300 --camera-look-at 0,200,-200 --camera-up 0,1,0 --fov-deg 60
-     --size 160x120)
+     --size $((160 * ss))x$((120 * ss)))
 [ -f "$out/conf.obj" ] || python3 "$here/clean_real_scene.py" \
   "$root/../shared/scenes/conference/conference.obj" "$out/conf" --emit mesh16_SG --ke 20 --max-kd 0.98
 for seed in 1 2; do

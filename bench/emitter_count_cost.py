@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Cost per row against the number of emitter patches (issue 20: direct light at any number
 of emitters). A closed 4 x 3 x 4 room whose walls and floor are 48 x 48 faces each (one patch
-per face), lit by (a) one small lamp patch, (b) a luminous ceiling of N x N faces, (c) the
-same ceiling split into 2 N^2 triangles; every run has the same non-emitter rows. Prints,
+per face: --max-edge 1e9), lit by (a) one small lamp patch, (b) a luminous ceiling of one
+face, (c) the ceiling as N x N faces, (d) the same split into 2 N^2 triangles; every run has
+the same non-emitter rows, and (b)-(d) the same light, so their cost per row compares the
+number of emitter patches alone. Prints,
 per case: emitter patches, rows (the white faces; the lamp case has a white ceiling too),
 rays per row, rows seconds and microseconds per row (from the report, median of RUNS runs).
 
@@ -18,12 +20,14 @@ import subprocess
 MTL = "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n"
 
 
-def grid(material, origin, ex, ey, g, out, triangles=False):
-    """g x g faces on origin + a ex + b ey, front side ex x ey; appends OBJ lines to out."""
+def grid(material, origin, ex, ey, g, out, triangles=False, fill=1.0):
+    """g x g faces on origin + a ex + b ey, front side ex x ey, each `fill` of its cell's side
+    (about the cell's centre); appends OBJ lines to out."""
     for a in range(g):
         for b in range(g):
-            p = [origin[k] + ex[k] * a / g + ey[k] * b / g for k in range(3)]
-            q = [[p[k] + ex[k] * da / g + ey[k] * db / g for k in range(3)]
+            p = [origin[k] + ex[k] * (a + (1 - fill) / 2) / g + ey[k] * (b + (1 - fill) / 2) / g
+                 for k in range(3)]
+            q = [[p[k] + ex[k] * da * fill / g + ey[k] * db * fill / g for k in range(3)]
                  for da, db in ((0, 0), (1, 0), (1, 1), (0, 1))]
             first = out["next"]
             out["lines"].append(f"usemtl {material}")
@@ -37,8 +41,9 @@ def grid(material, origin, ex, ey, g, out, triangles=False):
 
 
 def room(path, ceiling, n):
-    """The room with ceiling 'lamp' (one small lamp patch under a white ceiling),
-    'quads' (N x N emitting faces) or 'triangles' (2 N^2)."""
+    """The room with ceiling 'lamp' (one small lamp patch under a white ceiling), 'face' (one
+    emitting face), 'quads' (N x N emitting faces), 'triangles' (2 N^2) or 'panels' (N x N
+    faces at 80% of their cells' side under a white ceiling: they tile nothing)."""
     out = {"lines": [f"mtllib {os.path.basename(path)[:-4]}.mtl"], "next": 1}
     w, h, d, g = 4.0, 3.0, 4.0, 48
     grid("white", (0, 0, 0), (0, 0, d), (w, 0, 0), g, out)        # floor, facing +y
@@ -49,8 +54,12 @@ def room(path, ceiling, n):
     if ceiling == "lamp":
         grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)    # white ceiling, facing -y
         grid("lamp", (1.8, h - 0.01, 1.8), (0.4, 0, 0), (0, 0, 0.4), 1, out)
+    elif ceiling == "panels":
+        grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)
+        grid("lamp", (0, h - 0.01, 0), (w, 0, 0), (0, 0, d), n, out, fill=0.8)
     else:
-        grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), n, out, ceiling == "triangles")
+        faces = 1 if ceiling == "face" else n
+        grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), faces, out, ceiling == "triangles")
     with open(path, "w") as f:
         f.write("\n".join(out["lines"]) + "\n")
     with open(path[:-4] + ".mtl", "w") as f:
@@ -68,18 +77,20 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     print(f"{'case':28s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} {'rows s':>8s} "
           f"{'us/row':>7s}")
-    for ceiling in ("lamp", "quads", "triangles"):
+    for ceiling in ("lamp", "face", "quads", "triangles", "panels"):
         scene = os.path.join(a.out, f"room_{ceiling}.obj")
         room(scene, ceiling, a.n)
         report = os.path.join(a.out, f"room_{ceiling}.json")
         seconds = []
         for _ in range(a.runs):
             subprocess.run([a.bin, "solve", scene, "-q", "--threads", str(a.threads),
+                            "--max-edge", "1e9",
                             "--report", report], check=True)
             r = json.load(open(report))
             seconds.append(r["seconds"]["rows"])
-        emitters = {"lamp": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n}[ceiling]
-        rows = (6 if ceiling == "lamp" else 5) * 48 * 48  # the white faces: one row each
+        emitters = {"lamp": 1, "face": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n,
+                    "panels": a.n * a.n}[ceiling]
+        rows = (6 if ceiling in ("lamp", "panels") else 5) * 48 * 48  # white faces: a row each
         rays = r["rays"]
         median = statistics.median(seconds)
         print(f"{ceiling + ' ceiling':28s} {emitters:8d} {rows:6d} {rays / rows:9.2f} "

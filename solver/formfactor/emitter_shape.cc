@@ -22,6 +22,18 @@ bool IsRectangle(const std::array<Vec3, 4>& c) {
 
 }  // namespace
 
+void SetEmitterBounds(EmitterShape& shape) {
+  shape.centre = {};
+  for (uint32_t k = 0; k < shape.corners; ++k) shape.centre += shape.corner[k];
+  shape.centre = shape.centre / shape.corners;
+  double radius2 = 0;
+  for (uint32_t k = 0; k < shape.corners; ++k) {
+    const Vec3 d = shape.corner[k] - shape.centre;
+    radius2 = std::max(radius2, Dot(d, d));
+  }
+  shape.radius = std::sqrt(radius2);
+}
+
 EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance) {
   const Patch& patch = mesh.patches[p];
   EmitterShape shape;
@@ -33,6 +45,7 @@ EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance
   shape.opacity = patch.opacity;
   shape.power = exitance * patch.area * patch.opacity;
   shape.rectangle = shape.corners == 4 && IsRectangle(shape.corner);
+  SetEmitterBounds(shape);
   return shape;
 }
 
@@ -80,9 +93,49 @@ double Warp(const std::array<double, 4>& w, Point2& u) {
 
 }  // namespace
 
+EmitterReach ReachOf(const EmitterShape& shape, const Vec3& x) {
+  const Vec3 d = shape.centre - x;
+  const double distance2 = Dot(d, d);
+  if (!(distance2 >= kFarRadii * kFarRadii * shape.radius * shape.radius)) return {};
+  const double height = std::abs(Dot(x - shape.corner[0], shape.normal));
+  const double nearest = std::max(height, std::sqrt(distance2) - shape.radius);
+  return {true, shape.area * height / (std::numbers::pi * nearest * nearest * nearest)};
+}
+
+namespace {
+
+// The unoccluded integrand cos_x cos_y / r^2 of the form factor at point p of the emitter
+// (unit normal m) from x (unit normal n); 0 where either cosine is not positive.
+double Integrand(const Vec3& x, const Vec3& n, const Vec3& p, const Vec3& m) {
+  const Vec3 d = p - x;
+  const double r2 = Dot(d, d);
+  return std::max(0.0, Dot(n, d)) * std::max(0.0, -Dot(m, d)) / (r2 * r2);
+}
+
+// `w` raised to at least 0.01 of its largest (all of them 1 when none is positive).
+std::array<double, 4> Floored(std::array<double, 4> w) {
+  const double top = std::max({w[0], w[1], w[2], w[3]});
+  for (double& v : w) v = top > 0 ? std::max(v, 0.01 * top) : 1;
+  return w;
+}
+
+}  // namespace
+
 EmitterPointSampler::EmitterPointSampler(const EmitterShape& shape, const Vec3& x, const Vec3& n)
-    : shape_(shape), x_(x) {
+    : shape_(shape), x_(x), far_(ReachOf(shape, x).far) {
   const std::array<Vec3, 4>& c = shape.corner;
+  if (far_) {
+    // The integrand at the corners: in ByArea's u a rectangle's corners 0, 1, 3, 2 lie at
+    // (0,0), (1,0), (0,1), (1,1); a triangle's are ordered there as it samples.
+    const auto f = [&](const Vec3& p) { return Integrand(x, n, p, shape.normal); };
+    if (shape.rectangle) {
+      weight_ = Floored({f(c[0]), f(c[1]), f(c[3]), f(c[2])});
+    } else if (shape.corners == 4) {
+      share_ = shape.area > 0 ? 0.5 * Length(Cross(c[1] - c[0], c[2] - c[0])) / shape.area : -1;
+    }
+    if (!shape.rectangle) weight_ = {f(c[0]), f(c[1]), f(c[2]), f(c[3])};  // per half, below
+    return;
+  }
   for (uint32_t k = 0; k < 4; ++k) weight_[k] = CosineWeight(x, n, c[k]);
   if (shape.rectangle) {
     rectangle_.emplace(SphericalRectangle{c[0], c[1] - c[0], c[3] - c[0]}, x);
@@ -94,7 +147,44 @@ EmitterPointSampler::EmitterPointSampler(const EmitterShape& shape, const Vec3& 
   }
 }
 
+EmitterSample EmitterPointSampler::ByArea(Point2 u) const {
+  const std::array<Vec3, 4>& c = shape_.corner;
+  const std::array<double, 4>& f = weight_;
+  EmitterSample sample;
+  double pdf_area;
+  if (shape_.rectangle) {
+    const double warp = Warp(f, u);
+    sample.point = c[0] + (c[1] - c[0]) * u.x + (c[3] - c[0]) * u.y;
+    pdf_area = warp / shape_.area;
+  } else {
+    // A triangle, or a quad's half (0, 1, 2) or (0, 2, 3) chosen by u.x with its share of
+    // the area; Heitz's map takes u's corners (0,0), (1,0), (0,1), (1,1) to its corners 2, 0,
+    // 1 and the middle of 0-1.
+    std::array<uint32_t, 3> t = {0, 1, 2};
+    if (shape_.corners == 4) {
+      if (!(share_ > 0 && share_ < 1)) return sample;
+      if (u.x < share_) {
+        u.x = std::min(u.x / share_, 0x1.fffffffffffffp-1);
+      } else {
+        u.x = std::min((u.x - share_) / (1 - share_), 0x1.fffffffffffffp-1);
+        t = {0, 2, 3};
+      }
+    }
+    const double warp = Warp(Floored({f[t[2]], f[t[0]], f[t[1]], 0.5 * (f[t[0]] + f[t[1]])}), u);
+    const auto [b0, b1] = SampleUniformTriangle(u);
+    sample.point = c[t[0]] * b0 + c[t[1]] * b1 + c[t[2]] * (1 - b0 - b1);
+    pdf_area = warp / shape_.area;  // the half's chance times warp / its area
+  }
+  // Per steradian at x: r^2 / cos_y per unit area.
+  const Vec3 d = sample.point - x_;
+  const double r2 = Dot(d, d);
+  const double cos_y = -Dot(shape_.normal, d) / std::sqrt(r2);
+  sample.pdf = cos_y > 0 ? pdf_area * r2 / cos_y : 0;
+  return sample;
+}
+
 EmitterSample EmitterPointSampler::operator()(Point2 u) const {
+  if (far_) return ByArea(u);
   const std::array<Vec3, 4>& c = shape_.corner;
   const std::array<double, 4>& cw = weight_;
   EmitterSample sample;

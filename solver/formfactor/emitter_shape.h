@@ -22,7 +22,12 @@ struct EmitterShape {
   double opacity = 1;          // Patch::opacity: a ray meets it (and its light) with this
   double power = 0;            // E A opacity summed over bands, W (importance only)
   bool rectangle = false;      // a quad with parallel, orthogonal sides
+  Vec3 centre;                 // the corners' mean
+  double radius = 0;           // the corners' greatest distance from it
 };
+
+// Sets shape.centre and shape.radius from its corners.
+void SetEmitterBounds(EmitterShape& shape);
 
 // The shape of patch p of `mesh` emitting `exitance` (W/m^2, summed over bands).
 EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance);
@@ -42,11 +47,29 @@ double EmitterImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n
 // The same from that form factor F, already computed (EmitterFormFactor(shape, x, n)).
 double EmitterImportance(const EmitterShape& shape, double form_factor);
 
+// Where an emitter lies from receiver point x: far when x is at least kFarRadii of its radii
+// (its corners' greatest distance from their mean) from its centre; and then an upper bound
+// on its form factor from x (every point of it at least max(h, d - radius) away, h x's
+// height over its plane, d the distance to its centre; cos_y = h / r, cos_x <= 1), else
+// infinity.
+inline constexpr double kFarRadii = 4;
+struct EmitterReach {
+  bool far = false;
+  double max_form_factor = INFINITY;
+};
+EmitterReach ReachOf(const EmitterShape& shape, const Vec3& x);
+
 // A point on the emitter seen from receiver point x with unit normal n, and its pdf per
-// steradian (0 when the emitter subtends no solid angle at x): the solid-angle map of the
-// shape (uniform, pdf 1 / solid angle) composed with a bilinear warp of u whose corner
-// weights are the receiver's cosines towards the corners (at least 0.01), so that the
-// density roughly follows cos(theta_x) and an estimate of cos / pdf varies little.
+// steradian (0 when the emitter subtends no solid angle at x). Near the emitter: the
+// solid-angle map of the shape (uniform, pdf 1 / solid angle) composed with a bilinear warp of
+// u whose corner weights are the receiver's cosines towards the corners (at least 0.01).
+// Far from it (ReachOf): a point uniform in area (a rectangle's by its sides, a triangle's by
+// SampleUniformTriangle, another quad's in the triangle (0, 1, 2) or (0, 2, 3) chosen by u.x
+// with their shares of the area) composed with a bilinear
+// warp whose corner weights are the integrand cos_x cos_y / r^2 at the corners (at least 0.01
+// of their largest), its pdf converted to solid angle (r^2 / cos_y): no trigonometry, and
+// across a far emitter the integrand is nearly bilinear. Either way the density roughly
+// follows cos(theta_x) and an estimate of cos / pdf varies little.
 struct EmitterSample {
   Vec3 point;
   double pdf = 0;
@@ -64,11 +87,15 @@ class EmitterPointSampler {
   EmitterSample operator()(Point2 u) const;
 
  private:
+  // The far emitter's sample (by area).
+  EmitterSample ByArea(Point2 u) const;
+
   const EmitterShape& shape_;
   Vec3 x_;
-  std::array<double, 4> weight_{};                      // CosineWeight of each corner
-  std::optional<SphericalRectangleSampler> rectangle_;  // a rectangle's set-up
-  double share_ = 1;  // a quad's first half's share of its solid angle (< 0: none)
+  bool far_ = false;
+  std::array<double, 4> weight_{};                      // the warp's weight of each corner
+  std::optional<SphericalRectangleSampler> rectangle_;  // a near rectangle's set-up
+  double share_ = 1;  // a quad's first half's share of its solid angle, or area (< 0: none)
 };
 
 }  // namespace radflux

@@ -138,9 +138,17 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
   rays.clear();
   pending.clear();
   MultiJitteredSamples(PatternSeed(seed, index, kLightPointStream), on_patch);
-  MultiJitteredSamples(PatternSeed(seed, index, kLightDirectionStream), directions);
+  // The directions of a point's samples are a multi-jittered set of their own (stratified
+  // over the emitter, or the tiled rectangle, they mostly share); samples of one point each
+  // take theirs from one set over all points.
+  const uint32_t direction_pattern = PatternSeed(seed, index, kLightDirectionStream);
+  if (per_point == 1) MultiJitteredSamples(direction_pattern, directions);
   for (size_t p = 0; p < on_patch.size(); ++p) {
     const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
+    if (per_point > 1) {
+      MultiJitteredSamples(PatternSeed(direction_pattern, p),
+                           std::span<Point2>(directions).subspan(first, per_point));
+    }
     const SurfacePoint at = sample_point(on_patch[p]);
     SamplePoint(at.x, at.n, receiver, seed, index, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
@@ -161,40 +169,49 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
   if (tree_.empty()) return;
   const uint32_t per_point = static_cast<uint32_t>(directions.size());
   const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
+  const uint32_t rejection_pattern = PatternSeed(seed, index, kRejectionStream);
   const Frame frame = Frame::FromNormal(n);
   const LightTree::Cut cut = tree_.CutAt(x, n);
-  // The point's emitter samplers, set up once per emitter its samples choose.
-  std::array<std::optional<EmitterPointSampler>, kLightSamplesPerPoint> samplers;
-  std::array<uint32_t, kLightSamplesPerPoint> sampler_emitter{};
+  const bool one_choice = tree_.OneChoice(cut);  // no u to draw
+  // The point's solid-angle samplers, set up once per sampled node (an emitter or a tiled
+  // rectangle) its samples choose: per-thread scratch (kilobytes that a fresh array would
+  // clear at every point), the first sampler_count of them the point's.
+  thread_local std::array<std::optional<EmitterPointSampler>, kLightSamplesAtAPoint> samplers;
+  std::array<uint32_t, kLightSamplesAtAPoint> sampler_node;
   size_t sampler_count = 0;
-  const auto sampler_of = [&](uint32_t chosen) -> const EmitterPointSampler& {
+  const auto sampler_of = [&](uint32_t node) -> const EmitterPointSampler& {
     for (size_t m = 0; m < sampler_count; ++m) {
-      if (sampler_emitter[m] == chosen) return *samplers[m];
+      if (sampler_node[m] == node) return *samplers[m];
     }
     const size_t m = sampler_count < samplers.size() ? sampler_count++ : samplers.size() - 1;
-    sampler_emitter[m] = chosen;
-    return samplers[m].emplace(tree_.Emitter(chosen), x, n);
+    sampler_node[m] = node;
+    return samplers[m].emplace(tree_.Shape(node), x, n);
   };
   for (uint32_t k = 0; k < per_point; ++k) {
     // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
     const uint32_t s = first + k;
-    const uint32_t stratum = PermuteIndex(k, per_point, choice_pattern + s);
-    const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
+    const uint32_t stratum = one_choice ? 0 : PermuteIndex(k, per_point, choice_pattern + s);
+    const double u = one_choice ? 0.5 : (stratum + RandomFloat(s, choice_pattern)) / per_point;
     const auto choice = tree_.Choose(cut, x, n, std::min(u, 0x1.fffffffffffffp-1));
     if (!choice) continue;
-    const EmitterShape& emitter = tree_.Emitter(choice->emitter);
-    if (emitter.patch == receiver) continue;
-    const double form_factor = choice->form_factor >= 0 ? choice->form_factor
-                                                        : EmitterFormFactor(emitter, x, n);
-    if (!(form_factor > 0)) continue;
+    const EmitterShape& shape = tree_.Shape(choice->node);
+    if (tree_.IsLeaf(choice->node) && shape.patch == receiver) continue;
+    // The exact unoccluded form factor where the cut has it or the choice of the direction's
+    // sampling needs it; else (-1) only its bound, below kRejectionFormFactor.
+    const EmitterReach reach = ReachOf(shape, x);
+    double form_factor = choice->form_factor;
+    if (form_factor < 0 && !(reach.max_form_factor < kRejectionFormFactor)) {
+      form_factor = EmitterFormFactor(shape, x, n);
+    }
+    if (form_factor == 0) continue;
     Vec3 target;
     double value;  // the sample's F_j(x) estimate, if its ray is unoccluded
     if (form_factor >= kRejectionFormFactor &&
-        CosineDirectionOnEmitter(emitter, x, frame, PatternSeed(seed ^ s, index, kRejectionStream),
+        CosineDirectionOnEmitter(shape, x, frame, PatternSeed(rejection_pattern, s),
                                  target)) {
       value = form_factor / choice->probability;
     } else {
-      const EmitterSample sample = sampler_of(choice->emitter)(directions[k]);
+      const EmitterSample sample = sampler_of(choice->node)(directions[k]);
       if (!(sample.pdf > 0)) continue;
       const Vec3 d = sample.point - x;
       const double cos_x = Dot(n, d) / Length(d);
@@ -202,6 +219,11 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
       target = sample.point;
       value = cos_x / (std::numbers::pi * sample.pdf * choice->probability);
     }
+    // The emitter the point lies on (a tiled rectangle's are its patches).
+    const std::optional<uint32_t> lit = tree_.Locate(choice->node, target);
+    if (!lit) continue;
+    const EmitterShape& emitter = tree_.Emitter(*lit);
+    if (emitter.patch == receiver) continue;
     rays.push_back(StreamRay::Segment(x + n * context_.ray_epsilon,
                                       target + emitter.normal * context_.ray_epsilon));
     // Only the emitter's opaque part emits: a cosine ray meets it with that probability.

@@ -1,18 +1,22 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
-// patch a few samples share each point, on a group each takes its own), one emitter j chosen with
-// probability P(j | x) (by the LightTree from x's cut: near x, or among at most 16 emitters,
-// in proportion to their exact unoccluded contributions), a direction in the solid angle Omega_j that j subtends at x with pdf (uniform, 1
-// / Omega_j, warped towards the receiver's cosine: SampleEmitterSolidAngle), and one shadow ray.
-// The sample adds
-//     cos(theta_x) V / (pi pdf P(j | x) budget)
-// to F_ij. Its expectation over x, j and the direction is
+// patch a few samples share each point, on a group each takes its own), a sampled node s
+// chosen with probability P(s | x) (LightTree: one emitter, or a plane of emitters that tile
+// a rectangle; by the tree's cut at x: near x, or among at most 16 emitters, in proportion
+// to their exact unoccluded contributions), a direction in the solid angle Omega_s that s
+// subtends at x with pdf (EmitterPointSampler: by area for far shapes, by solid angle for
+// near ones, both warped towards the integrand), and one shadow ray to the point y it meets;
+// the sample is credited to the emitter patch j that holds y (s itself, or the tile of a
+// tiled plane; LightTree::Locate). It adds
+//     cos(theta_x) V / (pi pdf P(s | x) budget)
+// to F_ij. Its expectation over x, s and the direction is
 //     (1 / A_i) integral_{A_i} (1 / pi) integral_{Omega_j} cos(theta_x) V dw dA = F_ij
 // for every emitter patch j (the emitters that cannot light x have P = 0 and F = 0). Where
-// F_j(x), Lambert's exact unoccluded form factor from x, is not small, the direction is
-// instead drawn exactly in proportion to cos(theta_x) within j (by rejection from the
-// cosine-weighted hemisphere) and the sample adds F_j(x) V / (P(j | x) budget), with the same
-// expectation and no spread at all where j is unoccluded. So
+// F_s(x), Lambert's exact unoccluded form factor from x, is not small, the direction is
+// instead drawn exactly in proportion to cos(theta_x) within s (by rejection from the
+// cosine-weighted hemisphere) and the sample adds F_s(x) V / (P(s | x) budget), with the same
+// expectation and no spread at all where s is unoccluded (the tiles of a plane then share it
+// as the directions fall). So
 // the row stays an unbiased form-factor row, whatever the number of emitter patches, at
 // `budget` shadow rays. The rays that leave i by the cosine-weighted sampling of the rest of
 // the row must drop their emitter hits (monte_carlo does), so that nothing is counted twice.

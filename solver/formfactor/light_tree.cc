@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "absl/container/inlined_vector.h"
 #include "solver/formfactor/polygon_form_factor.h"
 
 namespace radflux {
@@ -34,6 +35,19 @@ LightTree::LightTree(std::vector<EmitterShape> emitters) : emitters_(std::move(e
   leaf_of_.resize(emitters_.size());
   nodes_.reserve(2 * emitters_.size());
   Build(order, 0, order.size(), 0);
+  for (const Node& node : nodes_) {
+    Split split{0, node.left, node.right, 0, static_cast<int32_t>(node.emitter)};
+    if (node.emitter < 0) split.axis = node.axis_split, split.at = nodes_[node.left].hi[node.axis_split];
+    splits_.push_back(split);
+  }
+  sampled_of_.resize(emitters_.size());
+  for (uint32_t k = 0; k < emitters_.size(); ++k) {
+    sampled_of_[k] = leaf_of_[k];
+    for (uint32_t at = leaf_of_[k]; at != 0;) {
+      at = nodes_[at].parent;
+      if (nodes_[at].tiled >= 0) sampled_of_[k] = at;
+    }
+  }
 }
 
 // The subtree of emitters order[begin, end): split at the median of the centroids along
@@ -42,9 +56,10 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
   nodes_.emplace_back();
   Vec3 lo = emitters_[order[begin]].corner[0], hi = lo, normal_sum;
-  double power = 0;
+  double power = 0, area = 0;
   for (size_t k = begin; k < end; ++k) {
     const EmitterShape& e = emitters_[order[k]];
+    area += e.area;
     for (const Vec3& c : e.corner) {
       lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
       hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
@@ -66,6 +81,7 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
     node.cos_spread = std::min(node.cos_spread, Dot(node.axis, emitters_[order[k]].normal));
   }
   BoundPlanar(order, begin, end, node);
+  if (end - begin > 1) MarkTiled(area, node);
   if (end - begin == 1) {
     node.emitter = order[begin];
     leaf_of_[order[begin]] = index;
@@ -73,9 +89,17 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
     const Vec3 extent = hi - lo;
     const int axis =
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    // An emitter's place along the axis: the middle of its extent there, the same for the two
+    // triangles of a quad, which then stay together (their boxes are one: split apart, the
+    // halves' boxes would overlap by a cell and Locate search both).
     auto centre = [&](uint32_t k) {
       const EmitterShape& e = emitters_[k];
-      return ((e.corner[0] + e.corner[2]) * 0.5)[axis];
+      double lo_k = e.corner[0][axis], hi_k = lo_k;
+      for (uint32_t c = 1; c < e.corners; ++c) {
+        lo_k = std::min(lo_k, e.corner[c][axis]);
+        hi_k = std::max(hi_k, e.corner[c][axis]);
+      }
+      return 0.5 * (lo_k + hi_k);
     };
     std::sort(order.begin() + begin, order.begin() + end, [&](uint32_t a, uint32_t b) {
       return std::make_pair(centre(a), a) < std::make_pair(centre(b), b);
@@ -98,6 +122,7 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
         break;
       }
     }
+    node.axis_split = axis;
     node.left = Build(order, begin, middle, index);
     node.right = Build(order, middle, end, index);
   }
@@ -111,7 +136,13 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
 void LightTree::BoundPlanar(const std::vector<uint32_t>& order, size_t begin, size_t end,
                             Node& node) const {
   if (!(node.cos_spread >= 1 - 1e-12)) return;
-  const Frame frame = Frame::FromNormal(node.axis);
+  // Sides along the first emitter's first edge and across it: a grid of patches (a meshed
+  // lamp) is then bounded by the rectangle it tiles.
+  const EmitterShape& first = emitters_[order[begin]];
+  const Vec3 edge = first.corner[1] - first.corner[0];
+  const Vec3 along = edge - node.axis * Dot(edge, node.axis);
+  if (!(Length(along) > 0)) return;
+  const Frame frame{Normalize(along), Cross(node.axis, Normalize(along)), node.axis};
   const double offset = Dot(emitters_[order[begin]].corner[0], node.axis);
   const double tolerance = 1e-9 * Length(node.hi - node.lo);
   double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
@@ -130,8 +161,92 @@ void LightTree::BoundPlanar(const std::vector<uint32_t>& order, size_t begin, si
   node.planar = node.bounds_area > 0;
 }
 
+void LightTree::MarkTiled(double area, Node& node) {
+  if (!node.planar || !(std::abs(area - node.bounds_area) <= 1e-9 * node.bounds_area)) return;
+  EmitterShape shape;
+  shape.corner = node.bounds_rectangle;
+  shape.corners = 4;
+  shape.normal = node.axis;
+  shape.area = node.bounds_area;
+  shape.power = node.power;
+  shape.rectangle = true;
+  SetEmitterBounds(shape);
+  node.tiled = static_cast<int64_t>(tiles_.size());
+  tiles_.push_back(shape);
+}
+
+const EmitterShape& LightTree::Shape(uint32_t node) const {
+  const Node& at = nodes_[node];
+  return at.emitter >= 0 ? emitters_[at.emitter] : tiles_[at.tiled];
+}
+
+namespace {
+
+// Whether the box [lo, hi] widened by `tolerance` holds p.
+bool BoxHolds(const Vec3& lo, const Vec3& hi, const Vec3& p, double tolerance) {
+  return p.x >= lo.x - tolerance && p.x <= hi.x + tolerance && p.y >= lo.y - tolerance &&
+         p.y <= hi.y + tolerance && p.z >= lo.z - tolerance && p.z <= hi.z + tolerance;
+}
+
+// Whether emitter e's polygon holds p, to within `slack` / |side| of each side.
+bool PolygonHolds(const EmitterShape& e, const Vec3& p, double slack) {
+  for (uint32_t k = 0; k < e.corners; ++k) {
+    const Vec3 side = e.corner[(k + 1) % e.corners] - e.corner[k];
+    if (Dot(Cross(side, p - e.corner[k]), e.normal) < -slack) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<uint32_t> LightTree::Locate(uint32_t node, const Vec3& p) const {
+  if (nodes_[node].emitter >= 0) return static_cast<uint32_t>(nodes_[node].emitter);
+  // Boxes widened by 1e-9 of the node's radius r; a polygon's sides by that times 2 r / |side|
+  // (2 r bounds every side).
+  const double tolerance = 1e-9 * nodes_[node].radius;
+  const double slack = tolerance * 2 * nodes_[node].radius;
+  // Straight down by the split planes: where siblings do not overlap (a grid's halves) this
+  // is the only path. Else (a quad's two triangles split apart) back up it, through each
+  // sibling whose box holds p, nearest first; the whole node last, if the path overflows.
+  std::array<uint32_t, 64> path;
+  size_t depth = 0;
+  uint32_t at = node;
+  while (splits_[at].emitter < 0) {
+    const Split& inner = splits_[at];
+    if (depth < path.size()) path[depth++] = at;
+    at = p[inner.axis] <= inner.at ? inner.left : inner.right;
+  }
+  if (PolygonHolds(emitters_[splits_[at].emitter], p, slack)) {
+    return static_cast<uint32_t>(splits_[at].emitter);
+  }
+  for (size_t level = depth; level-- > 0;) {
+    const Split& up = splits_[path[level]];
+    const uint32_t taken = level + 1 < depth ? path[level + 1] : at;
+    const uint32_t sibling = up.left == taken ? up.right : up.left;
+    if (!BoxHolds(nodes_[sibling].lo, nodes_[sibling].hi, p, tolerance)) continue;
+    if (const auto found = LocateBelow(sibling, p, tolerance, slack)) return found;
+  }
+  return depth < path.size() ? std::nullopt : LocateBelow(node, p, tolerance, slack);
+}
+
+// Depth first down every child whose box holds p.
+std::optional<uint32_t> LightTree::LocateBelow(uint32_t node, const Vec3& p, double tolerance,
+                                               double slack) const {
+  const Node& at = nodes_[node];
+  if (at.emitter >= 0) {
+    if (!PolygonHolds(emitters_[at.emitter], p, slack)) return std::nullopt;
+    return static_cast<uint32_t>(at.emitter);
+  }
+  for (const uint32_t child : {at.left, at.right}) {
+    if (!BoxHolds(nodes_[child].lo, nodes_[child].hi, p, tolerance)) continue;
+    if (const auto found = LocateBelow(child, p, tolerance, slack)) return found;
+  }
+  return std::nullopt;
+}
+
 double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) const {
   if (node.emitter >= 0) return EmitterImportance(emitters_[node.emitter], x, n);
+  if (node.tiled >= 0) return EmitterImportance(tiles_[node.tiled], x, n);
   // A node of two leaves: their exact sum, so that no walk ends at a pair that cannot light x.
   const Node& left = nodes_[node.left];
   const Node& right = nodes_[node.right];
@@ -169,17 +284,42 @@ double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) con
 
 bool LightTree::Opens(uint32_t index, const Vec3& x) const {
   const Node& node = nodes_[index];
-  if (node.emitter >= 0) return false;
+  if (IsSampled(node)) return false;
   if (size() <= kExactEmitters) return true;
   const Vec3 d = node.centre - x;
   return Dot(d, d) < kNearField * kNearField * node.radius * node.radius;
 }
 
+bool LightTree::CanLight(const Node& node, const Vec3& x, const Vec3& n) const {
+  if (node.planar && !(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return false;
+  if (node.emitter >= 0) {
+    const EmitterShape& e = emitters_[node.emitter];
+    if (!(Dot(x - e.corner[0], e.normal) > 0)) return false;
+  }
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
+                      k & 4 ? node.hi.z : node.lo.z};
+    if (Dot(corner - x, n) > 0) return true;
+  }
+  return false;
+}
+
 LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
   Cut cut;
   if (nodes_.empty()) return cut;
+  if (IsSampled(nodes_[0])) {  // one emitter, or one tiled plane: its share is 1 wherever
+    const EmitterShape& shape = Shape(0);  // it can light x at all
+    bool any_front = false;
+    for (uint32_t k = 0; k < shape.corners; ++k) any_front |= Dot(shape.corner[k] - x, n) > 0;
+    if (any_front && Dot(x - shape.corner[0], shape.normal) > 0) {
+      cut.nodes[0] = {0, 1, -1};
+      cut.size = 1;
+      cut.total = 1;
+    }
+    return cut;
+  }
   // Level by level: `level` holds the nodes met at one depth, opened ones give the next.
-  std::array<uint32_t, kMaxCut> level{}, next{};
+  std::array<uint32_t, kMaxCut> level, next;
   size_t level_size = 1, kept = 0;  // kept: nodes already final in `cut`
   level[0] = 0;
   while (level_size > 0) {
@@ -194,9 +334,9 @@ LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
       }
       const Node& node = nodes_[index];
       CutNode entry{index, 0, -1};
-      if (node.emitter >= 0) {
-        entry.form_factor = EmitterFormFactor(emitters_[node.emitter], x, n);
-        entry.importance = EmitterImportance(emitters_[node.emitter], entry.form_factor);
+      if (IsSampled(node)) {
+        entry.form_factor = EmitterFormFactor(Shape(index), x, n);
+        entry.importance = EmitterImportance(Shape(index), entry.form_factor);
       } else {
         entry.importance = Importance(node, x, n);
       }
@@ -205,7 +345,7 @@ LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
       cut.nodes[cut.size++] = entry;
       cut.total += entry.importance;
     }
-    level = next;
+    std::copy_n(next.begin(), next_size, level.begin());
     level_size = next_size;
   }
   return cut;
@@ -223,7 +363,7 @@ std::optional<LightTree::Choice> LightTree::Choose(const Cut& cut, const Vec3& x
   u = std::clamp((target - (below - entry.importance)) / entry.importance, 0.0,
                  0x1.fffffffffffffp-1);
   uint32_t at = entry.node;
-  while (nodes_[at].emitter < 0) {
+  while (!IsSampled(nodes_[at])) {
     const Node& node = nodes_[at];
     const double left = Importance(nodes_[node.left], x, n);
     const double right = Importance(nodes_[node.right], x, n);
@@ -240,13 +380,12 @@ std::optional<LightTree::Choice> LightTree::Choose(const Cut& cut, const Vec3& x
     }
   }
   if (!(probability > 0)) return std::nullopt;
-  return Choice{static_cast<uint32_t>(nodes_[at].emitter), probability,
-                at == entry.node ? entry.form_factor : -1.0};
+  return Choice{at, probability, at == entry.node ? entry.form_factor : -1.0};
 }
 
 double LightTree::Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint32_t k) const {
   double probability = 1;
-  for (uint32_t at = leaf_of_[k];; at = nodes_[at].parent) {
+  for (uint32_t at = sampled_of_[k];; at = nodes_[at].parent) {
     for (size_t c = 0; c < cut.size; ++c) {
       if (cut.nodes[c].node == at) return probability * cut.nodes[c].importance / cut.total;
     }
@@ -261,14 +400,14 @@ double LightTree::Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint
 
 double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {
   double best = INFINITY;
-  std::vector<uint32_t> stack;
+  absl::InlinedVector<uint32_t, 64> stack;  // off the heap: this runs once per row
   if (!nodes_.empty()) stack.push_back(0);
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
     const double distance = BoxDistance(x, node.lo, node.hi);
-    if (distance >= best || !(Importance(node, x, n) > 0)) continue;
-    if (node.emitter >= 0) {
+    if (distance >= best || !CanLight(node, x, n)) continue;
+    if (IsSampled(node)) {
       best = distance;
     } else {
       stack.push_back(node.left);

@@ -10,7 +10,11 @@
 // and walks one path below the node it picks, so its cost grows with log(emitters), and the
 // rays of a light sample do not grow at all. Every emitter that can light the receiver has a
 // non-zero probability (the bounds are conservative), which keeps estimates weighted by
-// 1 / probability unbiased.
+// 1 / probability unbiased. A node whose emitters tile a rectangle in one plane (a lamp
+// meshed into patches, a luminous ceiling of faces: their areas add up to the rectangle's) is
+// "tiled": it is never opened and a walk stops there; the light sample then takes a point on
+// the whole rectangle (Shape) and credits the emitter it falls in (Locate), so a tiled plane
+// of any number of patches costs what one lamp does.
 #pragma once
 
 #include <array>
@@ -41,15 +45,16 @@ class LightTree {
   // in proportion to the emitters' exact contributions.
   static constexpr uint32_t kExactEmitters = 16;
 
-  // One node of a receiver point's cut, with its importance there (> 0).
+  // One node of a receiver point's cut, with its importance there (> 0). No default values:
+  // a Cut's array is left uninitialised (it is set up once per receiver point).
   struct CutNode {
-    uint32_t node = 0;
-    double importance = 0;
-    double form_factor = -1;  // a leaf's EmitterFormFactor at the point; -1 for inner nodes
+    uint32_t node;
+    double importance;
+    double form_factor;  // a sampled node's (Sampled) EmitterFormFactor there, or -1
   };
   // A receiver point's cut: nodes that together hold every emitter that can light the point.
   struct Cut {
-    std::array<CutNode, kMaxCut> nodes;
+    std::array<CutNode, kMaxCut> nodes;  // the first `size` are set
     size_t size = 0;
     double total = 0;  // summed importance
   };
@@ -59,22 +64,41 @@ class LightTree {
   // (kMaxCut); nodes that cannot light x are left out. So an emitter near x is chosen in
   // proportion to its exact contribution against its neighbours', never through an ancestor's
   // far-field bound: F_j(x) / P(j | x) stays within a small multiple of the summed unoccluded
-  // form factor of the emitters near x.
+  // form factor of the emitters near x. A tree whose root is sampled (one emitter, or one
+  // tiled plane) cuts to the root, importance 1 (form factor -1, not computed) wherever any of
+  // it lies in front of x's tangent plane with x in front of it.
   Cut CutAt(const Vec3& x, const Vec3& n) const;
 
   struct Choice {
-    uint32_t emitter = 0;     // index into the tree's emitters
+    uint32_t node = 0;        // a sampled node (Sampled): a leaf or a tiled node
     double probability = 0;   // of choosing it, given (x, n)
-    double form_factor = -1;  // its EmitterFormFactor at x when the cut holds it; else -1
+    double form_factor = -1;  // Shape(node)'s EmitterFormFactor at x when the cut has it; else -1
   };
-  // Chooses an emitter for a receiver at x with unit normal n by u in [0, 1), from the cut at
-  // (x, n) (CutAt): a cut node in proportion to importance, then the walk below it; nothing
-  // when no emitter can light x.
+  // Chooses a sampled node (a leaf, or the tiled node above it) for a receiver at x with unit
+  // normal n by u in [0, 1), from the cut at (x, n) (CutAt): a cut node in proportion to
+  // importance, then the walk below it; nothing when no emitter can light x.
   std::optional<Choice> Choose(const Cut& cut, const Vec3& x, const Vec3& n, double u) const;
-  // The probability that Choose picks emitter k at (x, n) from `cut` (for tests).
+  // Whether `cut` holds a single sampled node (one emitter, one tiled plane): Choose then
+  // picks it whatever u.
+  bool OneChoice(const Cut& cut) const {
+    return cut.size == 1 && IsSampled(nodes_[cut.nodes[0].node]);
+  }
+  // The probability that Choose picks Sampled(k) at (x, n) from `cut` (for tests).
   double Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint32_t k) const;
+
+  // The node a light sample of emitter k samples: its topmost tiled ancestor, else its leaf.
+  uint32_t Sampled(uint32_t k) const { return sampled_of_[k]; }
+  // Whether `node` is a leaf (Emitter(k) for Locate's k) rather than a tiled rectangle.
+  bool IsLeaf(uint32_t node) const { return nodes_[node].emitter >= 0; }
+  // The polygon a light sample of sampled node `node` takes its point on: a leaf's emitter, or
+  // a tiled node's rectangle (its power the node's summed power; opacity 1).
+  const EmitterShape& Shape(uint32_t node) const;
+  // The emitter a sample on Shape(node) at point p lights the receiver with: a leaf's own;
+  // under a tiled node, the one whose polygon holds p (to within 1e-9 of the node's size),
+  // nothing when p is in none.
+  std::optional<uint32_t> Locate(uint32_t node, const Vec3& p) const;
   // The distance from x to the bounding box of the nearest emitter that can light (x, n)
-  // (one with a non-zero unoccluded contribution); infinity when none can. Walks only the
+  // (one that may, by CanLight); infinity when none can. Walks only the
   // nodes nearer than the best so far.
   double NearestDistance(const Vec3& x, const Vec3& n) const;
 
@@ -92,19 +116,43 @@ class LightTree {
     bool planar = false;
     std::array<Vec3, 4> bounds_rectangle;
     double bounds_area = 0;
+    int64_t tiled = -1;  // when the emitters' areas add up to bounds_area: its Shape in tiles_
     uint32_t left = 0, right = 0;  // children (inner node)
+    int axis_split = 0;            // the axis their emitters' centres were split along
     int64_t emitter = -1;          // leaf: index into emitters_
     uint32_t parent = 0;
   };
   uint32_t Build(std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t parent);
   void BoundPlanar(const std::vector<uint32_t>& order, size_t begin, size_t end, Node& node) const;
+  // Makes `node` tiled when planar and its emitters' `area` fills its bounding rectangle.
+  void MarkTiled(double area, Node& node);
+  // Locate below `node` through every child whose box (widened by `tolerance`) holds p; a
+  // polygon holds p within `slack` / |side| of each side.
+  std::optional<uint32_t> LocateBelow(uint32_t node, const Vec3& p, double tolerance,
+                                      double slack) const;
+  // Whether the walk stops at `node`: a leaf or a tiled node.
+  bool IsSampled(const Node& node) const { return node.emitter >= 0 || node.tiled >= 0; }
   double Importance(const Node& node, const Vec3& x, const Vec3& n) const;
   // Whether x lies in the near field of inner node `index` (see kNearField).
   bool Opens(uint32_t index, const Vec3& x) const;
+  // Whether an emitter under `node` may light x (normal n): x in front of the emitters' plane
+  // (a leaf's, a planar node's) and some corner of the node's box in front of x's tangent
+  // plane. Conservative, and without a form factor.
+  bool CanLight(const Node& node, const Vec3& x, const Vec3& n) const;
 
   std::vector<EmitterShape> emitters_;
-  std::vector<Node> nodes_;        // nodes_[0] is the root
-  std::vector<uint32_t> leaf_of_;  // emitter -> its leaf node
+  std::vector<EmitterShape> tiles_;   // the tiled nodes' rectangles
+  std::vector<Node> nodes_;           // nodes_[0] is the root
+  // A node's children split at `at` along `axis` (left: p[axis] <= at), packed for Locate.
+  struct Split {
+    double at = 0;
+    uint32_t left = 0, right = 0;
+    int32_t axis = 0;
+    int32_t emitter = -1;  // a leaf's
+  };
+  std::vector<Split> splits_;  // of nodes_, index for index
+  std::vector<uint32_t> leaf_of_;     // emitter -> its leaf node
+  std::vector<uint32_t> sampled_of_;  // emitter -> Sampled
 };
 
 }  // namespace radflux

@@ -74,11 +74,11 @@ class MonteCarloBuilder final : public RowBuilder {
     }
     // A group's irradiance varies across its members far more than across one patch (some
     // face a lamp, some do not): its light samples each take a point of their own, so the
-    // budget is spread over the whole group instead of 4 spots that mostly miss the lit ones.
+    // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const bool group = !context_.SinglePatch(i);
-    const int per_point = group ? 1 : kLightSamplesPerPoint;
+    const int per_point = group ? 1 : kLightSamplesAtAPoint;
     const uint64_t light_rays = lights_.AddEmitterColumns(
-        i, options_.samples * (kLightSamplesPerPoint / per_point), per_point, options_.seed, row);
+        i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row);
     // The two parts are independent estimates: where emitters fill much of the hemisphere
     // their noise can add up to more than 1. Only a row that would then return more light
     // than kMaxRowGain is scaled back (rho F B must converge for every rho < 1): scaling

@@ -83,8 +83,11 @@ TEST(OutputSeamsCornell, NoJumpAcrossTheRedWallsFaceEdgeBeyondTheRowsNoise) {
             << Quantile(steps.within, 0.5) << ", 95% " << Quantile(steps.within, 0.95)
             << ", largest " << Quantile(steps.within, 1.0) << "\n";
   // Before welding (each face shaded alone) the edge's median kink was 60 times the
-  // faces' and its 95th percentile 15 times theirs (512x512, the classic camera).
-  EXPECT_LE(Quantile(steps.across, 0.95), Quantile(steps.within, 0.95));
+  // faces' and its 95th percentile 15 times theirs (512x512, the classic camera). The edge
+  // has a few hundred kinks against the faces' thousands, so its 95th percentile spreads
+  // more from seed to seed: 0.0015-0.0024 against the faces' 0.0019-0.0021 over seeds 1-6
+  // (after the light samples' noise went down); hence 1.25 times theirs.
+  EXPECT_LE(Quantile(steps.across, 0.95), 1.25 * Quantile(steps.within, 0.95));
   EXPECT_LE(Quantile(steps.across, 1.0), Quantile(steps.within, 1.0));
 }
 
