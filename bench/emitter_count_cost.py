@@ -20,12 +20,14 @@ import subprocess
 MTL = "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n"
 
 
-def grid(material, origin, ex, ey, g, out, triangles=False):
-    """g x g faces on origin + a ex + b ey, front side ex x ey; appends OBJ lines to out."""
+def grid(material, origin, ex, ey, g, out, triangles=False, fill=1.0):
+    """g x g faces on origin + a ex + b ey, front side ex x ey, each `fill` of its cell's side
+    (about the cell's centre); appends OBJ lines to out."""
     for a in range(g):
         for b in range(g):
-            p = [origin[k] + ex[k] * a / g + ey[k] * b / g for k in range(3)]
-            q = [[p[k] + ex[k] * da / g + ey[k] * db / g for k in range(3)]
+            p = [origin[k] + ex[k] * (a + (1 - fill) / 2) / g + ey[k] * (b + (1 - fill) / 2) / g
+                 for k in range(3)]
+            q = [[p[k] + ex[k] * da * fill / g + ey[k] * db * fill / g for k in range(3)]
                  for da, db in ((0, 0), (1, 0), (1, 1), (0, 1))]
             first = out["next"]
             out["lines"].append(f"usemtl {material}")
@@ -40,7 +42,8 @@ def grid(material, origin, ex, ey, g, out, triangles=False):
 
 def room(path, ceiling, n):
     """The room with ceiling 'lamp' (one small lamp patch under a white ceiling), 'face' (one
-    emitting face), 'quads' (N x N emitting faces) or 'triangles' (2 N^2)."""
+    emitting face), 'quads' (N x N emitting faces), 'triangles' (2 N^2) or 'panels' (N x N
+    faces at 80% of their cells' side under a white ceiling: they tile nothing)."""
     out = {"lines": [f"mtllib {os.path.basename(path)[:-4]}.mtl"], "next": 1}
     w, h, d, g = 4.0, 3.0, 4.0, 48
     grid("white", (0, 0, 0), (0, 0, d), (w, 0, 0), g, out)        # floor, facing +y
@@ -51,6 +54,9 @@ def room(path, ceiling, n):
     if ceiling == "lamp":
         grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)    # white ceiling, facing -y
         grid("lamp", (1.8, h - 0.01, 1.8), (0.4, 0, 0), (0, 0, 0.4), 1, out)
+    elif ceiling == "panels":
+        grid("white", (0, h, 0), (w, 0, 0), (0, 0, d), g, out)
+        grid("lamp", (0, h - 0.01, 0), (w, 0, 0), (0, 0, d), n, out, fill=0.8)
     else:
         faces = 1 if ceiling == "face" else n
         grid("lamp", (0, h, 0), (w, 0, 0), (0, 0, d), faces, out, ceiling == "triangles")
@@ -71,7 +77,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     print(f"{'case':28s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} {'rows s':>8s} "
           f"{'us/row':>7s}")
-    for ceiling in ("lamp", "face", "quads", "triangles"):
+    for ceiling in ("lamp", "face", "quads", "triangles", "panels"):
         scene = os.path.join(a.out, f"room_{ceiling}.obj")
         room(scene, ceiling, a.n)
         report = os.path.join(a.out, f"room_{ceiling}.json")
@@ -82,8 +88,9 @@ def main():
                             "--report", report], check=True)
             r = json.load(open(report))
             seconds.append(r["seconds"]["rows"])
-        emitters = {"lamp": 1, "face": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n}[ceiling]
-        rows = (6 if ceiling == "lamp" else 5) * 48 * 48  # the white faces: one row each
+        emitters = {"lamp": 1, "face": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n,
+                    "panels": a.n * a.n}[ceiling]
+        rows = (6 if ceiling in ("lamp", "panels") else 5) * 48 * 48  # white faces: a row each
         rays = r["rays"]
         median = statistics.median(seconds)
         print(f"{ceiling + ' ceiling':28s} {emitters:8d} {rows:6d} {rays / rows:9.2f} "

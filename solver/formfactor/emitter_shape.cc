@@ -22,6 +22,18 @@ bool IsRectangle(const std::array<Vec3, 4>& c) {
 
 }  // namespace
 
+void SetEmitterBounds(EmitterShape& shape) {
+  shape.centre = {};
+  for (uint32_t k = 0; k < shape.corners; ++k) shape.centre += shape.corner[k];
+  shape.centre = shape.centre / shape.corners;
+  double radius2 = 0;
+  for (uint32_t k = 0; k < shape.corners; ++k) {
+    const Vec3 d = shape.corner[k] - shape.centre;
+    radius2 = std::max(radius2, Dot(d, d));
+  }
+  shape.radius = std::sqrt(radius2);
+}
+
 EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance) {
   const Patch& patch = mesh.patches[p];
   EmitterShape shape;
@@ -33,6 +45,7 @@ EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance
   shape.opacity = patch.opacity;
   shape.power = exitance * patch.area * patch.opacity;
   shape.rectangle = shape.corners == 4 && IsRectangle(shape.corner);
+  SetEmitterBounds(shape);
   return shape;
 }
 
@@ -81,19 +94,11 @@ double Warp(const std::array<double, 4>& w, Point2& u) {
 }  // namespace
 
 EmitterReach ReachOf(const EmitterShape& shape, const Vec3& x) {
-  Vec3 centre;
-  for (uint32_t k = 0; k < shape.corners; ++k) centre += shape.corner[k];
-  centre = centre / shape.corners;
-  double radius2 = 0;
-  for (uint32_t k = 0; k < shape.corners; ++k) {
-    const Vec3 d = shape.corner[k] - centre;
-    radius2 = std::max(radius2, Dot(d, d));
-  }
-  const Vec3 d = centre - x;
+  const Vec3 d = shape.centre - x;
   const double distance2 = Dot(d, d);
-  if (!(distance2 >= kFarRadii * kFarRadii * radius2)) return {};
+  if (!(distance2 >= kFarRadii * kFarRadii * shape.radius * shape.radius)) return {};
   const double height = std::abs(Dot(x - shape.corner[0], shape.normal));
-  const double nearest = std::max(height, std::sqrt(distance2) - std::sqrt(radius2));
+  const double nearest = std::max(height, std::sqrt(distance2) - shape.radius);
   return {true, shape.area * height / (std::numbers::pi * nearest * nearest * nearest)};
 }
 

@@ -22,7 +22,12 @@ struct EmitterShape {
   double opacity = 1;          // Patch::opacity: a ray meets it (and its light) with this
   double power = 0;            // E A opacity summed over bands, W (importance only)
   bool rectangle = false;      // a quad with parallel, orthogonal sides
+  Vec3 centre;                 // the corners' mean
+  double radius = 0;           // the corners' greatest distance from it
 };
+
+// Sets shape.centre and shape.radius from its corners.
+void SetEmitterBounds(EmitterShape& shape);
 
 // The shape of patch p of `mesh` emitting `exitance` (W/m^2, summed over bands).
 EmitterShape MakeEmitterShape(const PatchMesh& mesh, uint32_t p, double exitance);

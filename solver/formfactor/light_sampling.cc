@@ -172,6 +172,7 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
   const uint32_t rejection_pattern = PatternSeed(seed, index, kRejectionStream);
   const Frame frame = Frame::FromNormal(n);
   const LightTree::Cut cut = tree_.CutAt(x, n);
+  const bool one_choice = tree_.OneChoice(cut);  // no u to draw
   // The point's solid-angle samplers, set up once per sampled node (an emitter or a tiled
   // rectangle) its samples choose: per-thread scratch (kilobytes that a fresh array would
   // clear at every point), the first sampler_count of them the point's.
@@ -189,8 +190,8 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
   for (uint32_t k = 0; k < per_point; ++k) {
     // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
     const uint32_t s = first + k;
-    const uint32_t stratum = PermuteIndex(k, per_point, choice_pattern + s);
-    const double u = (stratum + RandomFloat(s, choice_pattern)) / per_point;
+    const uint32_t stratum = one_choice ? 0 : PermuteIndex(k, per_point, choice_pattern + s);
+    const double u = one_choice ? 0.5 : (stratum + RandomFloat(s, choice_pattern)) / per_point;
     const auto choice = tree_.Choose(cut, x, n, std::min(u, 0x1.fffffffffffffp-1));
     if (!choice) continue;
     const EmitterShape& shape = tree_.Shape(choice->node);

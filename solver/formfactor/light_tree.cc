@@ -89,9 +89,17 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
     const Vec3 extent = hi - lo;
     const int axis =
         extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    // An emitter's place along the axis: the middle of its extent there, the same for the two
+    // triangles of a quad, which then stay together (their boxes are one: split apart, the
+    // halves' boxes would overlap by a cell and Locate search both).
     auto centre = [&](uint32_t k) {
       const EmitterShape& e = emitters_[k];
-      return ((e.corner[0] + e.corner[2]) * 0.5)[axis];
+      double lo_k = e.corner[0][axis], hi_k = lo_k;
+      for (uint32_t c = 1; c < e.corners; ++c) {
+        lo_k = std::min(lo_k, e.corner[c][axis]);
+        hi_k = std::max(hi_k, e.corner[c][axis]);
+      }
+      return 0.5 * (lo_k + hi_k);
     };
     std::sort(order.begin() + begin, order.begin() + end, [&](uint32_t a, uint32_t b) {
       return std::make_pair(centre(a), a) < std::make_pair(centre(b), b);
@@ -162,6 +170,7 @@ void LightTree::MarkTiled(double area, Node& node) {
   shape.area = node.bounds_area;
   shape.power = node.power;
   shape.rectangle = true;
+  SetEmitterBounds(shape);
   node.tiled = static_cast<int64_t>(tiles_.size());
   tiles_.push_back(shape);
 }
@@ -197,23 +206,27 @@ std::optional<uint32_t> LightTree::Locate(uint32_t node, const Vec3& p) const {
   const double tolerance = 1e-9 * nodes_[node].radius;
   const double slack = tolerance * 2 * nodes_[node].radius;
   // Straight down by the split planes: where siblings do not overlap (a grid's halves) this
-  // is the only path; else the leaf's sibling, then every path whose boxes hold p.
-  uint32_t at = node, parent = node;
+  // is the only path. Else (a quad's two triangles split apart) back up it, through each
+  // sibling whose box holds p, nearest first; the whole node last, if the path overflows.
+  std::array<uint32_t, 64> path;
+  size_t depth = 0;
+  uint32_t at = node;
   while (splits_[at].emitter < 0) {
     const Split& inner = splits_[at];
-    parent = at;
+    if (depth < path.size()) path[depth++] = at;
     at = p[inner.axis] <= inner.at ? inner.left : inner.right;
   }
   if (PolygonHolds(emitters_[splits_[at].emitter], p, slack)) {
     return static_cast<uint32_t>(splits_[at].emitter);
   }
-  const Split& up = splits_[parent];
-  const uint32_t sibling = up.left == at ? up.right : up.left;
-  if (splits_[sibling].emitter >= 0 &&
-      PolygonHolds(emitters_[splits_[sibling].emitter], p, slack)) {
-    return static_cast<uint32_t>(splits_[sibling].emitter);
+  for (size_t level = depth; level-- > 0;) {
+    const Split& up = splits_[path[level]];
+    const uint32_t taken = level + 1 < depth ? path[level + 1] : at;
+    const uint32_t sibling = up.left == taken ? up.right : up.left;
+    if (!BoxHolds(nodes_[sibling].lo, nodes_[sibling].hi, p, tolerance)) continue;
+    if (const auto found = LocateBelow(sibling, p, tolerance, slack)) return found;
   }
-  return LocateBelow(node, p, tolerance, slack);
+  return depth < path.size() ? std::nullopt : LocateBelow(node, p, tolerance, slack);
 }
 
 // Depth first down every child whose box holds p.
@@ -275,6 +288,20 @@ bool LightTree::Opens(uint32_t index, const Vec3& x) const {
   if (size() <= kExactEmitters) return true;
   const Vec3 d = node.centre - x;
   return Dot(d, d) < kNearField * kNearField * node.radius * node.radius;
+}
+
+bool LightTree::CanLight(const Node& node, const Vec3& x, const Vec3& n) const {
+  if (node.planar && !(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return false;
+  if (node.emitter >= 0) {
+    const EmitterShape& e = emitters_[node.emitter];
+    if (!(Dot(x - e.corner[0], e.normal) > 0)) return false;
+  }
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
+                      k & 4 ? node.hi.z : node.lo.z};
+    if (Dot(corner - x, n) > 0) return true;
+  }
+  return false;
 }
 
 LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
@@ -379,7 +406,7 @@ double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
     const double distance = BoxDistance(x, node.lo, node.hi);
-    if (distance >= best || !(Importance(node, x, n) > 0)) continue;
+    if (distance >= best || !CanLight(node, x, n)) continue;
     if (IsSampled(node)) {
       best = distance;
     } else {

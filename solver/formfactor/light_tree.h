@@ -78,6 +78,11 @@ class LightTree {
   // normal n by u in [0, 1), from the cut at (x, n) (CutAt): a cut node in proportion to
   // importance, then the walk below it; nothing when no emitter can light x.
   std::optional<Choice> Choose(const Cut& cut, const Vec3& x, const Vec3& n, double u) const;
+  // Whether `cut` holds a single sampled node (one emitter, one tiled plane): Choose then
+  // picks it whatever u.
+  bool OneChoice(const Cut& cut) const {
+    return cut.size == 1 && IsSampled(nodes_[cut.nodes[0].node]);
+  }
   // The probability that Choose picks Sampled(k) at (x, n) from `cut` (for tests).
   double Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint32_t k) const;
 
@@ -93,7 +98,7 @@ class LightTree {
   // nothing when p is in none.
   std::optional<uint32_t> Locate(uint32_t node, const Vec3& p) const;
   // The distance from x to the bounding box of the nearest emitter that can light (x, n)
-  // (one with a non-zero unoccluded contribution); infinity when none can. Walks only the
+  // (one that may, by CanLight); infinity when none can. Walks only the
   // nodes nearer than the best so far.
   double NearestDistance(const Vec3& x, const Vec3& n) const;
 
@@ -130,6 +135,10 @@ class LightTree {
   double Importance(const Node& node, const Vec3& x, const Vec3& n) const;
   // Whether x lies in the near field of inner node `index` (see kNearField).
   bool Opens(uint32_t index, const Vec3& x) const;
+  // Whether an emitter under `node` may light x (normal n): x in front of the emitters' plane
+  // (a leaf's, a planar node's) and some corner of the node's box in front of x's tangent
+  // plane. Conservative, and without a form factor.
+  bool CanLight(const Node& node, const Vec3& x, const Vec3& n) const;
 
   std::vector<EmitterShape> emitters_;
   std::vector<EmitterShape> tiles_;   // the tiled nodes' rectangles
