@@ -2,7 +2,8 @@
 """Closed-form checks of bench/object_reference (issue 21): a closed unit cube, rho = 0.5
 everywhere, seen from inside.
 
-Usage: bench/object_reference_check.py [--build build/ci]
+Usage: bench/object_reference_check.py [--binary build/ci/bench/object_reference]
+(ctest object_reference_closed_box runs it)
 
 1. Every wall emits E = pi: every wall's B is E / (1 - rho) = 2 pi.
 2. Only the floor emits E = pi: the walls differ, but in a closed box all light that leaves a
@@ -43,9 +44,9 @@ def box(directory, lit):
     return path
 
 
-def run(build, path):
+def run(binary, path):
     """Object -> (B, standard error) from object_reference at 65,536 paths an object."""
-    out = subprocess.run([os.path.join(build, "bench", "object_reference"), path, "65536", "1",
+    out = subprocess.run([binary, path, "65536", "1",
                           "0.0005"], check=True, capture_output=True, text=True).stdout
     return {r["object"]: ((float(r["r"]) + float(r["g"]) + float(r["b"])) / 3, float(r["stderr"]))
             for r in csv.DictReader(io.StringIO(out))}
@@ -59,13 +60,14 @@ def check(what, got, want, se, failures):
 
 
 def main():
-    build = sys.argv[sys.argv.index("--build") + 1] if "--build" in sys.argv else os.path.join(ROOT, "build", "ci")
+    binary = (sys.argv[sys.argv.index("--binary") + 1] if "--binary" in sys.argv
+              else os.path.join(ROOT, "build", "ci", "bench", "object_reference"))
     failures = []
     with tempfile.TemporaryDirectory() as directory:
-        every = run(build, box(directory, set(WALLS)))
+        every = run(binary, box(directory, set(WALLS)))
         for name, (b, se) in every.items():
             check(f"all walls emit, {name}", b, 2 * math.pi, se, failures)
-        floor = run(build, box(directory, {"floor"}))
+        floor = run(binary, box(directory, {"floor"}))
         total = sum(b for b, _ in floor.values())
         check("floor emits, sum of A B", total, 2 * math.pi,
               math.sqrt(sum(se * se for _, se in floor.values())), failures)

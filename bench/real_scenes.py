@@ -6,8 +6,8 @@ Usage: bench/real_scenes.py [--build build/ci] [--cache /tmp/radflux-real] [--pa
                             [-- extra radflux solve flags]
 
 For each scene: the reference is bench/object_reference (path tracing, no radiosity machinery;
-at most N paths an object, default 1,048,576, fewer once its standard error is R of its mean,
-default 0.001) with seeds 1 and 2, cached in CACHE as SCENE_ref_v2_seedS_N.csv (computed only
+at most N paths an object, default PATHS per scene, fewer once its standard error is R of its
+mean, default 0.001) with seeds 1 and 2, cached in CACHE as SCENE_ref_v2_seedS_N.csv (computed only
 when missing: delete it when object_reference changes). radflux-local solve runs once with
 its defaults (plus any extra flags); the --patch-values CSV gives, per object, the
 area-weighted mean of (r+g+b)/3 over the object's full face area (the part contact meshing
@@ -34,6 +34,9 @@ import time
 SCENES = {"classroom": "salon/classroom.mgf", "corridor": "corridor.mgf",
           "office2": "office2/office2.mgf"}
 RPK_SECONDS = {"classroom": 9.8, "corridor": 0.56, "office2": 0.90}  # issue 21's rpkCpp figures
+# Most paths an object per reference seed, within ~10 min each on a loaded 2-core machine:
+# the classroom's 629 objects (most of them dim chair and table frames) get fewer.
+PATHS = {"classroom": 65536, "corridor": 1048576, "office2": 1048576}
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.join(ROOT, "..", "shared", "scenes", "renderpark")
 SHARP = 0.0025  # the reference's relative standard error below which an object is "sharp"
@@ -56,7 +59,8 @@ def reference(build, cache, name, paths, relative, seed):
 
 def references(opt, name):
     """The two seeds' references and their mean: object -> (area, B, standard error)."""
-    ref1, ref2 = (reference(opt["--build"], opt["--cache"], name, int(opt["--paths"]),
+    paths = int(opt["--paths"]) if opt["--paths"] else PATHS[name]
+    ref1, ref2 = (reference(opt["--build"], opt["--cache"], name, paths,
                             float(opt["--relative-error"]), s) for s in (1, 2))
     mean = {k: (a, (b + ref2[k][1]) / 2, (se * se + ref2[k][2] ** 2) ** 0.5 / 2)
             for k, (a, b, se) in ref1.items() if k in ref2}
@@ -127,7 +131,7 @@ def main():
     extra = args[args.index("--") + 1:] if "--" in args else []
     args = args[:args.index("--")] if "--" in args else args
     opt = {"--build": os.path.join(ROOT, "build", "ci"), "--cache": "/tmp/radflux-real",
-           "--paths": "1048576", "--relative-error": "0.001", "--scenes": ",".join(SCENES)}
+           "--paths": "", "--relative-error": "0.001", "--scenes": ",".join(SCENES)}
     for i in range(0, len(args), 2):
         opt[args[i]] = args[i + 1]
     os.makedirs(opt["--cache"], exist_ok=True)

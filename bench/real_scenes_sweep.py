@@ -56,7 +56,7 @@ set output '{png_path}'
 set datafile separator ','
 set logscale xy
 set xlabel 'CPU seconds of radflux solve (user + sys)'
-set ylabel 'median |error| of per-object mean B, %, objects the reference knows within 0.25%'
+set ylabel 'median |error| of object mean B, % (objects known within 0.25%)'
 set title '{name}: radflux settings against the per-object path-traced reference'
 set grid
 set arrow from {rs.RPK_SECONDS[name]}, graph 0 to {rs.RPK_SECONDS[name]}, graph 1 nohead dt 2
@@ -71,7 +71,7 @@ plot '< grep -v timeout {csv_path}' every ::1 using 5:15:2 with labels left offs
 def main():
     args = sys.argv[1:]
     opt = {"--build": os.path.join(rs.ROOT, "build", "ci"), "--cache": "/tmp/radflux-real",
-           "--paths": "1048576", "--relative-error": "0.001", "--scenes": ",".join(rs.SCENES),
+           "--paths": "", "--relative-error": "0.001", "--scenes": ",".join(rs.SCENES),
            "--out": os.path.join(rs.ROOT, "bench", "results", "real"), "--timeout": "600"}
     for i in range(0, len(args), 2):
         opt[args[i]] = args[i + 1]

@@ -20,9 +20,9 @@ inline constexpr int kLeastRowRays = 16;
 double MeanRowArea(std::span<const double> area, std::span<const uint8_t> has_row);
 
 // The rays of a row of `area` (scene units^2, the opaque area of PatchAttributes): k * area /
-// mean_area rounded, within [max(1, k / 4, min(k, kLeastRowRays)), 4 k]; k when mean_area is
-// not positive. The clamp keeps a sliver's row from a handful of rays and a huge face's from
-// most of the budget.
+// mean_area rounded, within [max(1, k / 4, min(k, kLeastRowRays)), 4 k]; k (at least 1) when
+// mean_area is not a finite number > 0 or area / mean_area not one >= 0. The clamp keeps a
+// sliver's row from a handful of rays and a huge face's from most of the budget.
 uint32_t RowRayCount(int k, double area, double mean_area);
 
 }  // namespace radflux

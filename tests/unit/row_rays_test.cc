@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace radflux {
@@ -29,6 +31,18 @@ TEST(RowRays, InProportionToAreaWithinTheClamp) {
   EXPECT_EQ(RowRayCount(8, 0.01, 1.0), 8u);  // never more than k at the low end
   EXPECT_EQ(RowRayCount(1, 0.01, 1.0), 1u);
   EXPECT_EQ(RowRayCount(64, 1.0, 0.0), 64u);  // no rows with area: k
+}
+
+// A share that is not a finite number >= 0 (an infinite or NaN area) gets the budget, never
+// an undefined conversion of NaN to an integer (0 rays: a row of nothing but its emitters).
+TEST(RowRays, ANonFiniteShareGetsTheBudget) {
+  const double nan = std::nan("");
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(RowRayCount(64, nan, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(64, inf, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(64, 1.0, inf), 64u);
+  EXPECT_EQ(RowRayCount(64, -1.0, 1.0), 64u);
+  EXPECT_EQ(RowRayCount(0, 1.0, 1.0), 1u);  // a zero budget: one ray, not an inverted clamp
 }
 
 // Unclamped, the rays add up to k per row, and every unit of area gets the same rays.
