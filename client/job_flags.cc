@@ -16,7 +16,8 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
   app.add_option("--hemicube-res", f.hemicube_res, "hemicube: top-face resolution r (default 32)");
   app.add_option(
       "--samples", f.samples,
-      "analytic: points per patch s; monte_carlo: points for emitter columns (default 4)");
+      "analytic: points per patch s; monte_carlo: 16 s light samples per row for emitter "
+      "columns, at 4 s points (default 4)");
   app.add_option("--cutoff", f.cutoff, "drop form factors below this (default 1e-6)");
   app.add_option("--solver", f.solver, "linear solver")
       ->check(CLI::IsMember(
