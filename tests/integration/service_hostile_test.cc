@@ -126,21 +126,33 @@ TEST_F(HostileTest, AMalformedSubmitJobIsAnInvalidArgument) {
 // RESOURCE_EXHAUSTED naming the flag; once the open one ends its slot is free again.
 TEST_F(HostileTest, UploadsBeyondTheConcurrentLimitAreRefusedNamingTheLimit) {
   StartServer({"--max-concurrent-uploads", "1"});
-  v1::SceneRef open_ref;
-  auto open_context = Context();
-  auto open = stub_->UploadScene(open_context.get(), &open_ref);
   v1::SceneChunk chunk;
-  chunk.mutable_header()->set_name("cornell_box.obj");
-  chunk.mutable_header()->set_obj_size(kObj.size());
-  chunk.mutable_header()->set_mtl_size(kMtl.size());
-  chunk.set_data(kObj);
-  ASSERT_TRUE(open->Write(chunk));
-  // Until the server has seen the open upload a second one may still pass; then it may not.
+  v1::SceneRef open_ref;
+  std::unique_ptr<grpc::ClientContext> open_context;
+  std::unique_ptr<grpc::ClientWriter<v1::SceneChunk>> open;
   grpc::Status refused;
-  for (int attempt = 0; attempt < 500 && refused.ok(); ++attempt) {
-    v1::SceneRef ref;
-    refused = Upload(kObj, kMtl, &ref);
-    if (refused.ok()) usleep(10'000);
+  // Until the server has seen the open upload a second one may still pass; then it may not.
+  // A second one that reaches the server first takes the slot and the open one is refused
+  // instead: then none is ever refused, and the round starts again with a new open one.
+  for (int round = 0; round < 10 && refused.ok(); ++round) {
+    if (open != nullptr) {  // the last round's, refused: ended before its context goes
+      open->WritesDone();
+      open->Finish();
+      open.reset();
+    }
+    open_context = Context();
+    open = stub_->UploadScene(open_context.get(), &open_ref);
+    chunk.Clear();
+    chunk.mutable_header()->set_name("cornell_box.obj");
+    chunk.mutable_header()->set_obj_size(kObj.size());
+    chunk.mutable_header()->set_mtl_size(kMtl.size());
+    chunk.set_data(kObj);
+    ASSERT_TRUE(open->Write(chunk));
+    for (int attempt = 0; attempt < 200 && refused.ok(); ++attempt) {
+      v1::SceneRef ref;
+      refused = Upload(kObj, kMtl, &ref);
+      if (refused.ok()) usleep(10'000);
+    }
   }
   EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << refused.error_message();
   EXPECT_EQ(refused.error_message(),
