@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
-#include "absl/container/inlined_vector.h"
 #include "solver/formfactor/polygon_form_factor.h"
 
 namespace radflux {
@@ -400,7 +400,10 @@ double LightTree::Probability(const Cut& cut, const Vec3& x, const Vec3& n, uint
 
 double LightTree::NearestDistance(const Vec3& x, const Vec3& n) const {
   double best = INFINITY;
-  absl::InlinedVector<uint32_t, 64> stack;  // off the heap: this runs once per row
+  // Per-thread scratch, reused row to row: no allocation once warm (absl::InlinedVector here
+  // trips GCC 12's -Wmaybe-uninitialized under the sanitizers).
+  thread_local std::vector<uint32_t> stack;
+  stack.clear();
   if (!nodes_.empty()) stack.push_back(0);
   while (!stack.empty()) {
     const Node& node = nodes_[stack.back()];
