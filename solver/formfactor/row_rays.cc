@@ -16,24 +16,13 @@ double MeanRowArea(std::span<const double> area, std::span<const uint8_t> has_ro
   return rows > 0 ? sum / static_cast<double>(rows) : 0;
 }
 
-namespace {
-
-// budget * area / mean_area rounded, within [least, max(least, 4 budget)]; budget (at least
-// 1) when mean_area is not a finite number > 0 or the share not a finite number >= 0.
-uint32_t InProportion(int budget, double area, double mean_area, int least) {
+uint32_t RowRayCount(int k, double area, double mean_area) {
   const double share = area / mean_area;
   if (!(mean_area > 0 && std::isfinite(mean_area)) || !(share >= 0 && std::isfinite(share))) {
-    return static_cast<uint32_t>(std::max(budget, 1));
+    return static_cast<uint32_t>(std::max(k, 1));
   }
-  const double lo = least, hi = std::max(lo, 4.0 * budget);
-  return static_cast<uint32_t>(std::clamp(std::round(budget * share), lo, hi));
+  const double least = std::max({1, k / 4, std::min(k, kLeastRowRays)});
+  return static_cast<uint32_t>(std::clamp(std::round(k * share), least, std::max(least, 4.0 * k)));
 }
-
-}  // namespace
-
-uint32_t RowRayCount(int k, double area, double mean_area) {
-  return InProportion(k, area, mean_area, std::max({1, k / 4, std::min(k, kLeastRowRays)}));
-}
-
 
 }  // namespace radflux

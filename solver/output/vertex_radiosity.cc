@@ -41,8 +41,7 @@ struct JunctionPatches {
 void GrowRing(const PatchMesh& mesh, const ShadingMesh& s, const JunctionPatches& junctions,
               std::vector<uint32_t>& out) {
   // The ring's distinct corners first: a fan's hub is a corner of every patch around it, and
-  // its patches added once per such patch made a fan of n patches cost n^2 (the conference
-  // room's picture spent most of its 2 s here).
+  // adding its patches once per such patch would cost n^2 for a fan of n patches.
   thread_local std::vector<uint32_t> corners;
   corners.clear();
   for (uint32_t p : out) {
