@@ -182,7 +182,8 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
   if (clusters.empty()) return absl::OkStatus();
   absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
       result.System(), result.solve.radiosity,
-      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)});
+      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)},
+      result.row_stats.scaled_off);
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
   result.unknown_radiosity = result.solve.radiosity;

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "absl/strings/str_format.h"
-
 #include "solver/core/parallel.h"
 
 namespace radflux {
@@ -76,22 +75,27 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   if (!balance.ok()) return {{"error", std::string(balance.status().message())}};
   const EnergyBalance& e = *balance;
   Rgb imbalance{};
-  for (int b = 0; b < kBands; ++b) imbalance[b] = e.emitted[b] - e.absorbed[b] - e.escaped[b];
-  nlohmann::json out = {{"emitted", BandsJson(e.emitted)},
-                        {"absorbed", BandsJson(e.absorbed)},
-                        {"escaped", BandsJson(e.escaped)},
-                        {"imbalance", BandsJson(imbalance)},
-                        {"noise", BandsJson(e.noise)},
-                        {"relative_imbalance", e.RelativeImbalance()},
-                        {"tolerance", e.Tolerance()},
-                        {"tolerance_rule",
-                         absl::StrFormat(
-                             "min(%g, max(%g, %g noise / emitted)); noise: the standard "
-                             "deviation of the imbalance the rows' Monte Carlo noise gives "
-                             "(multinomial rows of k rays; light samples measured against the "
-                             "emitters' own rows)",
-                             kEnergyBalanceCeiling, kEnergyBalanceFloor, kEnergyBalanceSigmas)},
-                        {"ok", e.Ok()}};
+  for (int b = 0; b < kBands; ++b) {
+    imbalance[b] = e.emitted[b] - e.absorbed[b] - e.escaped[b] - e.scaled_off[b];
+  }
+  nlohmann::json out = {
+      {"emitted", BandsJson(e.emitted)},
+      {"absorbed", BandsJson(e.absorbed)},
+      {"escaped", BandsJson(e.escaped)},
+      {"scaled_off", BandsJson(e.scaled_off)},
+      {"relative_scaled_off", e.RelativeScaledOff()},
+      {"imbalance", BandsJson(imbalance)},
+      {"noise", BandsJson(e.noise)},
+      {"relative_imbalance", e.RelativeImbalance()},
+      {"tolerance", e.Tolerance()},
+      {"tolerance_rule",
+       absl::StrFormat("min(%g, max(%g, %g noise / emitted)); noise: the standard "
+                       "deviation of the imbalance the rows' Monte Carlo noise gives "
+                       "(multinomial rows of k rays; light samples measured against the "
+                       "emitters' own rows); ok when both |imbalance| and scaled_off "
+                       "(the row-sum cap's removed power) are within it",
+                       kEnergyBalanceCeiling, kEnergyBalanceFloor, kEnergyBalanceSigmas)},
+      {"ok", e.Ok()}};
   if (!e.Ok()) out["why"] = e.Why();
   return out;
 }
@@ -179,10 +183,10 @@ nlohmann::json ImportJson(const ImportLog& log) {
 const absl::StatusOr<EnergyBalance>& SettleEnergyBalance(JobResult& result,
                                                          const JobOptions& options) {
   if (!result.solved_balance) {
-    result.solved_balance =
-        StreamEnergyBalance(result.System(), result.solve.radiosity,
-                            {SampledRays(options.form_factors),
-                             LightSamplesPerRow(options.form_factors)});
+    result.solved_balance = StreamEnergyBalance(
+        result.System(), result.solve.radiosity,
+        {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)},
+        result.row_stats.scaled_off);
   }
   return *result.solved_balance;
 }

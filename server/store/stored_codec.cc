@@ -6,11 +6,11 @@
 namespace radflux {
 namespace {
 
-constexpr uint32_t kRowBlockTag = 0x52424c31;       // "RBL1"
-constexpr uint32_t kRowBlockGroupTag = 0x52424731;  // "RBG1": count, then sized blocks
+constexpr uint32_t kRowBlockTag = 0x52424c31;         // "RBL1"
+constexpr uint32_t kRowBlockGroupTag = 0x52424731;    // "RBG1": count, then sized blocks
 constexpr uint32_t kViewFactorBlockTag = 0x56464231;  // "VFB1": first row, rows, values
-constexpr uint32_t kCheckpointTag = 0x43504b31;     // "CPK1": iteration, B
-constexpr uint32_t kCheckpointTag2 = 0x43504b32;    // "CPK2": iteration, B, method, unshot
+constexpr uint32_t kCheckpointTag = 0x43504b31;       // "CPK1": iteration, B
+constexpr uint32_t kCheckpointTag2 = 0x43504b32;      // "CPK2": iteration, B, method, unshot
 
 // Appends trivially copyable values (the platforms radflux runs on are little-endian).
 class Writer {
@@ -84,6 +84,15 @@ std::string EncodeRowBlock(const StoredRowBlock& stored) {
   w.Put(stored.stats.rays);
   w.Put(stored.stats.dropped_sum);
   w.Put(stored.stats.max_row_dropped);
+  // The rows the cap scaled back, as two vectors (absent in blocks stored before them).
+  std::vector<uint32_t> scaled_rows;
+  std::vector<double> scaled_sums;
+  for (const ScaledRow& s : stored.stats.scaled_off) {
+    scaled_rows.push_back(s.row);
+    scaled_sums.push_back(s.removed);
+  }
+  w.PutVector(scaled_rows);
+  w.PutVector(scaled_sums);
   return w.Take();
 }
 
@@ -104,6 +113,23 @@ absl::StatusOr<StoredRowBlock> DecodeViewFactorBlock(Reader& r) {
 
 }  // namespace
 
+namespace {
+
+// The scaled rows at the end of a row block, if any (blocks stored before them end here):
+// true when the reader is then at its end.
+bool DecodeScaledRows(Reader& r, RowBlockStats& stats) {
+  if (r.AtEnd()) return true;
+  std::vector<uint32_t> rows;
+  std::vector<double> sums;
+  if (!r.GetVector(rows) || !r.GetVector(sums) || rows.size() != sums.size() || !r.AtEnd()) {
+    return false;
+  }
+  for (size_t k = 0; k < rows.size(); ++k) stats.scaled_off.push_back({rows[k], sums[k]});
+  return true;
+}
+
+}  // namespace
+
 absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
   Reader r(bytes);
   StoredRowBlock s;
@@ -112,7 +138,7 @@ absl::StatusOr<StoredRowBlock> DecodeRowBlock(std::string_view bytes) {
   const bool ok = tag == kRowBlockTag && r.Get(s.block.first_row) &&
                   r.GetVector(s.block.row_begin) && r.GetVector(s.block.col) &&
                   r.GetVector(s.block.value) && r.Get(s.stats.rays) && r.Get(s.stats.dropped_sum) &&
-                  r.Get(s.stats.max_row_dropped) && r.AtEnd();
+                  r.Get(s.stats.max_row_dropped) && DecodeScaledRows(r, s.stats);
   if (!ok || s.block.row_begin.empty() || s.block.col.size() != s.block.value.size() ||
       s.block.row_begin.back() != s.block.col.size()) {
     return absl::DataLossError("not a row block");

@@ -23,13 +23,13 @@ constexpr uint64_t kCellSeed = 0xce11d1ec7ull;
 
 // From this unoccluded form factor on, a light sample's direction is drawn exactly in
 // proportion to the receiver's cosine within the emitter (cosine-weighted directions until
-// one meets it: 1 / F tries on average, at most kMaxTries): its estimate is then F V / P, free
-// of the spread of cos / pdf, which is large where an emitter fills much of the hemisphere.
-// Below it the emitter is small, the cosine varies little across it, and the warped
-// solid-angle sample is used (also when every try misses: still unbiased, as that event does
-// not depend on the fallback's direction).
+// one meets it: 1 / F tries on average), and combined with the row's cosine rays that meet
+// it (light_sampling.h): its estimate is then free of the spread of cos / pdf, which is
+// large where an emitter fills much of the hemisphere. Below it the emitter is small, the
+// cosine varies little across it, and the warped solid-angle sample is used alone. A sample
+// whose kMaxTries directions all miss (probability (1 - F)^kMaxTries < 1e-35) is lost.
 constexpr double kRejectionFormFactor = 0.02;
-constexpr int kMaxTries = 256;
+constexpr int kMaxTries = 4096;
 
 // A cosine-weighted direction around frame.n that meets the emitter, by rejection; the
 // point it meets into `point`. False when kMaxTries directions miss.
@@ -41,6 +41,13 @@ bool CosineDirectionOnEmitter(const EmitterShape& emitter, const Vec3& x, const 
     if (EmitterHit(emitter, x, w, point)) return true;
   }
   return false;
+}
+
+// F_s(x) of `shape` when it may reach kRejectionFormFactor (its exact value), else -1 when
+// its bound (ReachOf) already says it does not.
+double RejectionFormFactor(const EmitterShape& shape, const Vec3& x, const Vec3& n) {
+  if (ReachOf(shape, x).max_form_factor < kRejectionFormFactor) return -1;
+  return EmitterFormFactor(shape, x, n);
 }
 
 std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
@@ -99,16 +106,35 @@ int SetNearFieldFactor(const PatchMesh& mesh, uint32_t first, std::span<const ui
 }  // namespace
 
 LightSampler::LightSampler(const RowContext& context)
-    : context_(context), tree_(EmitterShapes(context)) {}
+    : context_(context), tree_(EmitterShapes(context)), tree_index_(context.emitter.size(), 0) {
+  uint32_t k = 0;  // EmitterShapes' order
+  for (uint32_t j = 0; j < context.emitter.size(); ++j) {
+    if (context.emitter[j]) tree_index_[j] = k++;
+  }
+}
 
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
-                                         RowAccumulator& row) const {
+                                         RowAccumulator& row, std::span<const CosineHit> hits,
+                                         uint32_t cosine_rays) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
   const std::span<const uint32_t> members =
       context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
   points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, tree_);
+  const double samples = static_cast<double>(points) * per_point;
+  for (const CosineHit& hit : hits) {
+    row.Add(hit.emitter, CosineHitValue(hit, cosine_rays, samples));
+  }
   return AddSamples(UnknownPointSampler(*context_.mesh, context_.clusters, i), i, points, per_point,
-                    seed, i, row);
+                    seed, i, row, cosine_rays / samples);
+}
+
+double LightSampler::CosineHitValue(const CosineHit& hit, double k, double n) const {
+  const uint32_t emitter = tree_index_[hit.emitter];
+  const uint32_t node = tree_.Sampled(emitter);
+  const double form_factor = RejectionFormFactor(tree_.Shape(node), hit.x, hit.n);
+  if (!(form_factor >= kRejectionFormFactor)) return 0;
+  const double probability = tree_.Probability(tree_.CutAt(hit.x, hit.n), hit.x, hit.n, emitter);
+  return form_factor / (k * form_factor + n * probability);
 }
 
 uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed,
@@ -127,7 +153,7 @@ uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t se
 
 uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
                                   int points, int per_point, uint64_t seed, uint64_t index,
-                                  RowAccumulator& row) const {
+                                  RowAccumulator& row, double cosine_share) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -151,7 +177,8 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
     }
     const SurfacePoint at = sample_point(on_patch[p]);
     SamplePoint(at.x, at.n, receiver, seed, index, first,
-                std::span<const Point2>(directions).subspan(first, per_point), rays, pending);
+                std::span<const Point2>(directions).subspan(first, per_point), rays, pending,
+                cosine_share);
   }
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
@@ -164,8 +191,8 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
 
 void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed,
                                uint64_t index, uint32_t first, std::span<const Point2> directions,
-                               std::vector<StreamRay>& rays,
-                               std::vector<PendingSample>& pending) const {
+                               std::vector<StreamRay>& rays, std::vector<PendingSample>& pending,
+                               double cosine_share) const {
   if (tree_.empty()) return;
   const uint32_t per_point = static_cast<uint32_t>(directions.size());
   const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
@@ -198,18 +225,18 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
     if (tree_.IsLeaf(choice->node) && shape.patch == receiver) continue;
     // The exact unoccluded form factor where the cut has it or the choice of the direction's
     // sampling needs it; else (-1) only its bound, below kRejectionFormFactor.
-    const EmitterReach reach = ReachOf(shape, x);
     double form_factor = choice->form_factor;
-    if (form_factor < 0 && !(reach.max_form_factor < kRejectionFormFactor)) {
-      form_factor = EmitterFormFactor(shape, x, n);
-    }
+    if (form_factor < 0) form_factor = RejectionFormFactor(shape, x, n);
     if (form_factor == 0) continue;
     Vec3 target;
     double value;  // the sample's F_j(x) estimate, if its ray is unoccluded
-    if (form_factor >= kRejectionFormFactor &&
-        CosineDirectionOnEmitter(shape, x, frame, PatternSeed(rejection_pattern, s),
-                                 target)) {
-      value = form_factor / choice->probability;
+    if (form_factor >= kRejectionFormFactor) {
+      if (!CosineDirectionOnEmitter(shape, x, frame, PatternSeed(rejection_pattern, s), target)) {
+        continue;
+      }
+      // F / P, or its balance-heuristic share beside the row's cosine rays (per light sample,
+      // times N): F / (P + (k / N) F).
+      value = form_factor / (choice->probability + cosine_share * form_factor);
     } else {
       const EmitterSample sample = sampler_of(choice->node)(directions[k]);
       if (!(sample.pdf > 0)) continue;

@@ -11,15 +11,25 @@
 //     cos(theta_x) V / (pi pdf P(s | x) budget)
 // to F_ij. Its expectation over x, s and the direction is
 //     (1 / A_i) integral_{A_i} (1 / pi) integral_{Omega_j} cos(theta_x) V dw dA = F_ij
-// for every emitter patch j (the emitters that cannot light x have P = 0 and F = 0). Where
-// F_s(x), Lambert's exact unoccluded form factor from x, is not small, the direction is
-// instead drawn exactly in proportion to cos(theta_x) within s (by rejection from the
-// cosine-weighted hemisphere) and the sample adds F_s(x) V / (P(s | x) budget), with the same
-// expectation and no spread at all where s is unoccluded (the tiles of a plane then share it
-// as the directions fall). So
-// the row stays an unbiased form-factor row, whatever the number of emitter patches, at
-// `budget` shadow rays. The rays that leave i by the cosine-weighted sampling of the rest of
-// the row must drop their emitter hits (monte_carlo does), so that nothing is counted twice.
+// for every emitter patch j (the emitters that cannot light x have P = 0 and F = 0).
+//
+// Where F_s(x), Lambert's exact unoccluded form factor from x, is at least
+// kRejectionFormFactor (an emitter near x or filling much of its hemisphere: a lamp's
+// cavity, the bars of a frame around each other), the direction is instead drawn exactly in
+// proportion to cos(theta_x) within s (by rejection from the cosine-weighted hemisphere):
+// the density of the row's own cosine rays restricted to s. There the row's k cosine rays
+// that meet an emitter are not dropped: the two are combined by multiple importance
+// sampling with the balance heuristic. With N light samples, a sample's density on
+// (x, direction) is P(s | x) cos / (pi F_s(x) A_i) and a cosine ray's cos / (pi A_i), so each
+// unoccluded light sample and each cosine ray that meets s's front adds
+//     F_s(x) / (k F_s(x) + N P(s | x))
+// to F_ij (j the patch met): the same value, whatever the direction. Below
+// kRejectionFormFactor only the light samples count (the cosine rays' weight is 0 there, on
+// both sides of the rule, which is a function of (x, s) alone). Either way the row stays an
+// unbiased form-factor row, whatever the number of emitter patches, at `budget` shadow rays;
+// and where emitters fill the hemisphere, the cosine rays' hits on them and on the rest of
+// the row are drawn together, so the row's sum is less noisy than either part (its
+// non-emitter entries and emitter entries no longer vary independently).
 #pragma once
 
 #include <cstdint>
@@ -38,13 +48,21 @@ class LightSampler {
 
   bool empty() const { return tree_.empty(); }
 
+  // A cosine ray of row i that met the front of emitter unknown `emitter`, from receiver
+  // point x (on i, before any lift off it) with unit normal n.
+  struct CosineHit {
+    Vec3 x, n;
+    uint32_t emitter = 0;
+  };
   // Adds the estimate of F_ij for the emitter patches j (j != i) to `row` from `points`
-  // stratified points on i with `per_point` light samples each, seeded from (seed, i);
+  // stratified points on i with `per_point` light samples each, seeded from (seed, i),
+  // combined with the `hits` of the row's `cosine_rays` cosine rays on emitters (above);
   // a receiver near an emitter against its size takes up to 16 times the points (about
   // (size / distance)^2). Returns the shadow rays cast (at most 16 * points * per_point,
   // whatever the number of emitter patches).
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
-                             RowAccumulator& row) const;
+                             RowAccumulator& row, std::span<const CosineHit> hits = {},
+                             uint32_t cosine_rays = 0) const;
 
   // Adds the estimate of F_cj, cell c's (context.cells) area-averaged form factor to each
   // emitter unknown j, to `row`: cell c of a group of k cells takes ceil(budget / k) light
@@ -65,19 +83,26 @@ class LightSampler {
   // normal n) on patch `receiver` (never sampled as its own emitter), seeded from (seed,
   // index), with one multi-jittered direction sample each: appends the shadow rays of those
   // that can see an emitter to `rays` and their samples to `pending`, index for index. The
-  // choices are stratified over [0, 1) across the directions.size() samples.
+  // choices are stratified over [0, 1) across the directions.size() samples. `cosine_share`
+  // is k / N of a row that combines N light samples with k cosine rays (0: light samples
+  // alone).
   void SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed, uint64_t index,
                    uint32_t first, std::span<const Point2> directions, std::vector<StreamRay>& rays,
-                   std::vector<PendingSample>& pending) const;
+                   std::vector<PendingSample>& pending, double cosine_share = 0) const;
 
  private:
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
   // `receiver` (never its own emitter), patterns seeded from (seed, index).
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
-                      int per_point, uint64_t seed, uint64_t index, RowAccumulator& row) const;
+                      int per_point, uint64_t seed, uint64_t index, RowAccumulator& row,
+                      double cosine_share = 0) const;
+  // A cosine ray's share of F_ij for its hit (above): F_s(x) / (k F_s(x) + N P(s | x)) where
+  // F_s(x) >= kRejectionFormFactor, else 0.
+  double CosineHitValue(const CosineHit& hit, double k, double n) const;
 
   const RowContext& context_;
   LightTree tree_;
+  std::vector<uint32_t> tree_index_;  // per unknown: its index among the tree's emitters
 };
 
 }  // namespace radflux

@@ -1,9 +1,10 @@
 // monte_carlo: k_i cosine-weighted rays from stratified points on patch i (k on average,
-// in proportion to the patch's area: row_rays.h); each ray that hits the front of patch j
-// adds 1/k_i to F_ij. Emitter columns come from light
-// sampling instead (their direct light would be the noisiest term): a fixed budget of
-// light samples per row, whatever the number of emitter patches (light_sampling.h). MC
-// hits on emitters are dropped, so the two never double count.
+// in proportion to the patch's area: row_rays.h); each ray that hits the front of a patch j
+// that does not emit adds 1/k_i to F_ij. Emitter columns come from light sampling (their
+// direct light would be the noisiest term): a fixed budget of light samples per row,
+// whatever the number of emitter patches, combined by multiple importance sampling with the
+// cosine rays that hit emitters which fill much of the hemisphere (light_sampling.h); the
+// other hits on emitters count for nothing, so nothing is counted twice.
 #include <map>
 #include <vector>
 
@@ -57,20 +58,30 @@ class MonteCarloBuilder final : public RowBuilder {
     const Point2 ps = RandomShift(shift, 0);
     const Point2 ds = RandomShift(shift, 2);
     const RaySet& set = sets_.at(Rays(i));
-    thread_local std::vector<StreamRay> stream;  // per-thread scratch, reused row to row
+    // Per-thread scratch, reused row to row: the rays, and their origins on i before the lift.
+    thread_local std::vector<StreamRay> stream;
+    thread_local std::vector<SurfacePoint> origins;
+    thread_local std::vector<LightSampler::CosineHit> emitter_hits;
     stream.resize(set.positions.size());
+    origins.resize(set.positions.size());
+    emitter_hits.clear();
     if (context_.SinglePatch(i)) {
-      PatchRays(context_.FirstPatch(i), set, ps, ds, stream);
+      PatchRays(context_.FirstPatch(i), set, ps, ds, stream, origins);
     } else {
-      GroupRays(i, set, ps, ds, stream);
+      GroupRays(i, set, ps, ds, stream, origins);
     }
     context_.caster->IntersectStream(stream);
     const double weight = 1.0 / static_cast<double>(set.positions.size());
-    for (const StreamRay& ray : stream) {
-      const uint32_t hit = ray.FrontPatch();  // a back side absorbs the ray
+    for (size_t r = 0; r < stream.size(); ++r) {
+      const uint32_t hit = stream[r].FrontPatch();  // a back side absorbs the ray
       if (hit == kNoPatch) continue;
       const uint32_t j = context_.UnknownOf(hit);  // a group's hits on itself: see face_grouping.h
-      if (j != i && !context_.emitter[j]) row.Add(j, weight);
+      if (j == i) continue;
+      if (context_.emitter[j]) {
+        emitter_hits.push_back({origins[r].x, origins[r].n, j});
+      } else {
+        row.Add(j, weight);
+      }
     }
     // A group's irradiance varies across its members far more than across one patch (some
     // face a lamp, some do not): its light samples each take a point of their own, so the
@@ -78,30 +89,30 @@ class MonteCarloBuilder final : public RowBuilder {
     const bool group = !context_.SinglePatch(i);
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
     const uint64_t light_rays = lights_.AddEmitterColumns(
-        i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row);
-    // The two parts are independent estimates: where emitters fill much of the hemisphere
-    // their noise can add up to more than 1. Only a row that would then return more light
+        i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,
+        emitter_hits, static_cast<uint32_t>(stream.size()));
+    // The light samples' part of the emitter columns varies apart from the cosine rays'
+    // part of the row: where emitters fill much of the hemisphere their noise can add up to
+    // more than 1. Only a row that would then return more light
     // than kMaxRowGain is scaled back (rho F B must converge for every rho < 1): scaling
     // every row above 1 cut the upper half of a closed room's rows' noise (they sum to 1 in
     // expectation) and made B 1.1% low in a closed cube at k = 64 (3% at k = 16).
-    double sum = 0;
-    for (uint32_t j : row.Touched()) sum += row.Value(j);
-    const double limit = context_.MaxRowSum(i);
-    if (sum > limit) row.Scale(limit / sum);
+    // What that removes is kept (RowAccumulator::ScaledOff) for the energy balance, which
+    // books it as a term of its own.
+    row.CapSum(context_.MaxRowSum(i));
     return stream.size() + light_rays;
   }
 
  private:
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays,
-                       u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
+    return RowRayCount(options_.rays, u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
                        context_.mean_row_area);
   }
 
-  // The rays of `set` from one patch p, shifted by (ps, ds).
+  // The rays of `set` from one patch p, shifted by (ps, ds), and their origins on p.
   void PatchRays(uint32_t p, const RaySet& set, Point2 ps, Point2 ds,
-                 std::vector<StreamRay>& stream) const {
+                 std::vector<StreamRay>& stream, std::vector<SurfacePoint>& origins) const {
     const PatchMesh& mesh = *context_.mesh;
     const Patch& patch = mesh.patches[p];
     const Frame frame = Frame::FromNormal(patch.normal);
@@ -132,7 +143,8 @@ class MonteCarloBuilder final : public RowBuilder {
     const PatchPointSampler sample_point(mesh, p);
     for (size_t r = 0; r < k; ++r) {
       StreamRay& ray = stream[r];
-      ray.SetOrigin(sample_point(CranleyPattersonShift(set.positions[r], ps)) + lift);
+      origins[r] = {sample_point(CranleyPattersonShift(set.positions[r], ps)), patch.normal};
+      ray.SetOrigin(origins[r].x + lift);
       ray.dir_x = wx[r], ray.dir_y = wy[r], ray.dir_z = wz[r];
       ray.ResetHit();
     }
@@ -140,12 +152,13 @@ class MonteCarloBuilder final : public RowBuilder {
 
   // The rays of `set` from a group of patches: each ray's origin is drawn over the members
   // by area (UnknownPointSampler) and its direction is cosine-weighted about that member's
-  // normal.
+  // normal; their origins into `origins`.
   void GroupRays(uint32_t u, const RaySet& set, Point2 ps, Point2 ds,
-                 std::vector<StreamRay>& stream) const {
+                 std::vector<StreamRay>& stream, std::vector<SurfacePoint>& origins) const {
     const UnknownPointSampler sample_point(*context_.mesh, context_.clusters, u);
     for (size_t r = 0; r < set.positions.size(); ++r) {
-      const SurfacePoint at = sample_point(CranleyPattersonShift(set.positions[r], ps));
+      const SurfacePoint& at = origins[r] =
+          sample_point(CranleyPattersonShift(set.positions[r], ps));
       const Vec3 w = Frame::FromNormal(at.n).ToWorld(
           SampleCosineHemisphere({WrapShift(double{set.direction_x[r]}, ds.x),
                                   WrapShift(double{set.direction_y[r]}, ds.y)}));
@@ -158,7 +171,7 @@ class MonteCarloBuilder final : public RowBuilder {
 
   const RowContext& context_;
   FormFactorOptions options_;
-  LightSampler lights_;  // the emitter columns
+  LightSampler lights_;              // the emitter columns
   std::map<uint32_t, RaySet> sets_;  // by rays per row
 };
 

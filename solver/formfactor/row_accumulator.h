@@ -13,6 +13,13 @@
 
 namespace radflux {
 
+// A row the row-sum cap scaled back (RowAccumulator::CapSum): the row and the sum of its form
+// factors the cap removed (A_i B_i times it is the power removed, W per band).
+struct ScaledRow {
+  uint32_t row = 0;
+  double removed = 0;
+};
+
 class RowAccumulator {
  public:
   explicit RowAccumulator(size_t n) : value_(n, 0.0), marked_((n + 63) / 64, 0) {}
@@ -32,12 +39,24 @@ class RowAccumulator {
     for (uint32_t j : touched_) value_[j] *= factor;
   }
 
+  // Scales the row back to sum `limit` when its entries sum to more; the sum it removed is
+  // ScaledOff() until the next Flush or Clear.
+  void CapSum(double limit) {
+    double sum = 0;
+    for (uint32_t j : touched_) sum += value_[j];
+    if (!(sum > limit)) return;
+    Scale(limit / sum);
+    scaled_off_ += sum - limit;
+  }
+  double ScaledOff() const { return scaled_off_; }
+
   // The row so far (read-only; for checks that need the double values before Flush).
   double Value(uint32_t j) const { return value_[j]; }
   const std::vector<uint32_t>& Touched() const { return touched_; }
 
   // Empties the row (for a caller that reads it with Value and Touched and keeps no block).
   void Clear() {
+    scaled_off_ = 0;
     for (uint32_t j : touched_) {
       value_[j] = 0;
       marked_[j / 64] = 0;
@@ -50,6 +69,7 @@ class RowAccumulator {
   // the form factor) and clears it; returns the sum of the entries the cut-off dropped.
   double Flush(double cutoff, RowBlock& block, const std::vector<uint8_t>* keep = nullptr) {
     SortTouched();
+    scaled_off_ = 0;
     double dropped = 0;
     for (uint32_t j : touched_) {
       const double v = value_[j];
@@ -86,6 +106,7 @@ class RowAccumulator {
   std::vector<double> value_;
   std::vector<uint32_t> touched_;
   std::vector<uint64_t> marked_;  // bit j set when column j is in touched_
+  double scaled_off_ = 0;         // the row sum CapSum removed
 };
 
 }  // namespace radflux

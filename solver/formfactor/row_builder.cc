@@ -17,6 +17,7 @@ void RowBlockStats::Merge(const RowBlockStats& o) {
   dropped_sum += o.dropped_sum;
   max_row_dropped = std::max(max_row_dropped, o.max_row_dropped);
   dropped_area += o.dropped_area;
+  scaled_off.insert(scaled_off.end(), o.scaled_off.begin(), o.scaled_off.end());
 }
 
 std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
@@ -39,6 +40,7 @@ RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, dou
   block.row_begin.reserve(count + 1);
   for (uint32_t i = first; i < first + count; ++i) {
     if (context.needs_row[i]) stats.rays += builder.BuildRow(i, row);
+    if (row.ScaledOff() > 0) stats.scaled_off.push_back({i, row.ScaledOff()});
     const double dropped = row.Flush(cutoff, block, &context.emitter);
     stats.dropped_sum += dropped;
     stats.dropped_area += context.Area(i) * dropped;

@@ -45,7 +45,7 @@ struct RowContext {
   std::vector<double> reflectance;  // rho, max over bands, per unknown (empty: 1 for all)
   std::vector<double> opaque_area;  // PatchAttributes::area per unknown, scene units^2
   double mean_row_area = 0;         // MeanRowArea over the unknowns with rows (row_rays.h)
-  double ray_epsilon = 0;          // ray origin offset along the normal, scene units
+  double ray_epsilon = 0;           // ray origin offset along the normal, scene units
 
   // The number of unknowns: rows and columns.
   uint32_t Unknowns() const {
@@ -87,6 +87,9 @@ struct RowBlockStats {
   double max_row_dropped = 0;  // the largest such sum in one row
   double dropped_area = 0;     // sum over rows of A_i times the row's dropped sum, scene
                                // units^2: times a radiosity, the power the cut-off dropped
+  // The rows the row-sum cap scaled back (RowContext::MaxRowSum), in row order.
+  std::vector<ScaledRow> scaled_off;
+  // Adds o's sums and appends its scaled rows (blocks merged in row order keep them so).
   void Merge(const RowBlockStats& o);
 };
 

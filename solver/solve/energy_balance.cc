@@ -1,9 +1,9 @@
 #include "solver/solve/energy_balance.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 
 #include "absl/strings/str_format.h"
 #include "solver/formfactor/row_rays.h"
@@ -38,8 +38,7 @@ int64_t PairSlot(const PatchAttributes& p, uint32_t i, uint32_t j) {
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
             const RowSampling& sampling, double mean_row_area, BalancePass& pass,
             EnergyBalance& out) {
-  const double rays =
-      sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area) : 0;
+  const double rays = sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area) : 0;
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
   for (int band = 0; band < kBands; ++band) {
@@ -69,8 +68,8 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
     }
     out.escaped[band] += outgoing * (1 - row_sum);
     if (rays > 0) {
-      pass.variance[band] += p.area[i] * p.area[i] / rays *
-                             std::max(0.0, mean_w2 - mean_w * mean_w);
+      pass.variance[band] +=
+          p.area[i] * p.area[i] / rays * std::max(0.0, mean_w2 - mean_w * mean_w);
     }
   }
 }
@@ -81,7 +80,16 @@ double EnergyBalance::RelativeImbalance() const {
   double worst = 0;
   for (int b = 0; b < kBands; ++b) {
     if (emitted[b] <= 0) continue;
-    worst = std::max(worst, std::abs(emitted[b] - absorbed[b] - escaped[b]) / emitted[b]);
+    worst = std::max(worst,
+                     std::abs(emitted[b] - absorbed[b] - escaped[b] - scaled_off[b]) / emitted[b]);
+  }
+  return worst;
+}
+
+double EnergyBalance::RelativeScaledOff() const {
+  double worst = 0;
+  for (int b = 0; b < kBands; ++b) {
+    if (emitted[b] > 0) worst = std::max(worst, scaled_off[b] / emitted[b]);
   }
   return worst;
 }
@@ -100,19 +108,26 @@ bool EnergyBalance::Ok() const {
     const double allowed =
         std::min(kEnergyBalanceCeiling * emitted[b],
                  std::max(kEnergyBalanceFloor * emitted[b], kEnergyBalanceSigmas * noise[b]));
-    if (!(std::abs(emitted[b] - absorbed[b] - escaped[b]) <= allowed)) return false;
+    if (!(std::abs(emitted[b] - absorbed[b] - escaped[b] - scaled_off[b]) <= allowed)) return false;
+    if (!(scaled_off[b] <= allowed)) return false;
   }
   return true;
 }
 
 std::string EnergyBalance::Why() const {
   double imbalance = 0;
+  if (RelativeScaledOff() > Tolerance()) {
+    return absl::StrFormat(
+        "the row-sum cap removed %.2f%% of the emitted power: rows near emitters too noisy for "
+        "their reflectance (more --rays or --samples)",
+        100 * RelativeScaledOff());
+  }
   for (int b = 0; b < kBands; ++b) {
     if (escaped[b] < -kEnergyBalanceFloor * emitted[b]) {
       return "escaped is negative: rows or emitter columns carry more than the power that "
              "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
     }
-    imbalance += emitted[b] - absorbed[b] - escaped[b];
+    imbalance += emitted[b] - absorbed[b] - escaped[b] - scaled_off[b];
   }
   return imbalance > 0
              ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
@@ -130,7 +145,8 @@ std::string EnergyBalance::OffMessage() const {
 
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
-                                                  const RowSampling& sampling) {
+                                                  const RowSampling& sampling,
+                                                  std::span<const ScaledRow> scaled_off) {
   const PatchAttributes& p = *system.patches;
   EnergyBalance out;
   BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}),
@@ -154,6 +170,15 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
       pairs_square[b] += pass.pairs[j][b] * pass.pairs[j][b];
     }
   }
+  // The cap's removed sums are part of 1 - row_sum above; booked apart.
+  for (const ScaledRow& scaled : scaled_off) {
+    if (scaled.row >= p.size() || !has_row[scaled.row]) continue;
+    for (int b = 0; b < kBands; ++b) {
+      const double power = p.area[scaled.row] * radiosity[scaled.row][b] * scaled.removed;
+      out.scaled_off[b] += power;
+      out.escaped[b] -= power;
+    }
+  }
   for (int b = 0; b < kBands; ++b) {
     const double light = std::max(0.0, pairs_square[b] - pass.pairs_ray_variance[b]);
     out.noise[b] = std::sqrt(pass.variance[b] + light);
@@ -162,9 +187,10 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
 }
 
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system, const std::vector<Rgb>& radiosity,
-                                   const RowSampling& sampling) {
+                                   const RowSampling& sampling,
+                                   std::span<const ScaledRow> scaled_off) {
   assert(system.form_factors != nullptr);
-  return *StreamEnergyBalance(system, radiosity, sampling);
+  return *StreamEnergyBalance(system, radiosity, sampling, scaled_off);
 }
 
 }  // namespace radflux

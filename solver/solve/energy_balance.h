@@ -5,11 +5,13 @@
 // columns instead (A_j F_ji B_i reaches j, by reciprocity), so its power is accounted too.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "solver/core/bands.h"
+#include "solver/formfactor/row_accumulator.h"
 #include "solver/solve/solver.h"
 
 namespace radflux {
@@ -32,6 +34,12 @@ struct EnergyBalance {
   Rgb emitted{};   // sum A_i E_i, W per band (scene units^2 * W/m^2)
   Rgb absorbed{};  // sum_j (1 - rho_j) * power arriving at j
   Rgb escaped{};   // power leaving that no row or column brings anywhere (openings, cut-off)
+  // Power the row-sum cap removed (RowContext::MaxRowSum): sum over the rows it scaled back of
+  // A_i B_i times the sum it removed, W per band. Not light that escapes: the rows' noise
+  // above the cap, cut off, so B is that much low (a bias, where the rest is noise). So the
+  // books read emitted = absorbed + escaped + scaled_off, and a balance is ok only when
+  // scaled_off too is within the tolerance.
+  Rgb scaled_off{};
   // Standard deviation of emitted - absorbed - escaped that the rows' Monte Carlo noise
   // alone gives (0 for rows that are not sampled), per band, W. At the solution the
   // imbalance is sum_ij A_i F_ij (rho_j B_i - rho_i B_j) = sum_ij A_i F_ij w_ij, zero for
@@ -47,12 +55,14 @@ struct EnergyBalance {
   //    D_j^2 less the part the emitters' rays explain (sum (A_e F_ej w)^2 (1 - F_ej) /
   //    (F_ej k)) estimates the light samples' variance.
   Rgb noise{};
-  // |emitted - absorbed - escaped| / emitted, max over emitting bands.
+  // |emitted - absorbed - escaped - scaled_off| / emitted, max over emitting bands.
   double RelativeImbalance() const;
+  // scaled_off / emitted, max over emitting bands.
+  double RelativeScaledOff() const;
   // The threshold for "ok": max(kEnergyBalanceFloor, kEnergyBalanceSigmas * noise / emitted),
   // the largest over emitting bands, never above kEnergyBalanceCeiling.
   double Tolerance() const;
-  // Every emitting band within its own threshold.
+  // Every emitting band's imbalance and scaled_off within its own threshold.
   bool Ok() const;
   // Which term of a balance that is not ok is out, and the likely why (one clause).
   std::string Why() const;
@@ -69,12 +79,15 @@ struct RowSampling {
 };
 
 // The balance of `radiosity`, reading the rows once in order (streamed when the system's
-// rows are in a row store: then its read error).
+// rows are in a row store: then its read error); `scaled_off`: the rows the row-sum cap
+// scaled back (RowBlockStats::scaled_off), booked as EnergyBalance::scaled_off.
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
-                                                  const RowSampling& sampling = {});
+                                                  const RowSampling& sampling = {},
+                                                  std::span<const ScaledRow> scaled_off = {});
 // The same for rows in memory (system.form_factors), which cannot fail.
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system, const std::vector<Rgb>& radiosity,
-                                   const RowSampling& sampling = {});
+                                   const RowSampling& sampling = {},
+                                   std::span<const ScaledRow> scaled_off = {});
 
 }  // namespace radflux
