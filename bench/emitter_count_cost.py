@@ -5,15 +5,22 @@ per face: --max-edge 1e9), lit by (a) one small lamp patch, (b) a luminous ceili
 face, (c) the ceiling as N x N faces, (d) the same split into 2 N^2 triangles; every run has
 the same non-emitter rows, and (b)-(d) the same light, so their cost per row compares the
 number of emitter patches alone. Prints,
-per case: emitter patches, rows (the white faces; the lamp case has a white ceiling too),
-rays per row, rows seconds and microseconds per row (from the report, median of RUNS runs).
+per case and binary: emitter patches, rows (the white faces; the lamp case has a white ceiling
+too), rays per row, the rows' wall seconds (the report's seconds.rows) and microseconds per row,
+and the whole solve's CPU time (user + sys of the process: mesh, rows, solve) in microseconds
+per row; medians of RUNS runs. CPU time is the measure to compare under load (wall grows with
+the machine's load, CPU time far less); a change to the rows alone changes the solve's CPU
+time by what it changes the rows'. With
+several --bin, each case runs them in turn, run after run (before and after a change in one
+run, under the same load).
 
-Usage: bench/emitter_count_cost.py [--bin build/ci/client/radflux] [--n 64] [--runs 5]
+Usage: bench/emitter_count_cost.py [--bin build/ci/client/radflux ...] [--n 64] [--runs 5]
        [--threads 1] [--out /tmp/radflux-emitters]
 """
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 
@@ -68,33 +75,43 @@ def room(path, ceiling, n):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="build/ci/client/radflux")
+    ap.add_argument("--bin", action="append",
+                    help="radflux binary; repeat to compare (default build/ci/client/radflux)")
     ap.add_argument("--n", type=int, default=64)
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--out", default="/tmp/radflux-emitters")
     a = ap.parse_args()
+    bins = a.bin or ["build/ci/client/radflux"]
     os.makedirs(a.out, exist_ok=True)
-    print(f"{'case':28s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} {'rows s':>8s} "
-          f"{'us/row':>7s}")
+    print(f"{'case':20s} {'bin':>3s} {'emitters':>8s} {'rows':>6s} {'rays/row':>9s} "
+          f"{'rows s':>8s} {'us/row':>7s} {'solve cpu us/row':>16s}")
     for ceiling in ("lamp", "face", "quads", "triangles", "panels"):
         scene = os.path.join(a.out, f"room_{ceiling}.obj")
         room(scene, ceiling, a.n)
-        report = os.path.join(a.out, f"room_{ceiling}.json")
-        seconds = []
+        seconds = [[] for _ in bins]
+        cpu = [[] for _ in bins]
+        rays = [0 for _ in bins]
         for _ in range(a.runs):
-            subprocess.run([a.bin, "solve", scene, "-q", "--threads", str(a.threads),
-                            "--max-edge", "1e9",
-                            "--report", report], check=True)
-            r = json.load(open(report))
-            seconds.append(r["seconds"]["rows"])
+            for b, binary in enumerate(bins):
+                report = os.path.join(a.out, f"room_{ceiling}_{b}.json")
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                subprocess.run([binary, "solve", scene, "-q", "--threads", str(a.threads),
+                                "--max-edge", "1e9", "--report", report], check=True)
+                r = json.load(open(report))
+                seconds[b].append(r["seconds"]["rows"])
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu[b].append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+                rays[b] = r["rays"]
         emitters = {"lamp": 1, "face": 1, "quads": a.n * a.n, "triangles": 2 * a.n * a.n,
                     "panels": a.n * a.n}[ceiling]
         rows = (6 if ceiling in ("lamp", "panels") else 5) * 48 * 48  # white faces: a row each
-        rays = r["rays"]
-        median = statistics.median(seconds)
-        print(f"{ceiling + ' ceiling':28s} {emitters:8d} {rows:6d} {rays / rows:9.2f} "
-              f"{median:8.3f} {1e6 * median / rows:7.1f}")
+        for b in range(len(bins)):
+            median = statistics.median(seconds[b])
+            median_cpu = statistics.median(cpu[b])
+            print(f"{ceiling + ' ceiling':20s} {b:3d} {emitters:8d} {rows:6d} "
+                  f"{rays[b] / rows:9.2f} {median:8.3f} {1e6 * median / rows:7.1f} "
+                  f"{1e6 * median_cpu / rows:16.1f}", flush=True)
 
 
 if __name__ == "__main__":

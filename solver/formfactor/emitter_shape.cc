@@ -93,6 +93,18 @@ double Warp(const std::array<double, 4>& w, Point2& u) {
 
 }  // namespace
 
+double FarEmitterImportance(std::span<const Vec3> corners, const Vec3& normal, double power,
+                            const Vec3& x, const Vec3& n) {
+  if (!(Dot(x - corners[0], normal) > 0)) return 0;  // x sees the back side
+  double sum = 0;
+  for (const Vec3& c : corners) {
+    const Vec3 d = c - x;
+    const double r2 = Dot(d, d);
+    sum += std::max(0.0, Dot(n, d)) * -Dot(normal, d) / (r2 * r2);
+  }
+  return power * sum / static_cast<double>(corners.size());
+}
+
 EmitterReach ReachOf(const EmitterShape& shape, const Vec3& x) {
   const Vec3 d = shape.centre - x;
   const double distance2 = Dot(d, d);

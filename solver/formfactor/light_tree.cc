@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "solver/formfactor/polygon_form_factor.h"
@@ -37,7 +38,8 @@ LightTree::LightTree(std::vector<EmitterShape> emitters) : emitters_(std::move(e
   Build(order, 0, order.size(), 0);
   for (const Node& node : nodes_) {
     Split split{0, node.left, node.right, 0, static_cast<int32_t>(node.emitter)};
-    if (node.emitter < 0) split.axis = node.axis_split, split.at = nodes_[node.left].hi[node.axis_split];
+    if (node.emitter < 0)
+      split.axis = node.axis_split, split.at = nodes_[node.left].hi[node.axis_split];
     splits_.push_back(split);
   }
   sampled_of_.resize(emitters_.size());
@@ -244,18 +246,46 @@ std::optional<uint32_t> LightTree::LocateBelow(uint32_t node, const Vec3& p, dou
   return std::nullopt;
 }
 
+namespace {
+
+// Whether x lies at least kFarRadii radii from a centre (ReachOf's far).
+bool IsFar(const Vec3& centre, double radius, const Vec3& x) {
+  const Vec3 d = centre - x;
+  return Dot(d, d) >= kFarRadii * kFarRadii * radius * radius;
+}
+
+// A sampled node's (an emitter's, a tiled rectangle's) importance at (x, n): from its exact
+// form factor, put into `form_factor`; from kFarRadii of its radii on FarEmitterImportance,
+// and `form_factor` -1 (not computed).
+double SampledImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n,
+                         double& form_factor) {
+  if (IsFar(shape.centre, shape.radius, x)) {
+    form_factor = -1;
+    return FarEmitterImportance(std::span<const Vec3>(shape.corner.data(), shape.corners),
+                                shape.normal, shape.power, x, n);
+  }
+  form_factor = EmitterFormFactor(shape, x, n);
+  return EmitterImportance(shape, form_factor);
+}
+
+}  // namespace
+
 double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) const {
-  if (node.emitter >= 0) return EmitterImportance(emitters_[node.emitter], x, n);
-  if (node.tiled >= 0) return EmitterImportance(tiles_[node.tiled], x, n);
-  // A node of two leaves: their exact sum, so that no walk ends at a pair that cannot light x.
+  double unused;
+  if (node.emitter >= 0) return SampledImportance(emitters_[node.emitter], x, n, unused);
+  if (node.tiled >= 0) return SampledImportance(tiles_[node.tiled], x, n, unused);
+  // A node of two leaves: their sum, so that no walk ends at a pair that cannot light x.
   const Node& left = nodes_[node.left];
   const Node& right = nodes_[node.right];
   if (left.emitter >= 0 && right.emitter >= 0) {
-    return EmitterImportance(emitters_[left.emitter], x, n) +
-           EmitterImportance(emitters_[right.emitter], x, n);
+    return SampledImportance(emitters_[left.emitter], x, n, unused) +
+           SampledImportance(emitters_[right.emitter], x, n, unused);
   }
   if (node.planar) {
     if (!(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return 0;  // x behind the plane
+    if (IsFar(node.centre, node.radius, x)) {
+      return FarEmitterImportance(node.bounds_rectangle, node.axis, node.power, x, n);
+    }
     const double form_factor = PointToPolygonFormFactor(x, n, node.bounds_rectangle);
     return node.power / node.bounds_area * std::numbers::pi * form_factor;
   }
@@ -335,8 +365,7 @@ LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
       const Node& node = nodes_[index];
       CutNode entry{index, 0, -1};
       if (IsSampled(node)) {
-        entry.form_factor = EmitterFormFactor(Shape(index), x, n);
-        entry.importance = EmitterImportance(Shape(index), entry.form_factor);
+        entry.importance = SampledImportance(Shape(index), x, n, entry.form_factor);
       } else {
         entry.importance = Importance(node, x, n);
       }

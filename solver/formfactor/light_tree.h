@@ -5,16 +5,18 @@
 // power * (a bound on the receiver's cosine) * (a bound on the emitter's cosine) /
 // distance^2 from the node's bounds; at a leaf,
 // the emitter's exact unoccluded contribution (EmitterImportance), and at a node of two
-// leaves the sum of theirs. A choice starts from the receiver point's cut (CutAt: the nodes
-// whose bounds are trustworthy from there, opened down to single emitters near the point)
-// and walks one path below the node it picks, so its cost grows with log(emitters), and the
-// rays of a light sample do not grow at all. Every emitter that can light the receiver has a
-// non-zero probability (the bounds are conservative), which keeps estimates weighted by
-// 1 / probability unbiased. A node whose emitters tile a rectangle in one plane (a lamp
-// meshed into patches, a luminous ceiling of faces: their areas add up to the rectangle's) is
-// "tiled": it is never opened and a walk stops there; the light sample then takes a point on
-// the whole rectangle (Shape) and credits the emitter it falls in (Locate), so a tiled plane
-// of any number of patches costs what one lamp does.
+// leaves the sum of theirs; from kFarRadii of a leaf's or a plane's radii on, the
+// integrand's mean over the polygon's corners instead (FarEmitterImportance: no
+// trigonometry, zero where the exact one is, and, as any positive weight, unbiased). A choice
+// starts from the receiver point's cut (CutAt: the nodes whose bounds are trustworthy from there,
+// opened down to single emitters near the point) and walks one path below the node it picks, so its
+// cost grows with log(emitters), and the rays of a light sample do not grow at all. Every emitter
+// that can light the receiver has a non-zero probability (the bounds are conservative), which keeps
+// estimates weighted by 1 / probability unbiased. A node whose emitters tile a rectangle in one
+// plane (a lamp meshed into patches, a luminous ceiling of faces: their areas add up to the
+// rectangle's) is "tiled": it is never opened and a walk stops there; the light sample then takes a
+// point on the whole rectangle (Shape) and credits the emitter it falls in (Locate), so a tiled
+// plane of any number of patches costs what one lamp does.
 #pragma once
 
 #include <array>
@@ -103,23 +105,25 @@ class LightTree {
   double NearestDistance(const Vec3& x, const Vec3& n) const;
 
  private:
-  struct Node {
-    Vec3 lo, hi;  // bounding box of the emitters' corners
-    Vec3 centre;  // and its bounding sphere
-    double radius = 0;
-    Vec3 axis;               // normal cone: every emitter normal is within
-    double cos_spread = -1;  // acos(cos_spread) of axis
-    double power = 0;        // summed over the node's emitters
+  // The fields a walk reads (Importance) first, in the node's first three cache lines (a far
+  // planar node's all of them): the walk is bound by memory, a child's node a cache miss.
+  struct alignas(64) Node {
+    int64_t emitter = -1;  // leaf: index into emitters_
+    int64_t tiled = -1;    // when the emitters' areas add up to bounds_area: its Shape in tiles_
+    uint32_t left = 0, right = 0;  // children (inner node)
     // When the node's emitters lie in one plane (a split lamp, a luminous ceiling): the
     // rectangle in that plane that bounds them, front side `axis`; its exact form factor
     // times power / its area is the node's importance (exact when they tile it).
     bool planar = false;
+    double power = 0;  // summed over the node's emitters
+    Vec3 centre;       // the bounding sphere of the box below
+    double radius = 0;
+    Vec3 axis;  // normal cone: every emitter normal is within
     std::array<Vec3, 4> bounds_rectangle;
+    Vec3 lo, hi;             // bounding box of the emitters' corners
+    double cos_spread = -1;  // acos(cos_spread) of axis
     double bounds_area = 0;
-    int64_t tiled = -1;  // when the emitters' areas add up to bounds_area: its Shape in tiles_
-    uint32_t left = 0, right = 0;  // children (inner node)
-    int axis_split = 0;            // the axis their emitters' centres were split along
-    int64_t emitter = -1;          // leaf: index into emitters_
+    int axis_split = 0;  // the axis their emitters' centres were split along
     uint32_t parent = 0;
   };
   uint32_t Build(std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t parent);
@@ -141,8 +145,8 @@ class LightTree {
   bool CanLight(const Node& node, const Vec3& x, const Vec3& n) const;
 
   std::vector<EmitterShape> emitters_;
-  std::vector<EmitterShape> tiles_;   // the tiled nodes' rectangles
-  std::vector<Node> nodes_;           // nodes_[0] is the root
+  std::vector<EmitterShape> tiles_;  // the tiled nodes' rectangles
+  std::vector<Node> nodes_;          // nodes_[0] is the root
   // A node's children split at `at` along `axis` (left: p[axis] <= at), packed for Locate.
   struct Split {
     double at = 0;
@@ -150,7 +154,7 @@ class LightTree {
     int32_t axis = 0;
     int32_t emitter = -1;  // a leaf's
   };
-  std::vector<Split> splits_;  // of nodes_, index for index
+  std::vector<Split> splits_;         // of nodes_, index for index
   std::vector<uint32_t> leaf_of_;     // emitter -> its leaf node
   std::vector<uint32_t> sampled_of_;  // emitter -> Sampled
 };
