@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/formfactor/cell_direct.h"
+#include "solver/formfactor/reciprocal_columns.h"
 #include "solver/formfactor/row_context.h"
 #include "solver/hierarchical/hierarchical_job.h"
 #include "solver/scene/validation.h"
@@ -52,6 +53,14 @@ absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
 RadiositySystem JobResult::System() const {
   if (row_store != nullptr) return {nullptr, &job->attributes, row_store.get()};
   return {&form_factors, &job->attributes, nullptr};
+}
+
+RowSampling JobResult::Sampling(const FormFactorOptions& options) const {
+  RowSampling sampling{SampledRays(options), LightSamplesPerRow(options)};
+  if (job->rows.mesh != nullptr && job->rows.Unknowns() == job->attributes.size()) {
+    sampling.reciprocal = ReciprocallyFilled(job->rows, options);
+  }
+  return sampling;
 }
 
 uint64_t JobResult::RowNonZeros() const {
@@ -181,8 +190,7 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
   const PatchClusters& clusters = result.job->clusters;
   if (clusters.empty()) return absl::OkStatus();
   absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
-      result.System(), result.solve.radiosity,
-      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)},
+      result.System(), result.solve.radiosity, result.Sampling(options.form_factors),
       result.row_stats.scaled_off);
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;

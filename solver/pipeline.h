@@ -121,6 +121,8 @@ struct JobResult {
 
   // The system the rows and patches form, wherever the rows are.
   RadiositySystem System() const;
+  // How the rows of System() were sampled with `options` (the energy balance's noise).
+  RowSampling Sampling(const FormFactorOptions& options) const;
   uint64_t RowNonZeros() const;
   uint64_t RowBytes() const;
 };

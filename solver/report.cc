@@ -183,10 +183,9 @@ nlohmann::json ImportJson(const ImportLog& log) {
 const absl::StatusOr<EnergyBalance>& SettleEnergyBalance(JobResult& result,
                                                          const JobOptions& options) {
   if (!result.solved_balance) {
-    result.solved_balance = StreamEnergyBalance(
-        result.System(), result.solve.radiosity,
-        {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)},
-        result.row_stats.scaled_off);
+    result.solved_balance =
+        StreamEnergyBalance(result.System(), result.solve.radiosity,
+                            result.Sampling(options.form_factors), result.row_stats.scaled_off);
   }
   return *result.solved_balance;
 }

@@ -4,13 +4,15 @@
 // direct light would be the noisiest term): a fixed budget of light samples per row,
 // whatever the number of emitter patches, combined by multiple importance sampling with the
 // cosine rays that hit emitters which fill much of the hemisphere (light_sampling.h); the
-// other hits on emitters count for nothing, so nothing is counted twice.
+// other hits on emitters count for nothing, so nothing is counted twice. Entries towards
+// hidden unknowns (slots) come from their own rows by reciprocity (reciprocal_columns.h).
 #include <map>
 #include <vector>
 
 #include "solver/core/sampling.h"
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/light_sampling.h"
+#include "solver/formfactor/reciprocal_columns.h"
 #include "solver/formfactor/row_rays.h"
 
 namespace radflux {
@@ -51,9 +53,20 @@ class MonteCarloBuilder final : public RowBuilder {
       const uint32_t k = Rays(u);
       if (!sets_.contains(k)) sets_.emplace(k, MakeRaySet(k));
     }
+    // While the hidden unknowns' rows are built, hidden_ is empty: they keep their own hits.
+    hidden_ =
+        ReciprocalColumns(context, options.rays, options.threads,
+                          [this](uint32_t j, RowAccumulator& row) { return SampleRow(j, row); });
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
+    if (hidden_.Hidden(i)) return hidden_.AddOwnRow(i, row);
+    return SampleRow(i, row);
+  }
+
+ private:
+  // Row i from its own rays and light samples, but for the columns hidden_ fills.
+  uint64_t SampleRow(uint32_t i, RowAccumulator& row) const {
     const uint32_t shift = PatternSeed(options_.seed, i, kShiftStream);
     const Point2 ps = RandomShift(shift, 0);
     const Point2 ds = RandomShift(shift, 2);
@@ -79,10 +92,11 @@ class MonteCarloBuilder final : public RowBuilder {
       if (j == i) continue;
       if (context_.emitter[j]) {
         emitter_hits.push_back({origins[r].x, origins[r].n, j});
-      } else {
+      } else if (!hidden_.Fills(i, j)) {
         row.Add(j, weight);
       }
     }
+    hidden_.AddColumns(i, row);
     // A group's irradiance varies across its members far more than across one patch (some
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
@@ -103,7 +117,6 @@ class MonteCarloBuilder final : public RowBuilder {
     return stream.size() + light_rays;
   }
 
- private:
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
     return RowRayCount(options_.rays, u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
@@ -173,6 +186,7 @@ class MonteCarloBuilder final : public RowBuilder {
   FormFactorOptions options_;
   LightSampler lights_;              // the emitter columns
   std::map<uint32_t, RaySet> sets_;  // by rays per row
+  ReciprocalColumns hidden_;         // the rows' entries towards hidden unknowns
 };
 
 }  // namespace

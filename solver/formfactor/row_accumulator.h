@@ -49,6 +49,8 @@ class RowAccumulator {
     scaled_off_ += sum - limit;
   }
   double ScaledOff() const { return scaled_off_; }
+  // Books `removed` as scaled off (a capped row added back from a copy: reciprocal_columns).
+  void AddScaledOff(double removed) { scaled_off_ += removed; }
 
   // The row so far (read-only; for checks that need the double values before Flush).
   double Value(uint32_t j) const { return value_[j]; }

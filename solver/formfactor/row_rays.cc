@@ -25,4 +25,8 @@ uint32_t RowRayCount(int k, double area, double mean_area) {
   return static_cast<uint32_t>(std::clamp(std::round(k * share), least, std::max(least, 4.0 * k)));
 }
 
+bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area) {
+  return area_j * RowRayCount(k, area_i, mean_area) < area_i * RowRayCount(k, area_j, mean_area);
+}
+
 }  // namespace radflux

@@ -25,4 +25,12 @@ double MeanRowArea(std::span<const double> area, std::span<const uint8_t> has_ro
 // sliver's row from a handful of rays and a huge face's from most of the budget.
 uint32_t RowRayCount(int k, double area, double mean_area);
 
+// Whether F_ij, between unknown i of area_i and a hidden unknown j of area_j (rays as
+// RowRayCount gives them), is better read from j's row by reciprocity, A_j F_ji / A_i, than
+// from i's own hits: its variance there is (A_j / k_j) F_ij / A_i against F_ij / k_i, so when
+// j has less area per ray (a wall of 100 m^2 and 256 rays against a lamp's strip of 0.16 m^2
+// and 16; not a 0.01 m^2 part with 16 rays of its own, to which one ray of the strip's 16
+// would give F = 1: office2's switch plate read +154% so on one seed of four).
+bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area);
+
 }  // namespace radflux

@@ -43,9 +43,11 @@ struct FaceContacts {
 //   receiver lies above the loop's centroid (a lid: an open tube's inside stays lit).
 // A face lying in front of the receiver with its back to it (facing the same way, every
 // corner in front by more than that tolerance and at most 2% of the face's size, the square
-// root of its area) also gives a footprint: its outline projected onto the receiver (a light
-// hung 0.5 mm below a ceiling hides the ceiling above it; without the cut, the ceiling's
-// patches under its edge averaged the dark and the lit parts and shaded the lit part dark).
+// root of its area, or of the smaller one's when the receiver emits) also gives a footprint:
+// its outline projected onto the receiver (a light hung 0.5 mm below a ceiling hides the
+// ceiling above it; without the cut, the ceiling's patches under its edge averaged the dark
+// and the lit parts and shaded the lit part dark; a lamp's top 2 cm below a two-sided
+// ceiling is not hidden by the ceiling's back).
 // An emitting face facing the receiver, every corner in front by more
 // than the tolerance and at most its width (twice its area over its longest edge) and 2% of
 // the receiver's size, gives a slot instead: the receiver's part under it is a narrow cavity

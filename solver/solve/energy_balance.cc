@@ -33,6 +33,16 @@ int64_t PairSlot(const PatchAttributes& p, uint32_t i, uint32_t j) {
   return -1;
 }
 
+// Whether the pair {i, j} exchanges power exactly both ways (RowSampling::reciprocal).
+bool Exact(const PatchAttributes& p, const RowSampling& sampling, double mean_row_area,
+           uint32_t i, uint32_t j) {
+  if (sampling.reciprocal.empty() || sampling.reciprocal[i] == sampling.reciprocal[j]) {
+    return false;
+  }
+  const uint32_t hidden = sampling.reciprocal[i] ? i : j, other = hidden == i ? j : i;
+  return ReadFromHiddenRow(sampling.rays, p.area[other], p.area[hidden], mean_row_area);
+}
+
 // Row i (a patch with a row): its power along the row, the row-less patches' power along
 // its columns, its cosine rays' multinomial variance and its emitter pairs' imbalance.
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
@@ -54,6 +64,7 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
         pass.arriving[i][band] += gathered;
         pass.column_out[j][band] += gathered;
       }
+      if (Exact(p, sampling, mean_row_area, i, j)) continue;
       const double w = p.reflectance[j][band] * b[i][band] - p.reflectance[i][band] * b[j][band];
       if (!Emits(p, j)) {
         mean_w += f * w;

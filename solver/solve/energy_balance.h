@@ -5,6 +5,7 @@
 // columns instead (A_j F_ji B_i reaches j, by reciprocity), so its power is accounted too.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -76,6 +77,11 @@ struct RowSampling {
   int rays = 0;           // k of Monte Carlo rows: row i's non-emitter entries are hits / k_i,
                           // k_i = RowRayCount(k, area_i, mean row area) (row_rays.h)
   int light_samples = 0;  // light samples behind a row's emitter columns (0: not sampled)
+  // Per unknown (empty: none), 1 where the other rows' entries towards it are its own row's by
+  // reciprocity (A_i F_ij = A_j F_ji: monte_carlo's hidden unknowns, reciprocal_columns.h)
+  // when ReadFromHiddenRow (row_rays.h) says so: such a pair exchanges power exactly, so
+  // adds no noise.
+  std::vector<uint8_t> reciprocal = {};
 };
 
 // The balance of `radiosity`, reading the rows once in order (streamed when the system's

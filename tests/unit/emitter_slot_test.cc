@@ -63,6 +63,25 @@ TEST(EmitterSlot, NoSlotUnderANonEmitterOrTooFarOff) {
   }
 }
 
+TEST(EmitterSlot, ACeilingJustAboveALampsTopDoesNotHideItsLight) {
+  // A 10 x 10 two-sided ceiling at z = 3 (face 0 facing down, face 1 its outward twin facing
+  // up) and a lamp's top (face 2: 0.4 x 0.4, emitting, facing up) 2 cm under it, as in
+  // RenderPark's corridor. The twin lies 2 cm in front of the top with its back to it, 5% of
+  // the top's size: the top is not hidden (2% of the ceiling's size, 20 cm, hid it); the
+  // ceiling above it is a slot.
+  int next = 1;
+  std::string obj =
+      ObjQuad("ceiling", "white", {{0, 0, 3}, {0, 10, 3}, {10, 10, 3}, {10, 0, 3}}, next);
+  obj += ObjQuad("ceiling", "white", {{0, 0, 3}, {10, 0, 3}, {10, 10, 3}, {0, 10, 3}}, next);
+  obj += ObjQuad("lamp", "lamp",
+                 {{4.8, 4.8, 2.98}, {5.2, 4.8, 2.98}, {5.2, 5.2, 2.98}, {4.8, 5.2, 2.98}}, next);
+  const std::vector<FaceContacts> contacts = FindContacts(SceneFromObj(obj));
+  EXPECT_TRUE(contacts[2].empty()) << "the lamp's top is not hidden";
+  ASSERT_EQ(contacts[0].slots.size(), 1u);
+  EXPECT_NEAR(PolygonArea(contacts[0].slots[0]), 0.16, 1e-9);
+  EXPECT_TRUE(contacts[1].empty()) << "the outward twin is behind the lamp";
+}
+
 PatchMesh UnitPatches(const Scene& scene) {
   MeshOptions options;
   options.max_edge = 1;
