@@ -85,11 +85,14 @@ class MonteCarloBuilder final : public RowBuilder {
     }
     context_.caster->IntersectStream(stream);
     const double weight = 1.0 / static_cast<double>(set.positions.size());
+    // A group that is not flat sees itself (F_ii > 0, Galerkin's diagonal: face_grouping.h);
+    // a single patch is flat and cannot.
+    const bool group = !context_.SinglePatch(i);
     for (size_t r = 0; r < stream.size(); ++r) {
       const uint32_t hit = stream[r].FrontPatch();  // a back side absorbs the ray
       if (hit == kNoPatch) continue;
-      const uint32_t j = context_.UnknownOf(hit);  // a group's hits on itself: see face_grouping.h
-      if (j == i) continue;
+      const uint32_t j = context_.UnknownOf(hit);
+      if (j == i && !group) continue;
       if (context_.emitter[j]) {
         emitter_hits.push_back({origins[r].x, origins[r].n, j});
       } else if (!hidden_.Fills(i, j)) {
@@ -100,7 +103,6 @@ class MonteCarloBuilder final : public RowBuilder {
     // A group's irradiance varies across its members far more than across one patch (some
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
-    const bool group = !context_.SinglePatch(i);
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
     const uint64_t light_rays = lights_.AddEmitterColumns(
         i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,

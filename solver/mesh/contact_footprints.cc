@@ -28,9 +28,10 @@ struct FaceGeometry {
   std::vector<Vec3> polygon;
   Vec3 normal;  // unit
   Box box;
-  double area = 0;     // scene units^2
-  double width = 0;    // twice the area over the longest edge (scene units)
-  bool emits = false;  // its material is an emitter
+  double area = 0;         // scene units^2
+  double width = 0;        // twice the area over the longest edge (scene units)
+  bool emits = false;      // its material is an emitter
+  bool two_sided = false;  // its material is two-sided: a twin lies back to back with it
 };
 
 bool Overlap(const Box& a, const Box& b) {
@@ -194,15 +195,16 @@ struct Cover {
 
 // What `cover` makes of `receiver` (contact_footprints.h): with its back to it (facing the
 // same way), every corner more than tol and at most HidingGap in front, it hides the part
-// under it (a light hung just below a ceiling, a poster on a wall); emitting and facing it,
-// every corner more than tol and at most SlotGap in front, it makes a slot of it.
+// under it (a light hung just below a ceiling, a poster on a wall), or makes a slot of it
+// when the receiver is two-sided and does not emit (left out, the part would be a hole: the
+// ray casters see through its twin's back); emitting and facing it, every corner more than
+// tol and at most SlotGap in front, it makes a slot of it.
 Cover CoverOf(const FaceGeometry& receiver, const FaceGeometry& cover, double tol) {
   const double cos = Dot(receiver.normal, cover.normal);
   if (cos == 0 || (cos < 0 && !cover.emits)) return {};
-  const CoverKind kind = cos < 0 ? CoverKind::kSlot : CoverKind::kHides;
-  const double gap =
-      kind == CoverKind::kSlot ? SlotGap(receiver, cover) : HidingGap(receiver, cover);
-  Cover out{kind, {}};
+  const double gap = cos < 0 ? SlotGap(receiver, cover) : HidingGap(receiver, cover);
+  const bool keep = cos < 0 || (receiver.two_sided && !receiver.emits);
+  Cover out{keep ? CoverKind::kSlot : CoverKind::kHides, {}};
   for (const Vec3& q : cover.polygon) {
     const double d = PlaneDistance(receiver, q);
     if (d <= tol || d > gap) return {};
@@ -340,6 +342,7 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
     faces[f].area = Length(PolygonNewellNormal(faces[f].polygon)) / 2;
     faces[f].width = 2 * faces[f].area / std::max(LongestEdge(faces[f].polygon), 1e-300);
     faces[f].emits = scene.materials[scene.faces[f].material].IsEmitter();
+    faces[f].two_sided = scene.materials[scene.faces[f].material].two_sided;
     all[f] = f;
     if (faces[f].area >= min_receiver_area) receivers.push_back(f);
   }

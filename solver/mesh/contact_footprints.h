@@ -48,6 +48,13 @@ struct FaceContacts {
 // ceiling above it; without the cut, the ceiling's patches under its edge averaged the dark
 // and the lit parts and shaded the lit part dark; a lamp's top 2 cm below a two-sided
 // ceiling is not hidden by the ceiling's back).
+// A face that is two-sided (its material's; it has a back-to-back twin) and does not emit
+// keeps that part instead, as a slot's hidden patches (below): left out, it would be a hole,
+// since the ray casters see through its twin's back. RenderPark's classroom's lamp housings
+// are double shells 2 mm apart under the ceiling's two-sided tiles, each hiding the other's
+// inner side and the ceiling's outward twin hiding their tops: the holes let the tubes' light
+// through to the ceiling, whose patches over the housings shone 5 times too bright (energy
+// balance 45% off at 8,000 patches).
 // An emitting face facing the receiver, every corner in front by more
 // than the tolerance and at most its width (twice its area over its longest edge) and 2% of
 // the receiver's size, gives a slot instead: the receiver's part under it is a narrow cavity

@@ -25,8 +25,11 @@
 // Grouping is exact Galerkin with one constant per group (rows average members' rows by area;
 // a hit on a member counts for the group), so its only error is that of a constant B over a
 // group of size ~a*, as for one patch of that size; rays from a group that hit the same group
-// (F_CC, non-zero only for a non-flat group) are not in the rows: light the group would
-// reflect back onto itself leaves the system (the report counts it as escaped).
+// count for it too (F_CC, Galerkin's diagonal, non-zero only for a non-flat group: a lamp
+// housing's inside, which reflects much of its light onto itself; every solver and the energy
+// balance take a diagonal). What grouping still loses is resolution within the group: a tube
+// 2 cm under its housing's inside sees the average of its group (with the housing's dimmer
+// parts), not the inside alone.
 // A group's flat B would average very uneven direct light (a wall beside a lamp), so each
 // group is also split into direct-light cells, a finer cut of the same trees with
 // kDirectCellsPerUnknown times the groups' budget: each cell gets its own direct light after
@@ -63,8 +66,8 @@ struct GroupedMesh {
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
-// per emitting or hidden patch and per (object, material, two-sidedness); or fewer: when every group is
-// one patch) by the rule above. A group never spans two objects, so per-object means stay
+// per emitting or hidden patch and per (object, material, two-sidedness); or fewer: when every
+// group is one patch) by the rule above. A group never spans two objects, so per-object means stay
 // each object's own. With `cells`, also the direct-light cells: the same cut with
 // kDirectCellsPerUnknown times the budget of non-emitting groups, a refinement of the groups
 // (every cell's patches lie in one group).

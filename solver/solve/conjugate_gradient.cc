@@ -1,10 +1,10 @@
 // Preconditioned conjugate gradient on the symmetric form. Row i of B - rho F B = E times
 // A_i / rho_i gives M B = (A / rho) E with M = D - S, D = diag(A / rho), S = sym(A F):
 // symmetric, and positive definite for reciprocal rows (rho_i > 0); patches with rho_i = 0
-// are known (B_i = E_i). The preconditioner is M's diagonal D (S_ii = 0: a patch does not
-// see itself), z = D^-1 r = rho r / A, so the preconditioned operator is I - rho A^-1 S,
-// which is I - rho F for reciprocal rows: its eigenvalues lie in [1 - rho_max, 1 + rho_max]
-// whatever the ratio of the largest to the smallest patch area.
+// are known (B_i = E_i). The preconditioner is D, M's diagonal but for S_ii (0 but for a
+// group that sees itself, face_grouping.h), z = D^-1 r = rho r / A, so the preconditioned
+// operator is I - rho A^-1 S, which is I - rho F for reciprocal rows: its eigenvalues lie in
+// [1 - rho_max, 1 + rho_max] whatever the ratio of the largest to the smallest patch area.
 // CG runs on corrections: its right-hand side is the scaled true residual
 // (A / rho)(E + rho F B - B) of the ORIGINAL rows, measured every iteration (one SpMV).
 // When the rows are not reciprocal, S differs from A F and the CG residual falls below
