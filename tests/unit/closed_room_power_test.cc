@@ -17,16 +17,7 @@ namespace {
 // A closed unit cube seen from inside, its ceiling the lamp (rho 0.5, Ke 1: E = pi), the
 // rest white (rho 0.5).
 Scene LitCube() {
-  int next = 1;
-  const auto quad = [&](const char* material, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    return testing::ObjQuad("cube", material, {a, b, c, d}, next);
-  };
-  const Vec3 v0{0, 0, 0}, v1{1, 0, 0}, v2{1, 1, 0}, v3{0, 1, 0};
-  const Vec3 v4{0, 0, 1}, v5{1, 0, 1}, v6{1, 1, 1}, v7{0, 1, 1};
-  return testing::SceneFromObj(
-      quad("white", v0, v1, v2, v3) + quad("white", v0, v4, v5, v1) +
-      quad("white", v1, v5, v6, v2) + quad("white", v2, v6, v7, v3) +
-      quad("white", v3, v7, v4, v0) + quad("lamp", v4, v7, v6, v5));
+  return testing::InwardUnitCube({"white", "white", "white", "white", "white", "lamp"});
 }
 
 // At k = 16 (noisy rows: the bias grows as the noise does), the mean over 8 seeds of

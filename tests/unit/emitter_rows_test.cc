@@ -15,13 +15,12 @@
 namespace radflux {
 namespace {
 
+using testing::MeanOverSeeds;
 using testing::ObjQuad;
+using testing::QuadGrid;
 using testing::RowFixture;
 using testing::SceneFromObj;
-
-struct SeedMean {
-  double mean = 0, standard_error = 0;
-};
+using testing::SeedMean;
 
 // The area-weighted form factor from object `from` to `to` over `seeds` seeds at the
 // default options (no cut-off).
@@ -29,15 +28,10 @@ SeedMean SurfaceFormFactorOverSeeds(RowFixture& f, const std::string& from, cons
                                     int seeds) {
   FormFactorOptions o;
   o.cutoff = 0;
-  double sum = 0, sum2 = 0;
-  for (int s = 1; s <= seeds; ++s) {
-    o.seed = static_cast<uint64_t>(s);
-    const double v = f.SurfaceFormFactor(f.Rows(o), from, to);
-    sum += v;
-    sum2 += v * v;
-  }
-  const double mean = sum / seeds;
-  return {mean, std::sqrt(std::max(0.0, sum2 / seeds - mean * mean) / (seeds - 1))};
+  return MeanOverSeeds(seeds, [&](uint64_t seed) {
+    o.seed = seed;
+    return f.SurfaceFormFactor(f.Rows(o), from, to);
+  });
 }
 
 void ExpectClosedForm(RowFixture& f, const std::string& from, const std::string& to, double exact) {
@@ -71,20 +65,6 @@ TEST(EmitterRows, ParallelLampsAtCloseRangeMatchHowell) {
   ExpectClosedForm(f, "a", "b", testing::ParallelRectangles(1, 1, 0.1));
 }
 
-// A g x g grid of faces of `material` on the parallelogram origin + a ex + b ey, (a, b) in
-// [0, 1]^2, front side ex x ey.
-std::string Grid(const std::string& name, const std::string& material, const Vec3& origin,
-                 const Vec3& ex, const Vec3& ey, int g, int& next) {
-  std::string obj;
-  for (int a = 0; a < g; ++a) {
-    for (int b = 0; b < g; ++b) {
-      const Vec3 p = origin + ex * (double(a) / g) + ey * (double(b) / g);
-      obj += ObjQuad(name, material, {p, p + ex / g, p + ex / g + ey / g, p + ey / g}, next);
-    }
-  }
-  return obj;
-}
-
 // A closed unit box whose ceiling and four walls are lamps (4 x 4 faces each) over a white
 // floor, with a lamp bar (a closed solid, 0.4 x 0.05 x 0.4, every face emitting outwards)
 // 0.02 in front of one wall: emitter patches beside other emitters, facing them and facing
@@ -96,20 +76,20 @@ std::string Grid(const std::string& name, const std::string& material, const Vec
 TEST(EmitterRows, ClosedBoxOfLampsRowsSumToOne) {
   int next = 1;
   std::string obj;
-  obj += Grid("floor", "white", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4, next);
-  obj += Grid("ceiling", "lamp", {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 4, next);
-  obj += Grid("walls", "lamp", {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 4, next);
-  obj += Grid("walls", "lamp", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, next);
-  obj += Grid("walls", "lamp", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, next);
-  obj += Grid("walls", "lamp", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, 4, next);
+  obj += QuadGrid("floor", "white", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4, next);
+  obj += QuadGrid("ceiling", "lamp", {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 4, next);
+  obj += QuadGrid("walls", "lamp", {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 4, next);
+  obj += QuadGrid("walls", "lamp", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, next);
+  obj += QuadGrid("walls", "lamp", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, next);
+  obj += QuadGrid("walls", "lamp", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, 4, next);
   // The bar [0.3, 0.7] x [0.93, 0.98] x [0.3, 0.7], faces outwards.
   const Vec3 lo{0.3, 0.93, 0.3}, ex{0.4, 0, 0}, ey{0, 0.05, 0}, ez{0, 0, 0.4};
-  obj += Grid("bar", "lamp", lo, ey, ex, 2, next);
-  obj += Grid("bar", "lamp", lo + ez, ex, ey, 2, next);
-  obj += Grid("bar", "lamp", lo, ex, ez, 2, next);
-  obj += Grid("bar", "lamp", lo + ey, ez, ex, 2, next);
-  obj += Grid("bar", "lamp", lo, ez, ey, 2, next);
-  obj += Grid("bar", "lamp", lo + ex, ey, ez, 2, next);
+  obj += QuadGrid("bar", "lamp", lo, ey, ex, 2, next);
+  obj += QuadGrid("bar", "lamp", lo + ez, ex, ey, 2, next);
+  obj += QuadGrid("bar", "lamp", lo, ex, ez, 2, next);
+  obj += QuadGrid("bar", "lamp", lo + ey, ez, ex, 2, next);
+  obj += QuadGrid("bar", "lamp", lo, ez, ey, 2, next);
+  obj += QuadGrid("bar", "lamp", lo + ex, ey, ez, 2, next);
   RowFixture f(SceneFromObj(obj), MeshOptions{});
   FormFactorOptions o;
   o.cutoff = 0;

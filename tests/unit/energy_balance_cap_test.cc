@@ -17,20 +17,9 @@ namespace {
 // (Ke 1), so that rows of reflectance 0.98 (capped at a sum of 0.999 / 0.98 = 1.019) see
 // lamps over much of their hemisphere.
 Scene LampCavity() {
-  const char* mtl =
-      "newmtl white\nKd 0.98 0.98 0.98\n"
-      "newmtl lamp\nKd 0.98 0.98 0.98\nKe 1 1 1\n";
-  int next = 1;
-  const auto quad = [&](const char* material, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    return testing::ObjQuad("cube", material, {a, b, c, d}, next);
-  };
-  const Vec3 v0{0, 0, 0}, v1{1, 0, 0}, v2{1, 1, 0}, v3{0, 1, 0};
-  const Vec3 v4{0, 0, 1}, v5{1, 0, 1}, v6{1, 1, 1}, v7{0, 1, 1};
-  return testing::SceneFromObj(
-      quad("white", v0, v1, v2, v3) + quad("lamp", v0, v4, v5, v1) +
-          quad("white", v1, v5, v6, v2) + quad("lamp", v2, v6, v7, v3) +
-          quad("white", v3, v7, v4, v0) + quad("lamp", v4, v7, v6, v5),
-      mtl);
+  return testing::InwardUnitCube({"white", "lamp", "white", "lamp", "white", "lamp"},
+                                 "newmtl white\nKd 0.98 0.98 0.98\n"
+                                 "newmtl lamp\nKd 0.98 0.98 0.98\nKe 1 1 1\n");
 }
 
 // At k = 16 many rows pass the cap (246 of 600 at seed 1). Their removed power is booked as

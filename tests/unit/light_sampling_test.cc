@@ -21,9 +21,12 @@
 namespace radflux {
 namespace {
 
+using testing::MeanOverSeeds;
 using testing::ObjQuad;
+using testing::QuadGrid;
 using testing::RowFixture;
 using testing::SceneFromObj;
+using testing::SeedMean;
 
 // A g x g grid of emitter faces ("black": Kd 0, Ke 1) over [-0.5, 0.5]^2 at height z,
 // facing down; as two triangles per cell when `triangles`; each face shrunk about its cell's
@@ -60,11 +63,7 @@ double EmitterRowSum(const RowFixture& f, const CsrMatrix& m, uint32_t i) {
   return sum;
 }
 
-// The receiver's estimated form factor to all emitters over `seeds` seeds: mean and the
-// standard error of the mean.
-struct SeedMean {
-  double mean = 0, standard_error = 0;
-};
+// The receiver's estimated form factor to all emitters over `seeds` seeds.
 SeedMean EmitterFormFactorOverSeeds(RowFixture& f, const std::string& receiver, int seeds) {
   uint32_t row = 0;
   while (f.ObjectOf(row) != receiver) ++row;
@@ -72,16 +71,10 @@ SeedMean EmitterFormFactorOverSeeds(RowFixture& f, const std::string& receiver, 
   o.rays = 4;     // the non-emitter rays play no part here
   o.samples = 4;  // 4 points, 16 light samples
   o.cutoff = 0;
-  double sum = 0, sum2 = 0;
-  for (int s = 1; s <= seeds; ++s) {
-    o.seed = static_cast<uint64_t>(s);
-    const double v = EmitterRowSum(f, f.Rows(o), row);
-    sum += v;
-    sum2 += v * v;
-  }
-  const double mean = sum / seeds;
-  const double variance = std::max(0.0, sum2 / seeds - mean * mean) * seeds / (seeds - 1);
-  return {mean, std::sqrt(variance / seeds)};
+  return MeanOverSeeds(seeds, [&](uint64_t seed) {
+    o.seed = seed;
+    return EmitterRowSum(f, f.Rows(o), row);
+  });
 }
 
 // Unbiased: a unit square under a unit square of emitters one apart, the emitters as one
@@ -300,6 +293,26 @@ TEST(LightSampling, TiledEmittersAreSampledAsTheirRectangle) {
   }
 }
 
+// Row 0's entries, column by column, as mean and standard error over `seeds` seeds of `o`.
+std::vector<SeedMean> FirstRowOverSeeds(RowFixture& f, FormFactorOptions o, int seeds) {
+  std::vector<double> sum(f.mesh.size(), 0), sum2(f.mesh.size(), 0);
+  for (int s = 1; s <= seeds; ++s) {
+    o.seed = static_cast<uint64_t>(s);
+    const CsrMatrix m = f.Rows(o);
+    const auto cols = m.RowCols(0);
+    const auto vals = m.RowValues(0);
+    for (size_t k = 0; k < cols.size(); ++k) {
+      sum[cols[k]] += vals[k], sum2[cols[k]] += vals[k] * vals[k];
+    }
+  }
+  std::vector<SeedMean> column(f.mesh.size());
+  for (size_t j = 0; j < column.size(); ++j) {
+    const double mean = sum[j] / seeds;
+    column[j] = {mean, std::sqrt(std::max(0.0, sum2[j] / seeds - mean * mean) / (seeds - 1))};
+  }
+  return column;
+}
+
 // Each emitter of a tiled plane gets its own form factor, not a share of the plane's: a unit
 // square under a 2 x 2 grid of emitters at distance c sees each quarter with F / 4
 // (symmetry), F Howell's closed form; the mean of each column over 400 seeds is within 4
@@ -318,20 +331,9 @@ TEST(LightSampling, TiledEmittersEachGetTheirOwnFormFactor) {
     o.rays = 4;
     o.samples = 4;
     o.cutoff = 0;
-    const int seeds = 400;
-    std::vector<double> sum(f.mesh.size(), 0), sum2(f.mesh.size(), 0);
-    for (int s = 1; s <= seeds; ++s) {
-      o.seed = static_cast<uint64_t>(s);
-      const CsrMatrix m = f.Rows(o);
-      std::vector<double> row(f.mesh.size(), 0);
-      const auto cols = m.RowCols(0);
-      const auto vals = m.RowValues(0);
-      for (size_t k = 0; k < cols.size(); ++k) row[cols[k]] = vals[k];
-      for (size_t j = 0; j < row.size(); ++j) sum[j] += row[j], sum2[j] += row[j] * row[j];
-    }
+    const std::vector<SeedMean> column = FirstRowOverSeeds(f, o, 400);
     for (uint32_t j = 1; j < f.mesh.size(); ++j) {
-      const double mean = sum[j] / seeds;
-      const double error = std::sqrt(std::max(0.0, sum2[j] / seeds - mean * mean) / (seeds - 1));
+      const double mean = column[j].mean, error = column[j].standard_error;
       std::printf("  c = %g, quarter %u: %.6f +- %.6f (exact %.6f)\n", c, j, mean, error, exact);
       EXPECT_NEAR(mean, exact, 4 * error + 1e-12);
       EXPECT_LT(error, 0.02 * exact);
@@ -384,17 +386,7 @@ TEST(LightSampling, SeparatePanelsEachGetTheirOwnFormFactor) {
   o.rays = 4;
   o.samples = 4;
   o.cutoff = 0;
-  const int seeds = 400;
-  std::vector<double> sum(f.mesh.size(), 0), sum2(f.mesh.size(), 0);
-  for (int s = 1; s <= seeds; ++s) {
-    o.seed = static_cast<uint64_t>(s);
-    const CsrMatrix m = f.Rows(o);
-    std::vector<double> row(f.mesh.size(), 0);
-    const auto cols = m.RowCols(0);
-    const auto vals = m.RowValues(0);
-    for (size_t k = 0; k < cols.size(); ++k) row[cols[k]] = vals[k];
-    for (size_t j = 0; j < row.size(); ++j) sum[j] += row[j], sum2[j] += row[j] * row[j];
-  }
+  const std::vector<SeedMean> column = FirstRowOverSeeds(f, o, 400);
   double worst = 0;  // in standard errors
   for (uint32_t j = 1; j < f.mesh.size(); ++j) {
     const EmitterShape panel = MakeEmitterShape(f.mesh, j, 1);
@@ -404,8 +396,7 @@ TEST(LightSampling, SeparatePanelsEachGetTheirOwnFormFactor) {
       y1 = std::max(y1, c.y);
     }
     const double exact = OffsetParallelRectangles({-.5, .5}, {-.5, .5}, {x0, x1}, {y0, y1}, 1);
-    const double mean = sum[j] / seeds;
-    const double error = std::sqrt(std::max(0.0, sum2[j] / seeds - mean * mean) / (seeds - 1));
+    const double mean = column[j].mean, error = column[j].standard_error;
     worst = std::max(worst, std::abs(mean - exact) / error);
     EXPECT_NEAR(mean, exact, 4 * error + 1e-12) << "panel " << j;
     EXPECT_LT(error, 0.05 * exact) << "panel " << j;
@@ -473,20 +464,6 @@ TEST(LightSampling, WallBesideLampsIsNotAHeavyTail) {
   EXPECT_LT(worst, 4);
 }
 
-// A g x g grid of faces of `material` on the parallelogram origin + a ex + b ey, (a, b) in
-// [0, 1]^2, front side ex x ey.
-std::string Grid(const std::string& name, const std::string& material, const Vec3& origin,
-                 const Vec3& ex, const Vec3& ey, int g, int& next) {
-  std::string obj;
-  for (int a = 0; a < g; ++a) {
-    for (int b = 0; b < g; ++b) {
-      const Vec3 p = origin + ex * (double(a) / g) + ey * (double(b) / g);
-      obj += ObjQuad(name, material, {p, p + ex / g, p + ex / g + ey / g, p + ey / g}, next);
-    }
-  }
-  return obj;
-}
-
 // A closed unit room whose ceiling emits, as 1 face or as 64 x 64 = 4,096 faces (walls and
 // floor 8 x 8 faces each; every face one patch). Every row casts the same rays in both: k
 // cosine rays and 16 s light samples, times the near-field factor of the wall patches that
@@ -504,12 +481,12 @@ TEST(LightSampling, CostPerRowDoesNotGrowWithEmitterPatches) {
   for (int g : {1, 64}) {
     int next = 1;
     std::string obj;
-    obj += Grid("floor", "white", {-.5, -.5, 0}, {1, 0, 0}, {0, 1, 0}, 8, next);
-    obj += Grid("x0", "white", {-.5, -.5, 0}, {0, 1, 0}, {0, 0, 1}, 8, next);
-    obj += Grid("x1", "white", {.5, -.5, 0}, {0, 0, 1}, {0, 1, 0}, 8, next);
-    obj += Grid("y0", "white", {-.5, -.5, 0}, {0, 0, 1}, {1, 0, 0}, 8, next);
-    obj += Grid("y1", "white", {-.5, .5, 0}, {1, 0, 0}, {0, 0, 1}, 8, next);
-    obj += Grid("ceiling", "black", {-.5, -.5, 1}, {0, 1, 0}, {1, 0, 0}, g, next);
+    obj += QuadGrid("floor", "white", {-.5, -.5, 0}, {1, 0, 0}, {0, 1, 0}, 8, next);
+    obj += QuadGrid("x0", "white", {-.5, -.5, 0}, {0, 1, 0}, {0, 0, 1}, 8, next);
+    obj += QuadGrid("x1", "white", {.5, -.5, 0}, {0, 0, 1}, {0, 1, 0}, 8, next);
+    obj += QuadGrid("y0", "white", {-.5, -.5, 0}, {0, 0, 1}, {1, 0, 0}, 8, next);
+    obj += QuadGrid("y1", "white", {-.5, .5, 0}, {1, 0, 0}, {0, 0, 1}, 8, next);
+    obj += QuadGrid("ceiling", "black", {-.5, -.5, 1}, {0, 1, 0}, {1, 0, 0}, g, next);
     RowFixture f(SceneFromObj(obj), MeshOptions{});
     const auto builder = MakeRowBuilder(f.context, o);
     RowAccumulator row(f.mesh.size());

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,10 +43,41 @@ inline std::string ObjQuad(const std::string& object, const std::string& materia
   return s + "\n";
 }
 
+// A g x g grid of quad faces of `material` on the parallelogram origin + a ex + b ey, (a, b)
+// in [0, 1]^2, front side ex x ey.
+inline std::string QuadGrid(const std::string& object, const std::string& material,
+                            const Vec3& origin, const Vec3& ex, const Vec3& ey, int g, int& next) {
+  std::string obj;
+  for (int a = 0; a < g; ++a) {
+    for (int b = 0; b < g; ++b) {
+      const Vec3 p = origin + ex * (double(a) / g) + ey * (double(b) / g);
+      obj += ObjQuad(object, material, {p, p + ex / g, p + ex / g + ey / g, p + ey / g}, next);
+    }
+  }
+  return obj;
+}
+
+// The closed unit cube [0, 1]^3 seen from inside (every face facing in), one quad per face,
+// object "cube", with materials for the faces z = 0, y = 0, x = 1, y = 1, x = 0, z = 1.
+inline Scene InwardUnitCube(const std::array<const char*, 6>& material,
+                            const std::string& mtl = kTestMtl) {
+  int next = 1;
+  const Vec3 v0{0, 0, 0}, v1{1, 0, 0}, v2{1, 1, 0}, v3{0, 1, 0};
+  const Vec3 v4{0, 0, 1}, v5{1, 0, 1}, v6{1, 1, 1}, v7{0, 1, 1};
+  return SceneFromObj(ObjQuad("cube", material[0], {v0, v1, v2, v3}, next) +
+                          ObjQuad("cube", material[1], {v0, v4, v5, v1}, next) +
+                          ObjQuad("cube", material[2], {v1, v5, v6, v2}, next) +
+                          ObjQuad("cube", material[3], {v2, v6, v7, v3}, next) +
+                          ObjQuad("cube", material[4], {v3, v7, v4, v0}, next) +
+                          ObjQuad("cube", material[5], {v4, v7, v6, v5}, next),
+                      mtl);
+}
+
 // The parallelogram corner + [0,1] u + [0,1] v as m x m cells of two triangles each (OBJ
 // faces, counter-clockwise seen from the side u x v points to).
 inline std::string TessellatedQuad(const std::string& object, const std::string& material,
-                            const Vec3& corner, const Vec3& u, const Vec3& v, int m, int& next) {
+                                   const Vec3& corner, const Vec3& u, const Vec3& v, int m,
+                                   int& next) {
   std::string s = "o " + object + "\nusemtl " + material + "\n";
   auto vertex = [&](int i, int j) {
     const Vec3 p = corner + u * (double(i) / m) + v * (double(j) / m);
@@ -60,6 +94,22 @@ inline std::string TessellatedQuad(const std::string& object, const std::string&
     }
   }
   return s;
+}
+
+// The mean of a quantity measured once for each seed 1..seeds, and its standard error.
+struct SeedMean {
+  double mean = 0, standard_error = 0;
+};
+template <class Measure>  // double(uint64_t seed)
+SeedMean MeanOverSeeds(int seeds, Measure measure) {
+  double sum = 0, sum2 = 0;
+  for (int s = 1; s <= seeds; ++s) {
+    const double v = measure(static_cast<uint64_t>(s));
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / seeds;
+  return {mean, std::sqrt(std::max(0.0, sum2 / seeds - mean * mean) / (seeds - 1))};
 }
 
 // A scene ready for row building: mesh, attributes, Embree, context.
