@@ -12,11 +12,20 @@
 #   OUT=dir (default /tmp/radflux-cycles), SIZE=128x128, SPP=4096 (Cycles samples per pixel),
 #   RUNS=20 (0: no timing), BIN=build/ci/client/radflux, SEEDS="1 2 3 4 5 6" (radflux --seed
 #   per picture; one seed, e.g. SEEDS=1, is the single-run mode). The two Cycles renders (seeds
-#   1 and 2, ~6-9 min each here) are reused when OUT already has them for the same SIZE and SPP.
+#   1 and 2, ~6-9 min each here; OUT/cycles_m_SIZE_SPP_seedN) are reused when OUT has them.
 #   SS=4: radflux's pictures are rendered SS times larger and box-averaged down in the comparison
 #   (SS x SS samples per pixel, as Cycles' box filter spans the pixel: a pixel across an edge
 #   inside one object, such as a block's front and side faces, then means the same in both;
 #   SS=1 takes each pixel's centre, which put a block's one-pixel-wide side column 50% off).
+#
+# Cycles gets the scene in metres (every vertex and the camera times 0.001; radiance does not
+# depend on the scale). Blender 3.4 samples a triangle light by solid angle when its longest
+# edge exceeds (distance to its plane) / (twice its area), a test that is not scale-free: in
+# millimetres it picked solid-angle sampling everywhere, whose directions towards a lamp seen
+# edge-on (the walls' tops) miss the triangle and are dropped, so the reference lost 0.6-1.5%
+# of the direct light on the top quarter of the walls (direct light alone against Lambert's
+# closed form: back / green wall 0.994 / 0.985; in metres 1.007 / 1.006, as BSDF sampling
+# alone). In metres it samples by area but within ~2 mm of the lamp's plane.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-/tmp/radflux-cycles}
@@ -36,12 +45,30 @@ look=278,274.4,279.6
 fov=39.3077
 camera=(--camera-pos "$pos" --camera-look-at "$look" --fov-deg "$fov" --size "$size")
 
+# The scene and camera in metres for Cycles (see above), the MTL beside it.
+metres=0.001
+in_metres() {
+  /usr/bin/python3 -c "import sys; print(','.join('%.9g' % (float(v) * $metres) for v in \
+sys.argv[1].split(',')))" "$1"
+}
+/usr/bin/python3 - "$scene" "$out/cycles_scene.obj" "$metres" <<'EOF'
+import sys
+scene, dst, s = sys.argv[1], sys.argv[2], float(sys.argv[3])
+with open(dst, "w") as f:
+    for line in open(scene):
+        p = line.split()
+        if p and p[0] == "v":
+            line = "v " + " ".join("%.9g" % (float(v) * s) for v in p[1:4]) + "\n"
+        f.write(line)
+EOF
+cp "${scene%.obj}.mtl" "$out/"
 for seed in 1 2; do
-  ref="$out/cycles_${size}_${spp}_seed$seed"
+  ref="$out/cycles_m_${size}_${spp}_seed$seed"
   if [ ! -f "$ref.npy" ]; then
     blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
-      "$scene" "$ref" --pos "$pos" --look "$look" --up 0,1,0 --fov "$fov" --size "$size" \
-      --samples "$spp" --seed "$seed" --threads 2 > "$ref.log" 2>&1
+      "$out/cycles_scene.obj" "$ref" --pos "$(in_metres $pos)" --look "$(in_metres $look)" \
+      --up 0,1,0 --fov "$fov" --size "$size" --samples "$spp" --seed "$seed" --threads 2 \
+      > "$ref.log" 2>&1
   fi
 done
 
@@ -79,7 +106,7 @@ for seed in "${seeds[@]}"; do
   "$bin" solve "$scene" --render "${pictures[-1]}" "${big[@]}" -q --seed "$seed" "$@"
 done
 /usr/bin/python3 bench/cornell_vs_cycles.py "$out/mask.pfm" \
-  "$out/cycles_${size}_${spp}_seed1.npy" "$out/cycles_${size}_${spp}_seed2.npy" \
+  "$out/cycles_m_${size}_${spp}_seed1.npy" "$out/cycles_m_${size}_${spp}_seed2.npy" \
   "${pictures[@]}" --json "$out/compare.json"
 
 # The whole process at the defaults, no outputs: median of RUNS runs.
