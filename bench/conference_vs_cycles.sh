@@ -8,8 +8,15 @@
 # radflux's picture is SS (default 4) times the references' 160x120 in both directions and
 # box-averaged down in the comparison, as Cycles' box filter spans the pixel (SS=1: pixel
 # centres; the screen's one-pixel emitting frame then reads 20-30% off in its rows).
+# Cycles gets the scene and camera in metres (times 0.01; radiance does not depend on the
+# scale): Blender 3.4 samples a triangle light by solid angle when its longest edge exceeds
+# (distance to its plane) / (twice its area), a test that is not scale-free; in the scene's
+# centimetres it picked solid-angle sampling, which drops directions towards an emitter seen
+# edge-on, and the references came out dark (ceiling 2.2%, floor 2.8%, left wall 4.4%; the
+# same as bench/cornell_vs_cycles.sh found on the Cornell box). SPP (default 2048): Cycles'
+# samples per pixel.
 #
-#   [SEEDS="1 2 3"] [EXTRA="..."] [SS=4] bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
+#   [SEEDS="1 2 3"] [EXTRA="..."] [SS=4] [SPP=2048] bench/conference_vs_cycles.sh OUT_DIR [PATCHES ...]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -22,11 +29,21 @@ cam=(--camera-pos 1550,400,-300 --camera-look-at 0,200,-200 --camera-up 0,1,0 --
      --size $((160 * ss))x$((120 * ss)))
 [ -f "$out/conf.obj" ] || python3 "$here/clean_real_scene.py" \
   "$root/../shared/scenes/conference/conference.obj" "$out/conf" --emit mesh16_SG --ke 20 --max-kd 0.98
+spp=${SPP:-2048}
+[ -f "$out/conf_m.obj" ] || /usr/bin/python3 -c 'import sys
+with open(sys.argv[2], "w") as f:
+    for line in open(sys.argv[1]):
+        p = line.split()
+        if p and p[0] == "v":
+            line = "v " + " ".join("%.9g" % (float(v) * 0.01) for v in p[1:4]) + "\n"
+        f.write(line)' "$out/conf.obj" "$out/conf_m.obj"
+refs=()
 for seed in 1 2; do
-  [ -f "$out/conf_ref_seed$seed.npy" ] || blender -b --factory-startup -noaudio \
-    --python "$root/../shared/tools/cycles_reference.py" -- "$out/conf.obj" "$out/conf_ref_seed$seed" \
-    --pos 1550,400,-300 --look 0,200,-200 --up 0,1,0 --fov 60 --size 160x120 --samples 2048 \
-    --seed $seed --max-refl 0.98 --threads 2 > "$out/render_seed$seed.log" 2>&1
+  refs+=("$out/conf_ref_m_${spp}_seed$seed.npy")
+  [ -f "${refs[-1]}" ] || blender -b --factory-startup -noaudio \
+    --python "$root/../shared/tools/cycles_reference.py" -- "$out/conf_m.obj" "${refs[-1]%.npy}" \
+    --pos 15.5,4,-3 --look 0,2,-2 --up 0,1,0 --fov 60 --size 160x120 --samples "$spp" \
+    --seed $seed --max-refl 0.98 --threads 2 > "$out/render_m_${spp}_seed$seed.log" 2>&1
 done
 read -r -a extra <<< "${EXTRA:-}"
 for patches in default "$@"; do
@@ -42,7 +59,6 @@ for patches in default "$@"; do
     /usr/bin/python3 -c 'import json, sys
 print("phases (s):", ", ".join(f"{k} {v:.2f}" for k, v in json.load(open(sys.argv[1]))["seconds"].items()))' \
       "$out/r_$run.json"
-    /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$run.pfm" \
-      "$out/conf_ref_seed1.npy" "$out/conf_ref_seed2.npy"
+    /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$run.pfm" "${refs[@]}"
   done
 done
