@@ -50,19 +50,6 @@ double RejectionFormFactor(const EmitterShape& shape, const Vec3& x, const Vec3&
   return EmitterFormFactor(shape, x, n);
 }
 
-std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
-  std::vector<EmitterShape> shapes;
-  for (uint32_t j = 0; j < context.emitter.size(); ++j) {
-    if (!context.emitter[j]) continue;
-    const double exitance = j < context.emission.size() ? context.emission[j] : 1.0;
-    // An emitting unknown is one patch (grouping never groups emitters); the shape names
-    // the unknown, its column.
-    shapes.push_back(MakeEmitterShape(*context.mesh, context.FirstPatch(j), exitance));
-    shapes.back().patch = j;
-  }
-  return shapes;
-}
-
 // A receiver whose size is not small against its distance to the nearest emitter that
 // lights it sees F_ij vary strongly across it (a reflector a few cm from a lamp in its
 // housing): it takes (size / distance)^2 times the points, at most this many times. Far
@@ -105,8 +92,24 @@ int SetNearFieldFactor(const PatchMesh& mesh, uint32_t first, std::span<const ui
 
 }  // namespace
 
-LightSampler::LightSampler(const RowContext& context)
-    : context_(context), tree_(EmitterShapes(context)), tree_index_(context.emitter.size(), 0) {
+std::vector<EmitterShape> EmitterShapes(const RowContext& context) {
+  std::vector<EmitterShape> shapes;
+  for (uint32_t j = 0; j < context.emitter.size(); ++j) {
+    if (!context.emitter[j]) continue;
+    const double exitance = j < context.emission.size() ? context.emission[j] : 1.0;
+    // An emitting unknown is one patch (grouping never groups emitters); the shape names
+    // the unknown, its column.
+    shapes.push_back(MakeEmitterShape(*context.mesh, context.FirstPatch(j), exitance));
+    shapes.back().patch = j;
+  }
+  return shapes;
+}
+
+LightSampler::LightSampler(const RowContext& context, const LightSampler* near_field)
+    : context_(context),
+      tree_(EmitterShapes(context)),
+      near_field_(near_field != nullptr ? near_field->tree_ : tree_),
+      tree_index_(context.emitter.size(), 0) {
   uint32_t k = 0;  // EmitterShapes' order
   for (uint32_t j = 0; j < context.emitter.size(); ++j) {
     if (context.emitter[j]) tree_index_[j] = k++;
@@ -119,7 +122,7 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
   const std::span<const uint32_t> members =
       context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
-  points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, tree_);
+  points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, near_field_);
   const double samples = static_cast<double>(points) * per_point;
   for (const CosineHit& hit : hits) {
     row.Add(hit.emitter, CosineHitValue(hit, cosine_rays, samples));

@@ -41,10 +41,18 @@
 
 namespace radflux {
 
+// The shapes of `context`'s emitting unknowns (each one patch), in unknown order, their power
+// from context.emission: the LightTree of a LightSampler.
+std::vector<EmitterShape> EmitterShapes(const RowContext& context);
+
 class LightSampler {
  public:
-  // The emitter patches of `context`, with their power from context.emission.
-  explicit LightSampler(const RowContext& context);
+  // The emitter patches of `context`, with their power from context.emission. With
+  // `near_field`, a receiver's near-field factor (AddEmitterColumns: more points near an
+  // emitter) is measured to near_field's emitters instead of this sampler's (bright
+  // reflectors, bright_reflectors.h, sampled beside the emitters, add no points: their
+  // columns came from the cosine rays alone before).
+  explicit LightSampler(const RowContext& context, const LightSampler* near_field = nullptr);
 
   bool empty() const { return tree_.empty(); }
 
@@ -102,6 +110,7 @@ class LightSampler {
 
   const RowContext& context_;
   LightTree tree_;
+  const LightTree& near_field_;       // the tree whose emitters set the near-field factor
   std::vector<uint32_t> tree_index_;  // per unknown: its index among the tree's emitters
 };
 

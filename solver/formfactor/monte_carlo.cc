@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/core/sampling.h"
+#include "solver/formfactor/bright_reflectors.h"
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/formfactor/reciprocal_columns.h"
@@ -47,7 +48,11 @@ class MonteCarloBuilder final : public RowBuilder {
   // its own random offsets (Cranley-Patterson rotation), which keeps it stratified and
   // makes the estimate unbiased at a few additions per ray.
   MonteCarloBuilder(const RowContext& context, const FormFactorOptions& options)
-      : context_(context), options_(options), lights_(context) {
+      : context_(context),
+        options_(options),
+        lit_(WithBrightReflectors(context)),
+        lights_(context),
+        bright_lights_(lit_, &lights_) {
     sets_.emplace(Rays(0), MakeRaySet(Rays(0)));  // a context without unknowns' areas
     for (uint32_t u = 0; u < context.needs_row.size(); ++u) {
       const uint32_t k = Rays(u);
@@ -84,6 +89,12 @@ class MonteCarloBuilder final : public RowBuilder {
       GroupRays(i, set, ps, ds, stream, origins);
     }
     context_.caster->IntersectStream(stream);
+    // A row that is itself light sampled (an emitter's, a bright reflector's) carries much
+    // power in the energy balance: its cosine rays keep the bright reflectors' columns, so
+    // that its sum stays one multinomial draw (light_sampling.h), not two independent parts.
+    const bool plain = lit_.emitter[i] != 0;
+    const RowContext& columns = plain ? context_ : lit_;
+    const LightSampler& lights = plain ? lights_ : bright_lights_;
     const double weight = 1.0 / static_cast<double>(set.positions.size());
     // A group that is not flat sees itself (F_ii > 0, Galerkin's diagonal: face_grouping.h);
     // a single patch is flat and cannot.
@@ -93,7 +104,7 @@ class MonteCarloBuilder final : public RowBuilder {
       if (hit == kNoPatch) continue;
       const uint32_t j = context_.UnknownOf(hit);
       if (j == i && !group) continue;
-      if (context_.emitter[j]) {
+      if (columns.emitter[j]) {
         emitter_hits.push_back({origins[r].x, origins[r].n, j});
       } else if (!hidden_.Fills(i, j)) {
         row.Add(j, weight);
@@ -104,7 +115,7 @@ class MonteCarloBuilder final : public RowBuilder {
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
-    const uint64_t light_rays = lights_.AddEmitterColumns(
+    const uint64_t light_rays = lights.AddEmitterColumns(
         i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,
         emitter_hits, static_cast<uint32_t>(stream.size()));
     // The light samples' part of the emitter columns varies apart from the cosine rays'
@@ -186,7 +197,9 @@ class MonteCarloBuilder final : public RowBuilder {
 
   const RowContext& context_;
   FormFactorOptions options_;
+  RowContext lit_;                   // context_ with its bright reflectors as emitter columns
   LightSampler lights_;              // the emitter columns
+  LightSampler bright_lights_;       // the emitter and bright reflector columns
   std::map<uint32_t, RaySet> sets_;  // by rays per row
   ReciprocalColumns hidden_;         // the rows' entries towards hidden unknowns
 };
