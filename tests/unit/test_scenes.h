@@ -58,19 +58,23 @@ inline std::string QuadGrid(const std::string& object, const std::string& materi
 }
 
 // The closed unit cube [0, 1]^3 seen from inside (every face facing in), one quad per face,
-// object "cube", with materials for the faces z = 0, y = 0, x = 1, y = 1, x = 0, z = 1.
+// object "cube", with materials for the faces z = 0, y = 0, x = 1, y = 1, x = 0, z = 1: as
+// OBJ text (vertices numbered from next_index on), and as a scene.
+inline std::string InwardUnitCubeObj(const std::array<const char*, 6>& material, int& next_index) {
+  const Vec3 v0{0, 0, 0}, v1{1, 0, 0}, v2{1, 1, 0}, v3{0, 1, 0};
+  const Vec3 v4{0, 0, 1}, v5{1, 0, 1}, v6{1, 1, 1}, v7{0, 1, 1};
+  int& next = next_index;
+  std::string obj = ObjQuad("cube", material[0], {v0, v1, v2, v3}, next);
+  obj += ObjQuad("cube", material[1], {v0, v4, v5, v1}, next);
+  obj += ObjQuad("cube", material[2], {v1, v5, v6, v2}, next);
+  obj += ObjQuad("cube", material[3], {v2, v6, v7, v3}, next);
+  obj += ObjQuad("cube", material[4], {v3, v7, v4, v0}, next);
+  return obj + ObjQuad("cube", material[5], {v4, v7, v6, v5}, next);
+}
 inline Scene InwardUnitCube(const std::array<const char*, 6>& material,
                             const std::string& mtl = kTestMtl) {
   int next = 1;
-  const Vec3 v0{0, 0, 0}, v1{1, 0, 0}, v2{1, 1, 0}, v3{0, 1, 0};
-  const Vec3 v4{0, 0, 1}, v5{1, 0, 1}, v6{1, 1, 1}, v7{0, 1, 1};
-  return SceneFromObj(ObjQuad("cube", material[0], {v0, v1, v2, v3}, next) +
-                          ObjQuad("cube", material[1], {v0, v4, v5, v1}, next) +
-                          ObjQuad("cube", material[2], {v1, v5, v6, v2}, next) +
-                          ObjQuad("cube", material[3], {v2, v6, v7, v3}, next) +
-                          ObjQuad("cube", material[4], {v3, v7, v4, v0}, next) +
-                          ObjQuad("cube", material[5], {v4, v7, v6, v5}, next),
-                      mtl);
+  return SceneFromObj(InwardUnitCubeObj(material, next), mtl);
 }
 
 // The parallelogram corner + [0,1] u + [0,1] v as m x m cells of two triangles each (OBJ
