@@ -9,6 +9,9 @@ Usage: bench/object_reference_check.py [--binary build/ci/bench/object_reference
 2. Only the floor emits E = pi: the walls differ, but in a closed box all light that leaves a
    wall lands on one, so sum of A B = A_floor E / (1 - rho) = 2 pi; and the four side walls
    agree with each other (symmetry).
+3. A lamp (E = pi, rho 0) of 0.4 x 0.4 facing up, 2 cm under a grey square of the same size
+   facing down (rho 0.5), nothing else: the square's B is rho E F, F of C-11 (the shadow
+   rays from it to the lamp 2 cm away must not meet the lamp as their own blocker).
 Each is asserted within 4 of the reference's own standard errors (plus 0.05% for what the
 standard error of a stratified mean can miss); exit 1 and one line per failure otherwise.
 """
@@ -44,6 +47,25 @@ def box(directory, lit):
     return path
 
 
+def parallel_squares(a, c):
+    """C-11: F between identical, directly opposed squares of side a at distance c."""
+    x = a / c
+    r = math.sqrt(1 + x * x)
+    return 2 / (math.pi * x * x) * (math.log(r * r / math.sqrt(1 + 2 * x * x))
+                                     + 2 * x * r * math.atan(x / r) - 2 * x * math.atan(x))
+
+
+def lamp_under_square(directory):
+    """Writes the lamp 2 cm under a grey square (3. above); its path."""
+    with open(os.path.join(directory, "gap.mtl"), "w") as f:
+        f.write("newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl grey\nKd 0.5 0.5 0.5\n")
+    with open(os.path.join(directory, "gap.obj"), "w") as f:
+        f.write("mtllib gap.mtl\no lamp\nusemtl lamp\nv 0 0 0\nv 0.4 0 0\nv 0.4 0.4 0\n"
+                "v 0 0.4 0\nf 1 2 3 4\no square\nusemtl grey\nv 0 0 0.02\nv 0 0.4 0.02\n"
+                "v 0.4 0.4 0.02\nv 0.4 0 0.02\nf 5 6 7 8\n")
+    return os.path.join(directory, "gap.obj")
+
+
 def run(binary, path):
     """Object -> (B, standard error) from object_reference at 65,536 paths an object."""
     out = subprocess.run([binary, path, "65536", "1",
@@ -75,6 +97,9 @@ def main():
         mean = sum(b for b, _ in sides) / 4
         for name, (b, se) in zip(("south", "north", "west", "east"), sides):
             check(f"floor emits, {name} wall against the side walls' mean", b, mean, se, failures)
+        b, se = run(binary, lamp_under_square(directory))["square"]
+        check("a square 2 cm above a lamp", b, 0.5 * math.pi * parallel_squares(0.4, 0.02), se,
+              failures)
     sys.exit(1 if failures else 0)
 
 
