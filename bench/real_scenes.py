@@ -7,7 +7,7 @@ Usage: bench/real_scenes.py [--build build/ci] [--cache /tmp/radflux-real] [--pa
 
 For each scene: the reference is bench/object_reference (path tracing, no radiosity machinery;
 at most N paths an object, default PATHS per scene, fewer once its standard error is R of its
-mean, default 0.001) with seeds 1 and 2, cached in CACHE as SCENE_ref_v2_seedS_N.csv (computed only
+mean, default 0.001) with seeds 1 and 2, cached in CACHE as SCENE_ref_v3_seedS_N.csv (computed only
 when missing: delete it when object_reference changes). radflux-local solve runs once with
 its defaults (plus any extra flags); the --patch-values CSV gives, per object, the
 area-weighted mean of (r+g+b)/3 over the object's full face area (the part contact meshing
@@ -44,7 +44,7 @@ SHARP = 0.0025  # the reference's relative standard error below which an object 
 
 def reference(build, cache, name, paths, relative, seed):
     """Object -> (area, mean B, standard error) from the cached or fresh reference."""
-    path = os.path.join(cache, f"{name}_ref_v2_seed{seed}_{paths}.csv")
+    path = os.path.join(cache, f"{name}_ref_v3_seed{seed}_{paths}.csv")
     if not os.path.exists(path):
         with open(path + ".tmp", "w") as out:
             subprocess.run([os.path.join(build, "bench", "object_reference"),
