@@ -8,9 +8,9 @@
 # radflux's picture is SS (default 4) times the references' 160x120 in both directions and
 # box-averaged down in the comparison, as Cycles' box filter spans the pixel (SS=1: pixel
 # centres; the screen's one-pixel emitting frame then reads 20-30% off in its rows).
-# Cycles gets the scene and camera in metres (times 0.01; radiance does not depend on the
-# scale): Blender 3.4 samples a triangle light by solid angle when its longest edge exceeds
-# (distance to its plane) / (twice its area), a test that is not scale-free; in the scene's
+# Cycles gets the scene and camera in metres (times 0.01, bench/obj_scaled.py; radiance does
+# not depend on the scale): Blender 3.4 samples a triangle light by solid angle when its
+# longest edge exceeds (distance to its plane) / (twice its area), not scale-free; in the scene's
 # centimetres it picked solid-angle sampling, which drops directions towards an emitter seen
 # edge-on, and the references came out dark (ceiling 2.2%, floor 2.8%, left wall 4.4%; the
 # same as bench/cornell_vs_cycles.sh found on the Cornell box). SPP (default 2048): Cycles'
@@ -30,13 +30,7 @@ cam=(--camera-pos 1550,400,-300 --camera-look-at 0,200,-200 --camera-up 0,1,0 --
 [ -f "$out/conf.obj" ] || python3 "$here/clean_real_scene.py" \
   "$root/../shared/scenes/conference/conference.obj" "$out/conf" --emit mesh16_SG --ke 20 --max-kd 0.98
 spp=${SPP:-2048}
-[ -f "$out/conf_m.obj" ] || /usr/bin/python3 -c 'import sys
-with open(sys.argv[2], "w") as f:
-    for line in open(sys.argv[1]):
-        p = line.split()
-        if p and p[0] == "v":
-            line = "v " + " ".join("%.9g" % (float(v) * 0.01) for v in p[1:4]) + "\n"
-        f.write(line)' "$out/conf.obj" "$out/conf_m.obj"
+[ -f "$out/conf_m.obj" ] || /usr/bin/python3 "$here/obj_scaled.py" "$out/conf.obj" "$out/conf_m.obj" 0.01
 refs=()
 for seed in 1 2; do
   refs+=("$out/conf_ref_m_${spp}_seed$seed.npy")

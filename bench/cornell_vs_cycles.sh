@@ -45,28 +45,15 @@ look=278,274.4,279.6
 fov=39.3077
 camera=(--camera-pos "$pos" --camera-look-at "$look" --fov-deg "$fov" --size "$size")
 
-# The scene and camera in metres for Cycles (see above), the MTL beside it.
-metres=0.001
-in_metres() {
-  /usr/bin/python3 -c "import sys; print(','.join('%.9g' % (float(v) * $metres) for v in \
-sys.argv[1].split(',')))" "$1"
-}
-/usr/bin/python3 - "$scene" "$out/cycles_scene.obj" "$metres" <<'EOF'
-import sys
-scene, dst, s = sys.argv[1], sys.argv[2], float(sys.argv[3])
-with open(dst, "w") as f:
-    for line in open(scene):
-        p = line.split()
-        if p and p[0] == "v":
-            line = "v " + " ".join("%.9g" % (float(v) * s) for v in p[1:4]) + "\n"
-        f.write(line)
-EOF
+# The scene and camera in metres for Cycles (see above; bench/obj_scaled.py), the MTL beside it.
+{ read -r pos_m; read -r look_m; } < <(/usr/bin/python3 bench/obj_scaled.py "$scene" \
+  "$out/cycles_scene.obj" 0.001 "$pos" "$look")
 cp "${scene%.obj}.mtl" "$out/"
 for seed in 1 2; do
   ref="$out/cycles_m_${size}_${spp}_seed$seed"
   if [ ! -f "$ref.npy" ]; then
     blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
-      "$out/cycles_scene.obj" "$ref" --pos "$(in_metres $pos)" --look "$(in_metres $look)" \
+      "$out/cycles_scene.obj" "$ref" --pos "$pos_m" --look "$look_m" \
       --up 0,1,0 --fov "$fov" --size "$size" --samples "$spp" --seed "$seed" --threads 2 \
       > "$ref.log" 2>&1
   fi

@@ -8,12 +8,15 @@
 # at the defaults otherwise, for each seed in SEEDS: its CPU time (user + sys) and wall time
 # (/usr/bin/time; wall only means something when the machine is quiet: the load is printed).
 #
-# The reference (two Cycles renders, seeds 1 and 2, at the camera below) is made once:
+# The reference (two Cycles renders, seeds 1 and 2, at the camera below) is made once, with
+# the scene and camera in metres (bench/obj_scaled.py: in millimetres Blender 3.4 drops
+# grazing light from the lamp):
+#   bench/obj_scaled.py scenes/cornell_box.obj REF/cornell_m.obj 0.001 (+ the MTL beside it)
 #   blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
-#     scenes/cornell_box.obj REF_seedS --pos 278,273,-800 --look 278,273,0 --up 0,1,0 \
-#     --fov 39.3077 --size 256x256 --samples N --seed S --threads 2
-# (REF=dir holding cornell_ref_seed1.npy and cornell_ref_seed2.npy; the bench renders them
-# there when missing, ~20-40 min on this machine.)
+#     REF/cornell_m.obj REF/cornell_m_SPP_ref_seedS --pos 0.278,0.273,-0.8 --look 0.278,0.273,0 \
+#     --up 0,1,0 --fov 39.3077 --size 256x256 --samples SPP --seed S --threads 2
+# (REF=dir holding cornell_m_SPP_ref_seed{1,2}.npy; the bench renders them there when
+# missing, ~20-40 min each at 4,096 spp on this machine.)
 #
 # Usage: bench/final_gather.sh [extra radflux solve flags...]
 #   GATHER=128 (rays per pixel), SEEDS="1 2 3", REF=/work/notes/gather, OUT=/tmp/radflux-gather,
@@ -31,12 +34,16 @@ bin=${BIN:-build/ci/client/radflux}
 scene=scenes/cornell_box.obj
 mkdir -p "$out" "$ref"
 # The Cornell box's published camera (CornellCamera), given to both renderers.
+/usr/bin/python3 bench/obj_scaled.py "$scene" "$ref/cornell_m.obj" 0.001 > /dev/null
+cp "${scene%.obj}.mtl" "$ref/"
+refs=()
 for seed in 1 2; do
-  if [ ! -f "$ref/cornell_ref_seed$seed.npy" ]; then
+  refs+=("$ref/cornell_m_${spp}_ref_seed$seed.npy")
+  if [ ! -f "${refs[-1]}" ]; then
     blender -b --factory-startup -noaudio --python ../shared/tools/cycles_reference.py -- \
-      "$scene" "$ref/cornell_ref_seed$seed" --pos 278,273,-800 --look 278,273,0 --up 0,1,0 \
-      --fov 39.3077 --size 256x256 --samples "$spp" --seed "$seed" --threads 2 \
-      > "$ref/render_seed$seed.log" 2>&1
+      "$ref/cornell_m.obj" "${refs[-1]%.npy}" --pos 0.278,0.273,-0.8 --look 0.278,0.273,0 \
+      --up 0,1,0 --fov 39.3077 --size 256x256 --samples "$spp" --seed "$seed" --threads 2 \
+      > "${refs[-1]%.npy}.log" 2>&1
   fi
 done
 for seed in $seeds; do
@@ -46,5 +53,5 @@ for seed in $seeds; do
     --fov-deg 39.3077 --size 256x256 --gather "$gather" --seed "$seed" --threads 2 \
     --render "$out/gather$seed.pfm" --report "$out/gather$seed.json" "$@"
   /usr/bin/python3 bench/final_gather.py "$out/gather$seed.pfm" "$out/gather$seed.json" \
-    "$ref/cornell_ref_seed1.npy" "$ref/cornell_ref_seed2.npy"
+    "${refs[@]}"
 done
