@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "tests/integration/radfluxd_path.h"
+
 namespace radflux::testing {
 
 ServerProcess::ServerProcess(const std::string& data_dir, const std::vector<std::string>& extra) {
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe");
-  std::vector<std::string> args = {RADFLUXD_PATH, "--listen", "127.0.0.1:0", "--data-dir",
+  std::vector<std::string> args = {RadfluxdPath(), "--listen", "127.0.0.1:0", "--data-dir",
                                    data_dir};
   args.insert(args.end(), extra.begin(), extra.end());
   pid_ = fork();

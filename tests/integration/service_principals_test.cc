@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "tests/integration/certificates.h"
+#include "tests/integration/radfluxd_path.h"
 #include "tests/integration/service_fixture.h"
 #include "tests/integration/test_helpers.h"
 #include "wire/scene_hash.h"
@@ -330,7 +331,7 @@ TEST_F(PrincipalsTest, AClientCertificatesCnNamesItsPrincipal) {
 
 // radfluxd with `flags`: its exit status and what it printed (stdout and stderr).
 int RunRadfluxd(const std::string& flags, std::string* output) {
-  FILE* pipe = popen((RADFLUXD_PATH " " + flags + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((testing::RadfluxdPath() + " " + flags + " 2>&1").c_str(), "r");
   if (pipe == nullptr) return -1;
   char buffer[4096];
   for (size_t n; (n = fread(buffer, 1, sizeof(buffer), pipe)) > 0;) output->append(buffer, n);

@@ -16,6 +16,7 @@
 
 #include "absl/strings/str_split.h"
 #include "server/store/blob_file.h"
+#include "tests/integration/radfluxd_path.h"
 #include "tests/integration/service_fixture.h"
 #include "wire/scene_stream.h"
 
@@ -212,12 +213,13 @@ TEST_F(StoreRepairTest, CorruptResultIsComputedAgainBitIdentical) {
 // radfluxd's exit status and everything it printed (stdout and stderr), on `data_dir`.
 // `timeout` ends a server that starts after all, which then fails the test (exit 124).
 std::pair<int, std::string> RunRadfluxd(const std::string& data_dir) {
-  const std::string command = "timeout 60 " RADFLUXD_PATH " --listen 127.0.0.1:0 --data-dir '" +
-                              data_dir + "' 2>&1";
+  const std::string command = "timeout 60 " + testing::RadfluxdPath() +
+                              " --listen 127.0.0.1:0 --data-dir '" + data_dir + "' 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   char buffer[4096];
-  for (size_t n; pipe && (n = fread(buffer, 1, sizeof(buffer), pipe)) > 0;) output.append(buffer, n);
+  for (size_t n; pipe && (n = fread(buffer, 1, sizeof(buffer), pipe)) > 0;)
+    output.append(buffer, n);
   const int status = pipe ? pclose(pipe) : -1;
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }

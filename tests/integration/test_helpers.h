@@ -13,6 +13,7 @@
 #include "radflux/v1/job.pb.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 #include "wire/proto_convert.h"
 
 namespace radflux::testing {
@@ -25,8 +26,8 @@ inline std::string ReadText(const std::string& path) {
   return buffer.str();
 }
 
-inline const std::string kObj = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
-inline const std::string kMtl = ReadText(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
+inline const std::string kObj = ReadText(SourcePath("scenes/cornell_box.obj"));
+inline const std::string kMtl = ReadText(SourcePath("scenes/cornell_box.mtl"));
 
 // B per patch per band of the job `proto` on `scene` computed in-process by RunJob.
 inline std::vector<double> InProcess(const v1::SolveOptions& proto, Scene scene) {

@@ -26,6 +26,7 @@
 #include "radflux/v1/worker.grpc.pb.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/integration/radfluxd_path.h"
 #include "tests/integration/test_helpers.h"
 #include "wire/proto_convert.h"
 #include "wire/scene_hash.h"
@@ -135,7 +136,7 @@ class WorkerTest : public ::testing::Test {
   // radfluxd on `host`:0 with `extra` flags (and --worker-token kWorkerToken unless they
   // name a worker token or allow workers without); returns its HOST:PORT.
   void StartServer(const std::vector<std::string>& extra, const std::string& host = "127.0.0.1") {
-    std::vector<std::string> args = {RADFLUXD_PATH,  "--listen",  host + ":0", "--data-dir",
+    std::vector<std::string> args = {RadfluxdPath(), "--listen",  host + ":0", "--data-dir",
                                      dir_ + "/data", "--threads", "1"};
     args.insert(args.end(), extra.begin(), extra.end());
     if (!Names(extra, "--worker-token") && !Names(extra, "--allow-workers-without-token")) {
@@ -151,9 +152,8 @@ class WorkerTest : public ::testing::Test {
   Child& StartWorker(const std::vector<std::string>& extra,
                      const std::vector<std::string>& prefix = {}) {
     std::vector<std::string> args = prefix;
-    for (const std::string& a :
-         {std::string(RADFLUXD_PATH), std::string("--worker"), std::string("--server"), address_,
-          std::string("--threads"), std::string("1")}) {
+    for (const std::string& a : {RadfluxdPath(), std::string("--worker"), std::string("--server"),
+                                 address_, std::string("--threads"), std::string("1")}) {
       args.push_back(a);
     }
     args.insert(args.end(), extra.begin(), extra.end());
@@ -253,6 +253,5 @@ inline int CountOf(const std::string& text, const std::string& needle) {
   }
   return count;
 }
-
 
 }  // namespace radflux::testing

@@ -13,6 +13,7 @@
 #include "solver/mesh/subdivide.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 #include "tests/unit/test_scenes.h"
 
 namespace radflux {
@@ -281,7 +282,7 @@ PatchMesh FaceAlone(const PatchMesh& mesh, uint32_t f) {
 // floor (both blocks' footprints, refined beside them) and ceiling (the lamp's outline) at
 // several edge lengths, against ClipFacePatches itself.
 TEST(ContactMeshing, ClippedPatchCountIsThePatchesTheCutLeaves) {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   const std::vector<FaceContacts> contacts = FindContacts(*scene);
   int cut_faces = 0;

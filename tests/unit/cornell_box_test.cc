@@ -6,6 +6,7 @@
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
 #include "solver/solve/energy_balance.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 class CornellBox : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+    absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
     ASSERT_TRUE(scene.ok());
     JobOptions options;
     options.mesh.target_patches = 1500;
@@ -35,7 +36,8 @@ class CornellBox : public ::testing::Test {
       const Face& face = job.scene.faces[job.mesh.patches[p].face];
       if (job.scene.groups[face.group] != group || !where(job.mesh.patches[p])) continue;
       area += job.mesh.patches[p].area;
-      for (int b = 0; b < kBands; ++b) sum[b] += job.mesh.patches[p].area * result_->solve.radiosity[p][b];
+      for (int b = 0; b < kBands; ++b)
+        sum[b] += job.mesh.patches[p].area * result_->solve.radiosity[p][b];
     }
     for (double& s : sum) s /= area;
     return sum;
@@ -57,8 +59,10 @@ TEST_F(CornellBox, EnergyBalanceWithinHalfAPercent) {
 
 TEST_F(CornellBox, RedWallTintsTheTallBlocksLeftSide) {
   // Sides of the tall block facing the red wall (+x) against those facing the green wall.
-  const Rgb toward_red = MeanRadiosity("tall_block_sides", [](const Patch& p) { return p.normal.x > 0.5; });
-  const Rgb toward_green = MeanRadiosity("tall_block_sides", [](const Patch& p) { return p.normal.x < -0.5; });
+  const Rgb toward_red =
+      MeanRadiosity("tall_block_sides", [](const Patch& p) { return p.normal.x > 0.5; });
+  const Rgb toward_green =
+      MeanRadiosity("tall_block_sides", [](const Patch& p) { return p.normal.x < -0.5; });
   const double red_ratio = toward_red[0] / toward_red[1];
   const double green_ratio = toward_green[0] / toward_green[1];
   std::printf("tall block: red/green toward red wall %.3f, toward green wall %.3f\n", red_ratio,

@@ -12,6 +12,7 @@
 #include "solver/output/vertex_radiosity.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 
 namespace radflux::testing {
 
@@ -48,7 +49,7 @@ inline SolvedScene SolveDefaults(absl::StatusOr<Scene> scene) {
 
 // scenes/cornell_box.obj solved.
 inline SolvedScene SolveCornellDefaults() {
-  return SolveDefaults(LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"));
+  return SolveDefaults(LoadObjFile(SourcePath("scenes/cornell_box.obj")));
 }
 
 // The solved scene's radiance picture through `camera` (empty on failure, with a test

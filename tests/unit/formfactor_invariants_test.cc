@@ -14,6 +14,7 @@
 #include "solver/formfactor/row_rays.h"
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "test_scenes.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -48,9 +49,9 @@ TEST(FormFactorInvariants, ClosedCubeRowsSumToOne) {
     std::printf("  %-12s max |row sum - 1| = %.2e\n", std::string(MethodName(m)).c_str(), worst);
     // monte_carlo: statistical (k = 1024 rays, and 16 s = 256 light samples for the lamp's
     // columns, which add their own noise). hemicube: its cells
-    // partition the hemisphere, but the lamp's column is the exact point form factor, so a row misses 1 by the
-    // cells' aliasing of the lamp's outline (a few cells of 1/r^2 each, r = 64). analytic:
-    // exact per-point factors, no occluders here.
+    // partition the hemisphere, but the lamp's column is the exact point form factor, so a row
+    // misses 1 by the cells' aliasing of the lamp's outline (a few cells of 1/r^2 each, r = 64).
+    // analytic: exact per-point factors, no occluders here.
     const double tolerance = m == FormFactorMethod::kMonteCarlo ? 0.03
                              : m == FormFactorMethod::kHemicube ? 5e-3
                                                                 : 2e-3;
@@ -98,7 +99,7 @@ TEST(FormFactorInvariants, HalfPlaneOccluderHalvesTheFormFactor) {
 }
 
 TEST(FormFactorInvariants, RowsAreBitIdenticalOnOneAndTwoThreads) {
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok());
   RowFixture fixture(*scene, MeshOptions{600, 0});
   for (auto m :
@@ -119,7 +120,7 @@ TEST(FormFactorInvariants, RowsAreBitIdenticalOnOneAndTwoThreads) {
 }
 
 TEST(FormFactorInvariants, CornellBoxRowSumsAndSparsity) {
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok());
   RowFixture fixture(*scene, MeshOptions{2000, 0});
   FormFactorOptions o = Options(FormFactorMethod::kMonteCarlo);
@@ -220,7 +221,7 @@ TEST(FormFactorInvariants, ContourCacheGivesTheDirectContourSumBitForBit) {
 }
 
 TEST(EmbreeRayCaster, AgreesWithBruteForce) {
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok());
   RowFixture fixture(*scene, MeshOptions{300, 0});
   BruteForceRayCaster brute(fixture.mesh);

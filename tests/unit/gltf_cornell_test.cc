@@ -21,6 +21,7 @@
 #include "solver/scene/gltf_loader.h"
 #include "solver/scene/obj_loader.h"
 #include "solver/solve/energy_balance.h"
+#include "tests/source_path.h"
 #include "tests/unit/cornell_picture.h"
 #include "tests/unit/gltf_test_builder.h"
 #include "tests/unit/texture_test_png.h"
@@ -192,14 +193,14 @@ JobResult Solve(Scene scene) {
 // Loads the fanned Cornell box as OBJ and as glTF (and GLB), textured or not, checks that
 // they are the same scene to the bit and solve to bit-identical B; returns the OBJ's.
 Scene ExpectObjAndGltfAgree(bool textured) {
-  absl::StatusOr<Scene> original = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> original = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   EXPECT_TRUE(original.ok()) << original.status();
   if (!original.ok()) return {};
   for (const Vec3& p : original->positions) {  // on a 0.1 mm grid: the scaling is exact
     for (double c : {p.x, p.y, p.z}) EXPECT_NEAR(kScale * c, std::lround(kScale * c), 1e-9);
   }
   const Fanned fanned = Fan(*original);
-  std::string mtl = ReadFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.mtl");
+  std::string mtl = ReadFile(testing::SourcePath("scenes/cornell_box.mtl"));
   if (textured) {
     const size_t white = mtl.find("newmtl white\n");
     EXPECT_NE(white, std::string::npos);
@@ -264,7 +265,8 @@ TEST(GltfCornellBox, TexturedAsObjWithMapKdAndAsGltfGiveBitIdenticalRadiosity) {
   // The texture took effect: the white faces' reflectances differ from 0.75 and each other.
   std::set<Rgb> white;
   for (const Face& face : obj.faces) {
-    if (obj.materials[face.material].name == "white") white.insert(obj.materials[face.material].reflectance);
+    if (obj.materials[face.material].name == "white")
+      white.insert(obj.materials[face.material].reflectance);
   }
   EXPECT_GE(white.size(), 10u);
   EXPECT_EQ(white.count(Rgb{0.75, 0.75, 0.75}), 0u);
@@ -273,7 +275,7 @@ TEST(GltfCornellBox, TexturedAsObjWithMapKdAndAsGltfGiveBitIdenticalRadiosity) {
 // The glTF export's default picture (`radflux solve cornell.glb --render` at the CLI's
 // defaults) shows the lit box: the view in through its open side is lit in every pixel.
 TEST(GltfCornellBox, TheGltfExportsDefaultPictureIsTheLitBox) {
-  absl::StatusOr<Scene> original = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> original = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(original.ok()) << original.status();
   const testing::SolvedScene solved = testing::SolveDefaults(
       LoadGltfData(FannedGltf(*original, Fan(*original), false).Glb(), "cornell.glb", {}));

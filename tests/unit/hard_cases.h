@@ -17,11 +17,12 @@
 #include "solver/scene/validation.h"
 #include "solver/solve/solver.h"
 #include "test_scenes.h"
+#include "tests/source_path.h"
 
 namespace radflux::testing {
 
 inline Scene LoadHardScene(const std::string& name) {
-  absl::StatusOr<Scene> scene = LoadObjFile(std::string(RADFLUX_SOURCE_DIR) + "/scenes/hard/" + name);
+  absl::StatusOr<Scene> scene = LoadObjFile(SourcePath("scenes/hard/") + name);
   EXPECT_TRUE(scene.ok()) << scene.status();
   if (!scene.ok()) return Scene{};
   const absl::Status valid = ValidateScene(*scene);

@@ -13,6 +13,7 @@
 #include "solver/hierarchical/hierarchical.h"
 #include "solver/pipeline.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -42,7 +43,7 @@ double Error(const std::map<std::string, double>& run, const std::map<std::strin
 class CornellRefinement : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    scene_ = new Scene(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"));
+    scene_ = new Scene(*LoadObjFile(testing::SourcePath("scenes/cornell_box.obj")));
     const HierarchicalResult r = Hierarchical(3e-5);
     reference_ = new std::map<std::string, double>(ObjectMeans(*scene_, r.mesh, r.solve.radiosity));
   }

@@ -8,12 +8,13 @@
 #include "solver/mesh/contact_footprints.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
 
 Scene Cornell() {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   EXPECT_TRUE(scene.ok()) << scene.status();
   return *scene;
 }

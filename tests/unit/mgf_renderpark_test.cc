@@ -9,11 +9,12 @@
 #include "solver/scene/load_scene.h"
 #include "solver/scene/mgf_loader.h"
 #include "solver/scene/validation.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
 
-const std::string kDir = RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/";
+const std::string kDir = testing::SourcePath("../shared/scenes/renderpark/");
 
 struct Expected {
   const char* file;

@@ -16,6 +16,7 @@
 #include "solver/output/render.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "solver/scene/load_scene.h"
+#include "tests/source_path.h"
 #include "tests/unit/cornell_picture.h"
 #include "tests/unit/output_test_meshes.h"
 
@@ -71,7 +72,7 @@ Viewed ViewDefault(const std::string& path, const ImportOptions& import, int64_t
 }
 
 TEST(OutputDefaultView, CornellBoxIsSeenThroughItsOpeningWithNoBlackFrame) {
-  const Viewed v = ViewDefault(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj", {}, 400);
+  const Viewed v = ViewDefault(testing::SourcePath("scenes/cornell_box.obj"), {}, 400);
   EXPECT_EQ(v.camera.up, Vec3(0, 1, 0));
   EXPECT_EQ(v.coverage.lit, 1.0);
   EXPECT_EQ(v.coverage.border, 1.0);
@@ -88,7 +89,7 @@ TEST(OutputDefaultView, ConferenceRoomIsSeenFromInside) {
   ImportOptions import;
   import.emit = {{ "mesh16_SG", Rgb { 10, 10, 10 } }};
   const Viewed v =
-      ViewDefault(RADFLUX_SOURCE_DIR "/../shared/scenes/conference/conference.obj", import, 1000);
+      ViewDefault(testing::SourcePath("../shared/scenes/conference/conference.obj"), import, 1000);
   ASSERT_GT(v.mesh.size(), 300000u);
   EXPECT_EQ(v.camera.up, Vec3(0, 1, 0));
   EXPECT_GE(v.coverage.lit, 0.9);
@@ -216,7 +217,7 @@ bool OutsideBox(const SolvedView& v) {
 // a black picture). Seen from outside, above the floor, its lit part shows.
 TEST(OutputDefaultView, AnOpenFloorSceneIsSeenFromAboveNotFromInsideAClosedSolid) {
   const SolvedView v =
-      SolveAndViewDefault(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/floor_gloss.mgf");
+      SolveAndViewDefault(testing::SourcePath("../shared/scenes/renderpark/floor_gloss.mgf"));
   EXPECT_EQ(v.camera.up, Vec3(0, 0, 1));
   EXPECT_TRUE(OutsideBox(v));
   EXPECT_GT(v.camera.position.z, v.lo.z);  // above the floor
@@ -227,7 +228,7 @@ TEST(OutputDefaultView, AnOpenFloorSceneIsSeenFromAboveNotFromInsideAClosedSolid
 // of the housing is not a room; from outside, the lamps show.
 TEST(OutputDefaultView, ALoneLuminaireIsSeenFromOutsideWithItsLampsInView) {
   const SolvedView v =
-      SolveAndViewDefault(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/examp1.mgf");
+      SolveAndViewDefault(testing::SourcePath("../shared/scenes/renderpark/examp1.mgf"));
   EXPECT_TRUE(OutsideBox(v));
   EXPECT_GE(v.lit, 0.03);  // 3.8% at this commit: the lamps between the vanes
 }

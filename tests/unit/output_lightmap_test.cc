@@ -15,6 +15,7 @@
 #include "solver/output/tone_map.h"
 #include "solver/output/vertex_radiosity.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 #include "tests/unit/output_test_meshes.h"
 #include "tests/unit/test_scenes.h"
 
@@ -36,7 +37,7 @@ struct Meshed {
 };
 
 TEST(Lightmap, CornellChartsNeverOverlapAndKeepTheGutter) {
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   const Meshed m(*scene, 2000);
   for (int size : {64, 512}) {

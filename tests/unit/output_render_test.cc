@@ -13,6 +13,7 @@
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 #include "tests/unit/output_test_meshes.h"
 
 namespace radflux {
@@ -28,7 +29,7 @@ struct Cornell {
 
 Cornell LoadCornell(int64_t patches) {
   Cornell c;
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   EXPECT_TRUE(scene.ok()) << scene.status();
   if (!scene.ok()) return c;
   c.scene = *scene;

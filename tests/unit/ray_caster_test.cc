@@ -8,6 +8,7 @@
 
 #include "solver/raytrace/brute_force_ray_caster.h"
 #include "test_scenes.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -28,7 +29,7 @@ std::vector<Ray> CornellRays(int count) {
 }
 
 TEST(RayCaster, HitNormalsPointToThePatchFrontInBothCasters) {
-  RowFixture fixture(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"),
+  RowFixture fixture(*LoadObjFile(testing::SourcePath("scenes/cornell_box.obj")),
                      MeshOptions{300, 0});
   const BruteForceRayCaster brute(fixture.mesh);
   int hits = 0;
@@ -44,7 +45,7 @@ TEST(RayCaster, HitNormalsPointToThePatchFrontInBothCasters) {
 }
 
 TEST(RayCaster, StreamsReturnWhatSingleRaysReturn) {
-  RowFixture fixture(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"),
+  RowFixture fixture(*LoadObjFile(testing::SourcePath("scenes/cornell_box.obj")),
                      MeshOptions{300, 0});
   const BruteForceRayCaster brute(fixture.mesh);
   const std::vector<Ray> rays = CornellRays(400);
@@ -76,7 +77,7 @@ TEST(RayCaster, StreamsReturnWhatSingleRaysReturn) {
 // OccludedStream on segments of the same rays, cut at 0.5x and 2x the distance to their
 // first hit (free, blocked), answers as Occluded does for each, in both casters.
 TEST(RayCaster, OccludedStreamsReturnWhatSingleRaysReturn) {
-  RowFixture fixture(*LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj"),
+  RowFixture fixture(*LoadObjFile(testing::SourcePath("scenes/cornell_box.obj")),
                      MeshOptions{300, 0});
   const BruteForceRayCaster brute(fixture.mesh);
   std::vector<Ray> segments;

@@ -9,11 +9,12 @@
 
 #include "solver/scene/load_scene.h"
 #include "solver/scene/validation.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
 
-const std::string kScenes = RADFLUX_SOURCE_DIR "/../shared/scenes/";
+const std::string kScenes = testing::SourcePath("../shared/scenes/");
 
 // kind -> count of every fix-up logged, after checking there is one entry per kind and
 // that the scene validates.
@@ -37,13 +38,13 @@ TEST(RealScenesImport, HolodeckWithItsOwnEmitters) {
   const std::map<std::string, uint64_t> counts = LoadAndCount("holodeck/holodeck.obj", {}, &faces);
   // The walls' map_Kd (wall.png) and the screen's map_Ke (screen.png) are applied.
   EXPECT_EQ(counts, (std::map<std::string, uint64_t>{{"reflectance_from_textures", 161},
-                                                      {"emission_from_textures", 3},
-                                                      {"reflectance_clamped", 1},
-                                                      {"repeated_vertices_removed", 4},
-                                                      {"zero_area_dropped", 4},
-                                                      {"non_planar_split", 44},
-                                                      {"non_convex_triangulated", 79},
-                                                      {"coplanar_overlap", 39}}));
+                                                     {"emission_from_textures", 3},
+                                                     {"reflectance_clamped", 1},
+                                                     {"repeated_vertices_removed", 4},
+                                                     {"zero_area_dropped", 4},
+                                                     {"non_planar_split", 44},
+                                                     {"non_convex_triangulated", 79},
+                                                     {"coplanar_overlap", 39}}));
   EXPECT_EQ(faces, 2228u);
 }
 
@@ -64,7 +65,7 @@ TEST(RealScenesImport, ConferenceRoomLitByItsCeilingFixtures) {
   const std::map<std::string, uint64_t> counts =
       LoadAndCount("conference/conference.obj", options, &faces);
   EXPECT_EQ(counts, (std::map<std::string, uint64_t>{{"reflectance_clamped", 2},
-                                                      {"coplanar_overlap", 5590}}));
+                                                     {"coplanar_overlap", 5590}}));
   EXPECT_EQ(faces, 330837u);
 }
 

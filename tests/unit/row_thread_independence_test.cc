@@ -9,8 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "solver/scene/obj_loader.h"
 #include "solver/pipeline.h"
+#include "solver/scene/obj_loader.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -24,7 +25,7 @@ bool SameRow(const RowBlock& a, const RowBlock& b, uint32_t i) {
 }
 
 TEST(RowThreadIndependence, RowsRebuiltAloneOnAnotherThreadAreBitIdentical) {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   JobOptions options;
   options.mesh.target_patches = 600;
@@ -45,8 +46,8 @@ TEST(RowThreadIndependence, RowsRebuiltAloneOnAnotherThreadAreBitIdentical) {
     RowAccumulator own(n);
     for (uint32_t i = n; i-- > 0;) {
       RowBlockStats s;
-      const RowBlock one = BuildRowBlock(*builder, context, options.form_factors.cutoff, i, 1,
-                                         own, s);
+      const RowBlock one =
+          BuildRowBlock(*builder, context, options.form_factors.cutoff, i, 1, own, s);
       if (!SameRow(all, one, i)) differ.push_back(i);
     }
   }).join();

@@ -4,12 +4,13 @@
 
 #include "solver/scene/obj_loader.h"
 #include "solver/scene/validation.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
 
 TEST(ObjLoader, CornellBoxLoadsWithMaterialsAndNames) {
-  auto scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  auto scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   EXPECT_TRUE(ValidateScene(*scene).ok()) << ValidateScene(*scene);
   EXPECT_EQ(scene->faces.size(), 17u);  // 5 walls (red = 2 triangles) + light + 2 x 5 block faces

@@ -8,6 +8,7 @@
 #include "solver/scene/obj_loader.h"
 #include "solver/solve/energy_balance.h"
 #include "solver/sparse/file_block_spill.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 class SpilledCornell : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+    absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     JobOptions options;
     options.mesh.target_patches = 600;
@@ -137,7 +138,7 @@ TEST_F(SpilledCornell, EnergyBalanceStreamsToTheSameNumbers) {
 
 // RunJob with --memory-limit: the whole pipeline on spilled rows, same B as in memory.
 TEST(SpillJob, RunJobWithAMemoryLimitMatchesTheInMemoryJob) {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   JobOptions options;
   options.mesh.target_patches = 300;
@@ -157,7 +158,7 @@ TEST(SpillJob, RunJobWithAMemoryLimitMatchesTheInMemoryJob) {
 // The estimate counts the rows' budget (plus the chunks in flight) instead of all rows
 // twice (rows and cg's symmetric copy).
 TEST(SpillJob, EstimateCountsAtMostTheBudgetForRows) {
-  absl::StatusOr<Scene> scene = LoadObjFile(RADFLUX_SOURCE_DIR "/scenes/cornell_box.obj");
+  absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   JobOptions options;
   options.mesh.target_patches = 100000;

@@ -14,6 +14,7 @@
 #include "solver/scene/coplanar_overlaps.h"
 #include "solver/scene/load_scene.h"
 #include "surface_rows_collect.h"
+#include "tests/source_path.h"
 
 namespace radflux {
 namespace {
@@ -50,8 +51,8 @@ TEST(SurfacePairContact, CoplanarOverlappingSquaresSeeNothing) {
     const SurfaceShape a = Quad({0, 0, 0}, kX, kY, lift);
     const SurfaceShape b = Quad({0.3, 0.2, 0}, kX, kY, -lift);  // same facing, overlapping
     const SurfaceShape c = Quad({0.3, 0.2, 0}, kY, kX, -lift);  // facing the other way
-    for (const auto& [i, j] : {std::pair{&a, &b}, std::pair{&b, &a}, std::pair{&a, &c},
-                               std::pair{&c, &a}}) {
+    for (const auto& [i, j] :
+         {std::pair{&a, &b}, std::pair{&b, &a}, std::pair{&a, &c}, std::pair{&c, &a}}) {
       EXPECT_FALSE(CanSeeEachOther(*i, *j)) << "lift " << lift;
       EXPECT_EQ(Factor(*i, *j), 0.0) << "lift " << lift;
     }
@@ -65,8 +66,8 @@ TEST(SurfacePairContact, CoplanarOverlappingSquaresSeeNothing) {
 
 TEST(SurfacePairContact, BackToBackSquaresSeeNothing) {
   for (double lift : {0.0, 3e-7}) {
-    const SurfaceShape a = Quad({0, 0, 0}, kX, kY, lift);  // faces +z
-    const SurfaceShape twin = Reversed(a);                // the same vertices, faces -z
+    const SurfaceShape a = Quad({0, 0, 0}, kX, kY, lift);     // faces +z
+    const SurfaceShape twin = Reversed(a);                    // the same vertices, faces -z
     const SurfaceShape below = Quad({0, 0, -0.002}, kY, kX);  // 2 mm below, faces -z
     for (const auto& [i, j] : {std::pair{&a, &twin}, std::pair{&twin, &a}, std::pair{&a, &below},
                                std::pair{&below, &a}}) {
@@ -84,8 +85,8 @@ TEST(SurfacePairContact, ThinBlockerTwoMillimetresAwayBlocksFully) {
   EXPECT_NEAR(Rows({lower, upper}, true)[0][1], open, 1e-3 * open);
   for (double z : {0.002, 0.998}) {
     for (bool down : {true, false}) {
-      const SurfaceShape blocker = down ? Quad({-0.5, -0.5, z}, kY * 2, kX * 2)
-                                        : Quad({-0.5, -0.5, z}, kX * 2, kY * 2);
+      const SurfaceShape blocker =
+          down ? Quad({-0.5, -0.5, z}, kY * 2, kX * 2) : Quad({-0.5, -0.5, z}, kX * 2, kY * 2);
       for (bool reciprocal : {true, false}) {
         const auto f = Rows({lower, upper, blocker}, reciprocal);
         EXPECT_EQ(f[0][1], 0.0) << "z " << z << (down ? " down" : " up");
@@ -101,7 +102,7 @@ TEST(SurfacePairContact, ThinBlockerTwoMillimetresAwayBlocksFully) {
 // back-face twin hides nothing.
 TEST(SurfacePairContact, PanelHidesTheCeilingThatIsPartlyBehind) {
   const Vec3 u = kX * 1.4, v{0, 0.06, 0.08}, origin{0, 1.4, 2.68};  // u x v along (0, -0.8, 0.6)
-  const SurfaceShape i = Quad(origin, u, v, 2e-6);  // a vertex 2.8e-7 off the plane
+  const SurfaceShape i = Quad(origin, u, v, 2e-6);                  // a vertex 2.8e-7 off the plane
   ASSERT_NEAR(i.normal.y, -0.8, 1e-6);
   const SurfaceShape panel =
       Quad(origin + i.normal * 0.0028 - kX * 0.002 - v * 0.025, v * 1.05, u + kX * 0.004);
@@ -125,16 +126,19 @@ TEST(SurfacePairContact, PanelHidesTheCeilingThatIsPartlyBehind) {
 // in a pair's shaft on average here), at most 1.26 today, and `radflux viewfactors` says so
 // (exit 4, RowSumCheck). The bound below catches the twins' 1.78 coming back.
 TEST(SurfacePairContact, Office2TwinsAndCoplanarFacesSeeNothing) {
-  absl::StatusOr<Scene> scene =
-      LoadScene(RADFLUX_SOURCE_DIR "/../shared/scenes/renderpark/office2/office2.mgf", ImportOptions{});
+  absl::StatusOr<Scene> scene = LoadScene(
+      testing::SourcePath("../shared/scenes/renderpark/office2/office2.mgf"), ImportOptions{});
   ASSERT_TRUE(scene.ok()) << scene.status();  // ../shared must be beside the repository
   std::vector<SurfaceShape> shapes;
-  for (const Face& face : scene->faces) shapes.push_back(MakeSurfaceShape(FacePolygon(*scene, face)));
+  for (const Face& face : scene->faces)
+    shapes.push_back(MakeSurfaceShape(FacePolygon(*scene, face)));
   std::vector<std::pair<size_t, size_t>> zero_pairs;  // twins, then coplanar overlaps
   std::map<std::vector<uint32_t>, size_t> by_vertices;
   for (size_t f = 0; f < scene->faces.size(); ++f) {
-    std::vector<uint32_t> reversed(scene->faces[f].vertices.rbegin(), scene->faces[f].vertices.rend());
-    if (auto it = by_vertices.find(reversed); it != by_vertices.end()) zero_pairs.push_back({it->second, f});
+    std::vector<uint32_t> reversed(scene->faces[f].vertices.rbegin(),
+                                   scene->faces[f].vertices.rend());
+    if (auto it = by_vertices.find(reversed); it != by_vertices.end())
+      zero_pairs.push_back({it->second, f});
     by_vertices[scene->faces[f].vertices] = f;
   }
   ASSERT_EQ(zero_pairs.size(), 429u);
