@@ -4,8 +4,9 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
-#include <unordered_map>
+#include <utility>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_cat.h"
 
 namespace radflux {
@@ -50,11 +51,10 @@ class PointGrid {
     int64_t x, y, z;
     bool operator==(const Key&) const = default;
   };
-  struct KeyHash {
-    size_t operator()(const Key& k) const {
-      return static_cast<size_t>((k.x * 73856093) ^ (k.y * 19349663) ^ (k.z * 83492791));
-    }
-  };
+  template <typename H>
+  friend H AbslHashValue(H h, const Key& k) {
+    return H::combine(std::move(h), k.x, k.y, k.z);
+  }
   template <typename Visit>
   void ForCells(const Key& a, const Key& b, Visit& visit) const {
     for (int64_t x = a.x; x <= b.x; ++x) {
@@ -75,7 +75,7 @@ class PointGrid {
 
   double cell_;
   std::vector<uint32_t> next_;
-  std::unordered_map<Key, uint32_t, KeyHash> heads_;
+  absl::flat_hash_map<Key, uint32_t> heads_;
 };
 
 uint32_t Find(std::vector<uint32_t>& parent, uint32_t i) {
@@ -121,9 +121,11 @@ void Weld(const Context& c, const std::vector<PointSurface>& surfaces, ShadingMe
   std::iota(parent.begin(), parent.end(), 0u);
   PointGrid grid(c.tolerance * 2, n);
   const double tol2 = c.tolerance * c.tolerance;
+  const Vec3 reach{c.tolerance, c.tolerance, c.tolerance};
   for (uint32_t i = 0; i < n; ++i) {
     const Vec3& p = c.mesh.positions[i];
-    grid.ForNear(p, [&](uint32_t j) {
+    // Only the cells the tolerance box around p overlaps (at most 2 a side, not 3x3x3).
+    grid.ForBox(p - reach, p + reach, [&](uint32_t j) {
       const Vec3 d = c.mesh.positions[j] - p;
       if (Dot(d, d) <= tol2 && Compatible(c, surfaces[i], surfaces[j])) {
         parent[Find(parent, i)] = Find(parent, j);
@@ -173,23 +175,29 @@ struct Edge {
   int edge;
 };
 
-// Patch edges used by one patch only (after welding): where T-junctions can be.
+// Patch edges used by one patch only (after welding): where T-junctions can be. Every edge's
+// welded key, sorted: a key that occurs once is a boundary edge (in patch order).
 std::vector<Edge> BoundaryEdges(const PatchMesh& mesh, const ShadingMesh& s) {
-  std::unordered_map<uint64_t, uint32_t> count;
-  auto key = [&](uint32_t p, int k) {
-    const Patch& patch = mesh.patches[p];
-    const uint64_t a = s.welded[patch.v[k]];
-    const uint64_t b = s.welded[patch.v[(k + 1) % patch.VertexCount()]];
-    return std::min(a, b) << 32 | std::max(a, b);
-  };
+  std::vector<Edge> all;
+  std::vector<std::pair<uint64_t, uint32_t>> keys;  // (welded key, index into all)
   for (uint32_t p = 0; p < mesh.size(); ++p) {
-    for (int k = 0; k < mesh.patches[p].VertexCount(); ++k) ++count[key(p, k)];
+    const Patch& patch = mesh.patches[p];
+    for (int k = 0; k < patch.VertexCount(); ++k) {
+      const uint64_t a = s.welded[patch.v[k]];
+      const uint64_t b = s.welded[patch.v[(k + 1) % patch.VertexCount()]];
+      keys.push_back({std::min(a, b) << 32 | std::max(a, b), static_cast<uint32_t>(all.size())});
+      all.push_back({p, k});
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<bool> boundary(all.size(), false);
+  for (size_t i = 0, j = 0; i < keys.size(); i = j) {
+    for (j = i + 1; j < keys.size() && keys[j].first == keys[i].first;) ++j;
+    if (j == i + 1) boundary[keys[i].second] = true;
   }
   std::vector<Edge> edges;
-  for (uint32_t p = 0; p < mesh.size(); ++p) {
-    for (int k = 0; k < mesh.patches[p].VertexCount(); ++k) {
-      if (count[key(p, k)] == 1) edges.push_back({p, k});
-    }
+  for (size_t e = 0; e < all.size(); ++e) {
+    if (boundary[e]) edges.push_back(all[e]);
   }
   return edges;
 }
