@@ -7,8 +7,10 @@
 // within 4 standard deviations of the fit centroids' spread; beyond, in that direction the
 // fit is flat, so no vertex's weights sum to more than 9 in absolute value). The fit smooths,
 // so a peaked field's Gouraud picture would lose light; each patch's deficit (its value
-// minus its corners' mean) is fitted the same way and added once, which leaves a deficit
-// second order in the smoothing (Cornell back wall's picture mean: -2.3% -> -0.15%). A vertex
+// minus its Gouraud mean) is fitted the same way and added once, which leaves a deficit
+// second order in the smoothing (Cornell back wall's picture mean: -2.3% -> -0.15%), and a
+// damped least-squares matching of every shown patch's Gouraud mean to its value then takes
+// most of what is left (gouraud_means.h: light stays in its patch). A vertex
 // that a shown patch uses is fitted to shown patches only, never to hidden ones (Patch::hidden:
 // the inside of a slot under an emitter, far brighter than what is seen beside it). A T-junction
 // vertex then takes the linear interpolation along the edge it lies on, so both sides of

@@ -64,9 +64,10 @@ double MeanOfSine(double a, double b) {
 
 TEST(OutputVertexRadiosity, GouraudShadingKeepsTheMeanOfAPeakedField) {
   // B = 0.2 + sin(pi x) sin(pi y) on the unit square in 8 x 8 patches, each given its exact mean:
-  // a lit wall's bump. Gouraud means (a quad's corner mean) must carry the patches' power;
-  // the fit alone lost 5.6% of the total here and up to 6.2% of an inner patch's value
-  // (now 0.12% and 0.6%; the boundary's extrapolated patches stay within 8%).
+  // a lit wall's bump, curved everywhere. Gouraud means (a square's corner mean) must carry the
+  // patches' power: the fit alone lost 5.6% of the total and up to 6.2% of an inner patch's
+  // value; its one deficit step left 0.12% of the total and 8% at the boundary's extrapolated
+  // patches; matched (gouraud_means.h), the total is within 0.011% and every patch within 1.84%.
   const int n = 8;
   PatchMesh grid;
   AddQuadGridFace(grid, 0, 1, n, 0, 1, n);
@@ -83,13 +84,9 @@ TEST(OutputVertexRadiosity, GouraudShadingKeepsTheMeanOfAPeakedField) {
     double corners = 0;
     for (int c = 0; c < 4; ++c) corners += (*v)[grid.patches[p].v[c]][0] / 4;
     patches += b[p][0], gouraud += corners;
-    const Vec3 at = grid.patches[p].centroid;
-    const bool inside = std::min({at.x, at.y, 1 - at.x, 1 - at.y}) > 1.0 / n;
-    if (inside) {
-      EXPECT_NEAR(corners / b[p][0], 1, 0.01) << "patch " << p;
-    }
+    EXPECT_NEAR(corners / b[p][0], 1, 0.02) << "patch " << p;
   }
-  EXPECT_NEAR(gouraud / patches, 1, 0.002);
+  EXPECT_NEAR(gouraud / patches, 1, 2e-4);
 }
 
 TEST(OutputVertexRadiosity, ARowOfPatchesGetsNoSlopeAcrossIt) {
