@@ -11,14 +11,26 @@
 namespace radflux {
 namespace {
 
-// cos(max(0, angle)) for an angle in radians, and 0 from a right angle on: the cosine
-// bound of a direction known only to within a cone.
-double ClampedCosine(double angle) {
-  if (angle >= std::numbers::pi / 2) return 0;
-  return std::cos(std::max(0.0, angle));
+// An angle in [0, pi] by its cosine and sine (sine >= 0): the cone bounds below without
+// trigonometric calls (they were an eighth of the corridor's row time).
+struct Angle {
+  double cos = 1, sin = 0;
+};
+
+Angle AngleOfCosine(double c) {
+  const double clamped = std::clamp(c, -1.0, 1.0);
+  return {clamped, std::sqrt(std::max(0.0, 1 - clamped * clamped))};
 }
 
-double SafeAcos(double c) { return std::acos(std::clamp(c, -1.0, 1.0)); }
+// max(0, a - b) for angles a, b in [0, pi].
+Angle ReducedBy(Angle a, Angle b) {
+  if (a.cos >= b.cos) return {};  // a <= b
+  return {a.cos * b.cos + a.sin * b.sin, std::max(0.0, a.sin * b.cos - a.cos * b.sin)};
+}
+
+// cos(max(0, a - b)), and 0 from a right angle on: the cosine bound of a direction at angle a
+// from an axis, known only to within b.
+double ClampedCosine(Angle a, Angle b) { return std::max(0.0, ReducedBy(a, b).cos); }
 
 // Distance from x to the box [lo, hi] (0 inside it).
 double BoxDistance(const Vec3& x, const Vec3& lo, const Vec3& hi) {
@@ -304,11 +316,12 @@ double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) con
   // part (any positive weight keeps the choice unbiased; only the bounds must be conservative).
   if (distance2 <= radius2) return node.power / std::max(distance2, 1e-2 * radius2);
   const double distance = std::sqrt(distance2);
-  const double spread = std::asin(node.radius / distance);  // half-angle of the sphere at x
+  const double ratio = node.radius / distance;
+  const Angle spread{std::sqrt(1 - ratio * ratio), ratio};  // half-angle of the sphere at x
   const Vec3 towards = d / distance;
-  const double receiver = ClampedCosine(SafeAcos(Dot(n, towards)) - spread);
-  const double emitter =
-      ClampedCosine(SafeAcos(-Dot(node.axis, towards)) - SafeAcos(node.cos_spread) - spread);
+  const double receiver = ClampedCosine(AngleOfCosine(Dot(n, towards)), spread);
+  const double emitter = ClampedCosine(
+      ReducedBy(AngleOfCosine(-Dot(node.axis, towards)), AngleOfCosine(node.cos_spread)), spread);
   return node.power * receiver * emitter / distance2;
 }
 
