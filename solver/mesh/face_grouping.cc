@@ -13,16 +13,6 @@ namespace {
 
 constexpr uint32_t kUnassigned = 0xffffffffu;
 
-double TotalFaceArea(const Scene& scene) {
-  double total = 0;
-  std::vector<Vec3> polygon;
-  for (const Face& face : scene.faces) {
-    FacePolygonInto(scene, face, polygon);
-    total += Length(PolygonNewellNormal(polygon)) / 2;
-  }
-  return total;
-}
-
 // The binary trees of the non-emitting patches (one per (material, sidedness) run of
 // `order`), built by top-down median splits, and the cut of them into groups.
 class GroupTree {

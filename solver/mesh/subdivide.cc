@@ -241,8 +241,8 @@ void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
 // under solids: h is re-chosen (between h and 4h, 8 steps: each meshes the cut faces) from the
 // counts of the faces as meshed.
 double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>& extents,
-                              const std::vector<FaceContacts>& contacts,
-                              const MeshOptions& options, double h) {
+                              const std::vector<FaceContacts>& contacts, const MeshOptions& options,
+                              double h) {
   if (options.max_edge > 0 || options.target_patches <= 0) return h;
   std::vector<uint32_t> touched;
   for (uint32_t f = 0; f < contacts.size(); ++f) {
@@ -257,8 +257,8 @@ double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>&
       PatchMesh face_mesh;
       FacePolygonInto(scene, scene.faces[f], polygon);
       const Vec3 normal = MeshFaceGrid(scene, f, polygon, extents[f], edge, face_mesh);
-      const size_t cut = ClippedPatchCount(contacts[f], normal, FaceEdgeLength(extents[f], edge),
-                                           0, 0, face_mesh);
+      const size_t cut =
+          ClippedPatchCount(contacts[f], normal, FaceEdgeLength(extents[f], edge), 0, 0, face_mesh);
       total += static_cast<int64_t>(cut) - FacePatchCount(extents[f], edge);
     }
     return total;
@@ -268,6 +268,16 @@ double ContactAwareEdgeLength(const Scene& scene, const std::vector<FaceExtent>&
 }
 
 }  // namespace
+
+double TotalFaceArea(const Scene& scene) {
+  double total = 0;
+  std::vector<Vec3> polygon;
+  for (const Face& face : scene.faces) {
+    FacePolygonInto(scene, face, polygon);
+    total += Length(PolygonNewellNormal(polygon)) / 2;
+  }
+  return total;
+}
 
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options) {
   if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
@@ -280,13 +290,20 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
-  const bool follow = options.follow_contacts &&
-                      (options.target_patches <= 0 ||
-                       static_cast<int64_t>(scene.faces.size()) < options.target_patches);
-  const std::vector<FaceContacts> contacts =
-      follow ? FindContacts(scene, options.min_contact_area) : std::vector<FaceContacts>(scene.faces.size());
-  const double h = ContactAwareEdgeLength(scene, extents, contacts, options,
-                                          ChooseEdgeLength(extents, options));
+  // With at least as many faces as the target, every face is one patch; the contacts of the
+  // faces of a patch's share of the area or more are still followed (a ceiling 2 cm above a
+  // lamp keeps its slot: adaptive meshing starts from this mesh).
+  const bool one_a_face = options.max_edge == 0 && options.target_patches > 0 &&
+                          static_cast<int64_t>(scene.faces.size()) >= options.target_patches;
+  const double min_contact_area =
+      one_a_face ? std::max(options.min_contact_area,
+                            TotalFaceArea(scene) / static_cast<double>(options.target_patches))
+                 : options.min_contact_area;
+  const std::vector<FaceContacts> contacts = options.follow_contacts
+                                                 ? FindContacts(scene, min_contact_area)
+                                                 : std::vector<FaceContacts>(scene.faces.size());
+  const double h =
+      ContactAwareEdgeLength(scene, extents, contacts, options, ChooseEdgeLength(extents, options));
   PatchMesh mesh;
   mesh.face_first_patch.reserve(scene.faces.size() + 1);
   mesh.face_first_vertex.reserve(scene.faces.size() + 1);

@@ -15,25 +15,29 @@ namespace radflux {
 inline constexpr int kMaxEmitterSteps = 8;
 
 struct MeshOptions {
-  int64_t target_patches = 0;  // aim for this many patches in the scene (closest count wins)
-  double max_edge = 0;         // or: no patch edge longer than this (scene units)
-  bool group_faces = true;     // SubdivideAndGroup: when the faces reach target_patches, the
-                               // unknowns are groups of patches (face_grouping.h)
+  int64_t target_patches = 0;   // aim for this many patches in the scene (closest count wins)
+  double max_edge = 0;          // or: no patch edge longer than this (scene units)
+  bool group_faces = true;      // SubdivideAndGroup: when the faces reach target_patches, the
+                                // unknowns are groups of patches (face_grouping.h)
   bool follow_contacts = true;  // cut faces along the feet of solids resting on them (below)
   double min_contact_area = 0;  // ... on faces of at least this area only (scene units^2)
   // Neither set: every face becomes one patch (quads and triangles) or a fan.
 };
 
+// The scene's face area (scene units^2), each face once.
+double TotalFaceArea(const Scene& scene);
+
 // Subdivides every face: triangles into n^2 triangles, quads into a nu x nv grid,
 // larger convex polygons into a fan of subdivided triangles around their centroid. Where a
 // closed solid rests on a face (contact_footprints.h), the face's patches are cut along the
 // solid's outline and the part under it is left out, and along the foot of a face standing on
-// it that closes no such loop (a partition) (contact_clip.h): with follow_contacts,
-// when faces are split into patches (fewer faces than target_patches, or no target), on the
-// faces of at least min_contact_area. A scene of more faces than the target has its unknowns
-// made of groups of faces (face_grouping.h); it is split with a max_edge and the contacts of
-// its large faces only (a wall's part behind a board must not share an unknown with its lit
-// part; finding every small face's contacts costs far more than meshing).
+// it that closes no such loop (a partition) (contact_clip.h): with follow_contacts, on the
+// faces of at least min_contact_area, and with at least as many faces as target_patches (one
+// patch a face) only on faces of total area / target_patches or more. A scene of more faces
+// than the target has its unknowns made of groups of faces (face_grouping.h); it is split
+// with a max_edge and the contacts of its large faces only (a wall's part behind a board must
+// not share an unknown with its lit part; finding every small face's contacts costs far more
+// than meshing).
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options);
 
 struct MeshStats {

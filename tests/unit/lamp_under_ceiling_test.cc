@@ -132,5 +132,34 @@ TEST(LampUnderCeiling, TheRoomGathersTheStripByReciprocity) {
   }
 }
 
+// Adaptive meshing starts from one patch a face when the faces reach the patch target: the
+// ceiling must still be cut along the lamp's outline there, or its first patch spreads the
+// strip's light over the whole ceiling and into the room (RenderPark's corridor read +46% on
+// every object at --patches 500 --adaptive-passes 1). With black walls the ceiling above the
+// lamp reads rho E F (C-11) after one pass as it does on the uniform mesh.
+TEST(LampUnderCeiling, AdaptiveMeshingFromOnePatchAFaceKeepsTheSlot) {
+  const double f = testing::ParallelRectangles(kLampSide, kLampSide, kGap);
+  Scene room = Room("black");
+  JobOptions options;
+  options.mesh.target_patches = static_cast<int64_t>(room.faces.size());  // one patch a face
+  options.adaptive.passes = 1;
+  options.solver.tolerance = 1e-8;
+  absl::StatusOr<JobResult> result = RunJob(std::move(room), options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PatchMesh& mesh = result->job->mesh;
+  double area = 0, power = 0;
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const Patch& patch = mesh.patches[p];
+    if (patch.face != kCeiling || std::abs(patch.centroid.x - 2) > kLampSide / 2 ||
+        std::abs(patch.centroid.y - 2) > kLampSide / 2) {
+      continue;
+    }
+    area += patch.area;
+    power += patch.area * result->solve.radiosity[p][0];
+  }
+  ASSERT_GT(area, 0) << "no ceiling patch over the lamp";
+  EXPECT_NEAR(power / area, kRho * kE * f, 0.02 * kRho * kE * f) << "over " << area << " m^2";
+}
+
 }  // namespace
 }  // namespace radflux
