@@ -118,6 +118,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   job->mesh = std::move(mesh->mesh);
   job->clusters = std::move(mesh->clusters);
   job->cells = std::move(mesh->cells);
+  job->caster = std::move(mesh->caster);
   job->mesh_stats = ComputeMeshStats(job->mesh);
   job->attributes = job->clusters.empty()
                         ? ComputePatchAttributes(job->scene, job->mesh)
@@ -125,9 +126,11 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   job->mesh_seconds = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
-  if (!caster.ok()) return caster.status();
-  job->caster = *std::move(caster);
+  if (job->caster == nullptr) {  // grouped: built already for the lit probe
+    absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
+    if (!caster.ok()) return caster.status();
+    job->caster = *std::move(caster);
+  }
   job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
   job->embree_seconds = SecondsSince(start);
   return job;
@@ -189,9 +192,9 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
 absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) {
   const PatchClusters& clusters = result.job->clusters;
   if (clusters.empty()) return absl::OkStatus();
-  absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
-      result.System(), result.solve.radiosity, result.Sampling(options.form_factors),
-      result.row_stats.scaled_off);
+  absl::StatusOr<EnergyBalance> balance =
+      StreamEnergyBalance(result.System(), result.solve.radiosity,
+                          result.Sampling(options.form_factors), result.row_stats.scaled_off);
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
   result.unknown_radiosity = result.solve.radiosity;

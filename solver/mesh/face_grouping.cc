@@ -149,7 +149,7 @@ bool GroupsFaces(const Scene& scene, const MeshOptions& options) {
 }
 
 PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns,
-                           PatchClusters* cells) {
+                           PatchClusters* cells, const std::vector<DirectLight>& light) {
   const uint32_t n = static_cast<uint32_t>(mesh.size());
   std::vector<uint32_t> group_of(n, kUnassigned);
   // The patches that are not unknowns of their own (emitters, hidden patches), sorted by
@@ -158,7 +158,8 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   uint32_t singles = 0;
   for (uint32_t p = 0; p < n; ++p) {
     if (mesh.patches[p].hidden ||
-        scene.materials[scene.faces[mesh.patches[p].face].material].IsEmitter()) {
+        scene.materials[scene.faces[mesh.patches[p].face].material].IsEmitter() ||
+        (!light.empty() && light[p] == DirectLight::kBright)) {
       group_of[p] = singles++;
     } else {
       small.push_back(p);
@@ -166,7 +167,8 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   }
   const auto set_of = [&](uint32_t p) {
     const Face& face = scene.faces[mesh.patches[p].face];
-    return std::make_tuple(face.object, face.material, mesh.patches[p].two_sided);
+    return std::make_tuple(face.object, face.material, mesh.patches[p].two_sided,
+                           light.empty() ? DirectLight::kUnlit : light[p]);
   };
   std::stable_sort(small.begin(), small.end(),
                    [&](uint32_t a, uint32_t b) { return set_of(a) < set_of(b); });
@@ -207,7 +209,11 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
   absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, split);
   if (!mesh.ok()) return mesh.status();
   out.mesh = *std::move(mesh);
-  out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells);
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(out.mesh);
+  if (!caster.ok()) return caster.status();
+  out.caster = *std::move(caster);
+  out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells,
+                              ProbeDirectLight(scene, out.mesh, *out.caster));
   return out;
 }
 

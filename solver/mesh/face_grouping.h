@@ -9,10 +9,17 @@
 //    are cut along their contacts and lose the area under solids and covers hung against
 //    them (contact_footprints.h; with follow_contacts): a wall's patch that straddled a
 //    board's outline averaged the dark behind it into the lit strip beside it;
-//  - the other patches are put, per (object, material, two-sidedness), in a binary tree by top-down
-//    median splits (a BVH build): a node whose normals spread beyond kMaxConeDegrees of their
-//    area-weighted mean and whose centroids span at most kMaxExtent sqrt(a*) is split along
-//    the normal component that varies most (so that groups are flat, and a group's rays
+//  - every patch is probed for the emitters' direct light (direct_lit.h: a light sample per
+//    patch through its own Embree scene, kept for the job's rows): a patch whose reflected
+//    direct light makes it a light source (kBright: a lamp housing's inside) is an unknown of
+//    its own, so that the rows light-sample it as a bright reflector (bright_reflectors.h);
+//  - the other patches are put, per (object, material, two-sidedness, lit or not), in a binary
+//    tree by top-down median splits (a BVH build); a lit patch never shares an unknown with an
+//    unlit one (a housing's inside, 2 cm from its tube, with its outer side and the cavity
+//    between its shells: grouped, RenderPark's classroom's ceiling 2 cm above the housings
+//    gathered the insides' light and read +95%); a node whose normals spread beyond kMaxConeDegrees
+//    of their area-weighted mean and whose centroids span at most kMaxExtent sqrt(a*) is split
+//    along the normal component that varies most (so that groups are flat, and a group's rays
 //    seldom hit the group itself), any other node along its centroids' longest axis (a bent
 //    node as large as a room, all its chairs, is split in space first: split by normals, its
 //    children would span the room as it does, and the cut would spend the unknowns on them
@@ -37,10 +44,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "absl/status/statusor.h"
+#include "solver/formfactor/direct_lit.h"
 #include "solver/mesh/patch_clusters.h"
 #include "solver/mesh/subdivide.h"
+#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux {
 
@@ -59,19 +70,23 @@ struct GroupedMesh {
   PatchClusters clusters;  // the unknowns; empty when the faces were not grouped
   PatchClusters cells;     // the direct-light cells; each lies inside one unknown (an
                            // emitter is a cell of its own); empty when not grouped
+  std::unique_ptr<EmbreeRayCaster> caster;  // grouped: the rays of the lit probe, on `mesh`
 };
 
-// The scene's patches and unknowns: with GroupsFaces, split and grouped as above to about
-// options.target_patches unknowns; otherwise SubdivideScene's mesh, one unknown per patch.
+// The scene's patches and unknowns: with GroupsFaces, split, probed and grouped as above to
+// about options.target_patches unknowns (the same for every caller: the probe's seed is
+// fixed); otherwise SubdivideScene's mesh, one unknown per patch.
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
-// per emitting or hidden patch and per (object, material, two-sidedness); or fewer: when every
-// group is one patch) by the rule above. A group never spans two objects, so per-object means stay
-// each object's own. With `cells`, also the direct-light cells: the same cut with
+// per emitting, hidden or kBright patch and per (object, material, two-sidedness, `light`);
+// or fewer: when every group is one patch) by the rule above; `light` per patch
+// (ProbeDirectLight), or empty: every patch unlit. A group never spans two objects, so per-object
+// means stay each object's own. With `cells`, also the direct-light cells: the same cut with
 // kDirectCellsPerUnknown times the budget of non-emitting groups, a refinement of the groups
 // (every cell's patches lie in one group).
 PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t unknowns,
-                           PatchClusters* cells = nullptr);
+                           PatchClusters* cells = nullptr,
+                           const std::vector<DirectLight>& light = {});
 
 }  // namespace radflux

@@ -6,6 +6,8 @@
 // light the trough's inside reflects onto itself (face_grouping.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -25,6 +27,7 @@ constexpr double kRho = 0.5;
 // rho 0.5 everywhere; every face two-sided (twins added below), as MGF's surfaces are.
 const char* kHousingMtl =
     "newmtl white\nKd 0.5 0.5 0.5\n"
+    "newmtl dark\nKd 0 0 0\n"
     "newmtl housing\nKd 0.5 0.5 0.5\n"
     "newmtl tube\nKd 0.5 0.5 0.5\nKe 1 1 1\n";
 
@@ -46,20 +49,21 @@ std::string OpenBox(const std::string& object, const Vec3& lo, const Vec3& hi, b
   return s;
 }
 
-// The room [0,4] x [0,3] x [0,3] seen from inside (m x m cells a wall, the ceiling 2 x 2: its
+// The room [0,4] x [0,3] x [0,3] seen from inside, its floor and walls of `room` (the
+// ceiling white) (m x m cells a wall, the ceiling 2 x 2: its
 // outward twin's triangles lie 2 cm above the housing, within 2% of their size, 2.4 cm, but
 // 4 cm above the tube); the housing, 1.2 x
 // 0.16 x 0.08, its top 2 cm under the ceiling, two shells 2 mm apart open below; the tube,
 // 1.1 x 0.04 at z = 2.96, Ke 1 on both sides.
-Scene RoomWithLampHousing(int m) {
+Scene RoomWithLampHousing(int m, const std::string& room = "white") {
   int next = 1;
   std::string obj;
-  obj += TessellatedQuad("floor", "white", {0, 0, 0}, {4, 0, 0}, {0, 3, 0}, m, next);
+  obj += TessellatedQuad("floor", room, {0, 0, 0}, {4, 0, 0}, {0, 3, 0}, m, next);
   obj += TessellatedQuad("ceiling", "white", {0, 0, 3}, {0, 3, 0}, {4, 0, 0}, 2, next);
-  obj += TessellatedQuad("wall_y0", "white", {0, 0, 0}, {0, 0, 3}, {4, 0, 0}, m, next);
-  obj += TessellatedQuad("wall_y3", "white", {0, 3, 0}, {4, 0, 0}, {0, 0, 3}, m, next);
-  obj += TessellatedQuad("wall_x0", "white", {0, 0, 0}, {0, 3, 0}, {0, 0, 3}, m, next);
-  obj += TessellatedQuad("wall_x4", "white", {4, 0, 0}, {0, 0, 3}, {0, 3, 0}, m, next);
+  obj += TessellatedQuad("wall_y0", room, {0, 0, 0}, {0, 0, 3}, {4, 0, 0}, m, next);
+  obj += TessellatedQuad("wall_y3", room, {0, 3, 0}, {4, 0, 0}, {0, 0, 3}, m, next);
+  obj += TessellatedQuad("wall_x0", room, {0, 0, 0}, {0, 3, 0}, {0, 0, 3}, m, next);
+  obj += TessellatedQuad("wall_x4", room, {4, 0, 0}, {0, 0, 3}, {0, 3, 0}, m, next);
   const double t = 0.002;
   obj += OpenBox("housing", {1.4, 1.42, 2.9}, {2.6, 1.58, 2.98}, true, next);
   obj += OpenBox("housing", {1.4 + t, 1.42 + t, 2.9}, {2.6 - t, 1.58 - t, 2.98 - t}, false, next);
@@ -161,6 +165,59 @@ TEST(LampHousing, GroupedInsideKeepsTheLightItReflectsOntoItself) {
   EXPECT_NEAR(p.total / (p.emitted / (1 - kRho)), 1.0, 0.005);
   const EnergyBalance balance = BalanceOf(*result, options);
   EXPECT_TRUE(balance.Ok()) << balance.OffMessage();
+}
+
+// A dark room (floor and walls Kd 0): the light the tube sends out of the trough dies on
+// them, so no path of light reaches the white ceiling or the housing's outer side, nor the
+// 2 mm cavity between its shells: their exact B is 0, while the trough's inside, lit by the
+// tube 2 cm away, is bright. Grouped to 40 unknowns, a group that held inside and outer
+// faces of the housing (same object, material and sidedness) gave the outer side and the
+// ceiling 2 cm above it the inside's light (RenderPark's classroom: its ceiling +95%); a
+// group is of directly lit patches or of unlit ones, never both (direct_lit.h), so they
+// read exactly 0.
+TEST(LampHousing, GroupedDarkRoomLightsOnlyTheTroughsInside) {
+  const JobOptions options = Options(true, 40);
+  absl::StatusOr<JobResult> result = RunJob(RoomWithLampHousing(12, "dark"), options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PreparedJob& job = *result->job;
+  ASSERT_FALSE(job.clusters.empty());
+  const auto object = [&](uint32_t p) {
+    return job.scene.objects[job.scene.faces[job.mesh.patches[p].face].object];
+  };
+  // The trough's inside: the inner shell's faces (centroid on the inner box), facing into it.
+  const Vec3 lo{1.402, 1.422, 2.9}, hi{2.598, 1.578, 2.978};
+  const auto inside = [&](uint32_t p) {
+    const Vec3& c = job.mesh.patches[p].centroid;
+    const Vec3 centre = (lo + hi) * 0.5;
+    const double tol = 1e-6;
+    const bool in_box = c.x > lo.x - tol && c.x < hi.x + tol && c.y > lo.y - tol &&
+                        c.y < hi.y + tol && c.z > lo.z - tol && c.z < hi.z + tol;
+    const bool on_face = std::abs(c.x - lo.x) < tol || std::abs(c.x - hi.x) < tol ||
+                         std::abs(c.y - lo.y) < tol || std::abs(c.y - hi.y) < tol ||
+                         std::abs(c.z - hi.z) < tol;
+    return in_box && on_face && Dot(job.mesh.patches[p].normal, centre - c) > 0;
+  };
+  double inside_area = 0, inside_power = 0, outer_max = 0, ceiling_max = 0;
+  int outer_patches = 0;
+  for (uint32_t p = 0; p < job.mesh.size(); ++p) {
+    const double b = std::max({result->solve.radiosity[p][0], result->solve.radiosity[p][1],
+                               result->solve.radiosity[p][2]});
+    if (object(p) == "ceiling") ceiling_max = std::max(ceiling_max, b);
+    if (object(p) != "housing") continue;
+    if (inside(p)) {
+      inside_area += job.mesh.patches[p].area;
+      inside_power += job.mesh.patches[p].area * b;
+    } else {
+      ++outer_patches;
+      outer_max = std::max(outer_max, b);
+    }
+  }
+  // Inside: top, two sides and two ends of the inner box.
+  EXPECT_NEAR(inside_area, 2 * (1.196 * 0.078 + 0.156 * 0.078) + 1.196 * 0.156, 1e-9);
+  EXPECT_GT(inside_power / inside_area, 0.05);
+  EXPECT_GT(outer_patches, 0);
+  EXPECT_EQ(outer_max, 0) << "the housing's outer side and cavity";
+  EXPECT_EQ(ceiling_max, 0);
 }
 
 }  // namespace
