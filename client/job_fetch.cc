@@ -1,7 +1,7 @@
 #include "client/job_fetch.h"
 
 #include "absl/strings/str_cat.h"
-#include "solver/mesh/face_grouping.h"
+#include "solver/grouped_mesh.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
 #include "wire/scene_stream.h"
@@ -59,7 +59,8 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
     }
     if (chunk.has_view_factor_file()) {
       const v1::ViewFactorFileChunk& f = chunk.view_factor_file();
-      std::string& file = f.file() == v1::VIEW_FACTOR_FILE_SKY ? r.sky_view_factors : r.view_factors;
+      std::string& file =
+          f.file() == v1::VIEW_FACTOR_FILE_SKY ? r.sky_view_factors : r.view_factors;
       if (f.offset() != file.size()) {
         return absl::DataLossError("view-factor file chunks out of order in the result stream");
       }

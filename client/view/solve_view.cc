@@ -4,7 +4,7 @@
 
 #include "client/view/view_content.h"
 #include "client/view/view_server.h"
-#include "solver/mesh/face_grouping.h"
+#include "solver/grouped_mesh.h"
 #include "wire/proto_convert.h"
 
 namespace radflux::cli {
@@ -39,9 +39,7 @@ absl::Status SolveView::Start(const Scene& scene, const JobOptions& options) {
   words_ = std::make_unique<JobProgress>(options.solver.tolerance);
   PublishEvent(Event(v1::JOB_STATE_RUNNING, v1::PHASE_PREPARE), *words_, state_.get());
   ViewRoutes routes;
-  routes.job = [state = state_](const std::string& id) {
-    return id == "local" ? state : nullptr;
-  };
+  routes.job = [state = state_](const std::string& id) { return id == "local" ? state : nullptr; };
   routes.home = kHome;
   auto listening = std::make_shared<std::promise<absl::Status>>();
   std::future<absl::Status> started = listening->get_future();

@@ -1,7 +1,7 @@
 // SceneCache: the solver Scenes of the most recently used stored scenes, by content
 // address and import options. A stored scene never changes under its address, so a cached
-// Scene is the one LoadStoredScene would return now; SubmitJob's limits check and the job's start then read,
-// verify and parse a scene once instead of twice per job, and not at all for a scene the
+// Scene is the one LoadStoredScene would return now; SubmitJob's limits check and the job's start
+// then read, verify and parse a scene once instead of twice per job, and not at all for a scene the
 // server solved just before (warm state that `radflux solve` pays in every process).
 // Holds at most `capacity` scenes. Thread-safe.
 #pragma once
@@ -17,7 +17,7 @@
 #include "radflux/v1/job.pb.h"
 #include "server/jobs/recent_map.h"
 #include "server/store/job_store.h"
-#include "solver/mesh/face_grouping.h"
+#include "solver/grouped_mesh.h"
 #include "solver/scene/scene.h"
 
 namespace radflux {
@@ -34,7 +34,7 @@ struct LoadedScene {
   uint64_t PatchCount(const MeshOptions& options) const;
 
  private:
-  mutable std::mutex mu_;                                          // guards counts_
+  mutable std::mutex mu_;  // guards counts_
   // by target_patches, max_edge, group_faces
   mutable std::map<std::tuple<int64_t, double, bool>, uint64_t> counts_;
 };

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/mesh/face_grouping.h"
 #include "solver/mesh/patch_mesh.h"
 #include "solver/raytrace/ray_caster.h"
 #include "solver/scene/scene.h"
@@ -19,14 +20,6 @@ namespace radflux {
 // Light samples per patch for the probe (light_sampling.h's stratified points, one shadow
 // ray each; a patch near an emitter against its size takes up to 16 times as many).
 inline constexpr int kLitProbePoints = 1;
-
-enum class DirectLight : uint8_t {
-  kUnlit = 0,   // no light sample arrived (and emitters, hidden patches)
-  kLit = 1,     // some light sample arrived unoccluded, both cosines positive
-  kBright = 2,  // lit, and its reflected direct light rho D (summed over bands) exceeds
-                // kBrightReflector times the emitted power per unit of the scene's area, and
-                // rho D A at least kBrightReflectorPower of the emitted power
-};
 
 // Per patch of `mesh` (of `scene`, traced by `caster`), by kLitProbePoints light samples. A
 // patch no emitter can light is kUnlit whatever the samples (no unoccluded segment exists);

@@ -193,28 +193,13 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   return NumberByFirstPatch(mesh, group_of, groups);
 }
 
-absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
-  GroupedMesh out;
-  if (!GroupsFaces(scene, options)) {
-    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
-    if (!mesh.ok()) return mesh.status();
-    out.mesh = *std::move(mesh);
-    return out;
-  }
+absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options) {
   const double target_area = TotalFaceArea(scene) / static_cast<double>(options.target_patches);
   MeshOptions split;
   split.max_edge = kSplitEdge * std::sqrt(target_area);
   split.follow_contacts = options.follow_contacts;
   split.min_contact_area = target_area;  // faces of a patch or more (face_grouping.h)
-  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, split);
-  if (!mesh.ok()) return mesh.status();
-  out.mesh = *std::move(mesh);
-  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(out.mesh);
-  if (!caster.ok()) return caster.status();
-  out.caster = *std::move(caster);
-  out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells,
-                              ProbeDirectLight(scene, out.mesh, *out.caster));
-  return out;
+  return SubdivideScene(scene, split);
 }
 
 }  // namespace radflux

@@ -44,14 +44,11 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "solver/formfactor/direct_lit.h"
 #include "solver/mesh/patch_clusters.h"
 #include "solver/mesh/subdivide.h"
-#include "solver/raytrace/embree_ray_caster.h"
 
 namespace radflux {
 
@@ -61,22 +58,24 @@ inline constexpr double kMaxConeDegrees = 30.0;
 inline constexpr double kConeWeight = 2.0;
 inline constexpr int64_t kDirectCellsPerUnknown = 16;
 
-// Whether SubdivideAndGroup groups faces for these options: group_faces, and a target patch
-// count (not --max-edge) no larger than the scene's face count.
+// Whether SubdivideAndGroup (solver/grouped_mesh.h) groups faces for these options: group_faces,
+// and a target patch count (not --max-edge) no larger than the scene's face count.
 bool GroupsFaces(const Scene& scene, const MeshOptions& options);
 
-struct GroupedMesh {
-  PatchMesh mesh;          // the patches (what outputs draw)
-  PatchClusters clusters;  // the unknowns; empty when the faces were not grouped
-  PatchClusters cells;     // the direct-light cells; each lies inside one unknown (an
-                           // emitter is a cell of its own); empty when not grouped
-  std::unique_ptr<EmbreeRayCaster> caster;  // grouped: the rays of the lit probe, on `mesh`
+// What the emitters' direct light does to a patch (solver/formfactor/direct_lit.h probes it):
+// groups never mix kLit with kUnlit patches, and a kBright patch is an unknown of its own.
+enum class DirectLight : uint8_t {
+  kUnlit = 0,   // no light sample arrived (and emitters, hidden patches)
+  kLit = 1,     // some light sample arrived unoccluded, both cosines positive
+  kBright = 2,  // lit, and its reflected direct light rho D (summed over bands) exceeds
+                // kBrightReflector times the emitted power per unit of the scene's area, and
+                // rho D A at least kBrightReflectorPower of the emitted power
 };
 
-// The scene's patches and unknowns: with GroupsFaces, split, probed and grouped as above to
-// about options.target_patches unknowns (the same for every caller: the probe's seed is
-// fixed); otherwise SubdivideScene's mesh, one unknown per patch.
-absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
+// The patches of a scene that GroupsFaces: its faces split as above (edges of kSplitEdge
+// sqrt(a*), faces of a* or more cut along their contacts), before the probe and the grouping
+// (solver/grouped_mesh.h's SubdivideAndGroup does both).
+absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
 // per emitting, hidden or kBright patch and per (object, material, two-sidedness, `light`);

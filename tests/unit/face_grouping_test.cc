@@ -1,13 +1,12 @@
 // Face grouping (solver/mesh/face_grouping.h): small faces become shared unknowns, and that
 // changes no closed-form result beyond the Monte Carlo error of the rows.
-#include "solver/mesh/face_grouping.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <set>
 
+#include "solver/grouped_mesh.h"
 #include "solver/pipeline.h"
 #include "tests/unit/howell_closed_forms.h"
 #include "tests/unit/test_scenes.h"

@@ -1,0 +1,28 @@
+#include "solver/grouped_mesh.h"
+
+#include <utility>
+
+#include "solver/formfactor/direct_lit.h"
+
+namespace radflux {
+
+absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
+  GroupedMesh out;
+  if (!GroupsFaces(scene, options)) {
+    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+    if (!mesh.ok()) return mesh.status();
+    out.mesh = *std::move(mesh);
+    return out;
+  }
+  absl::StatusOr<PatchMesh> mesh = SubdivideForGrouping(scene, options);
+  if (!mesh.ok()) return mesh.status();
+  out.mesh = *std::move(mesh);
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(out.mesh);
+  if (!caster.ok()) return caster.status();
+  out.caster = *std::move(caster);
+  out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells,
+                              ProbeDirectLight(scene, out.mesh, *out.caster));
+  return out;
+}
+
+}  // namespace radflux
