@@ -15,6 +15,7 @@
 #include "client/job_flags.h"
 #include "client/output_flags.h"
 #include "client/progress_display.h"
+#include "solver/core/parallel.h"
 #include "solver/report.h"
 #include "solver/scene/load_scene.h"
 
@@ -92,6 +93,7 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
                       SolveOutcome& outcome, std::unique_ptr<SolveObserver>& observer) {
   absl::StatusOr<JobOptions> options = ToJobOptions(args.job);
   if (!options.ok()) return options.status();
+  const ScopedThreadCount job_threads(options->form_factors.threads);  // every phase
   absl::StatusOr<std::unique_ptr<SolveObserver>> made = MakeObserver(args, *options, view);
   if (!made.ok()) return made.status();
   observer = *std::move(made);

@@ -198,7 +198,7 @@ nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
   nlohmann::json spill = nullptr;
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
   const int threads =
-      options.form_factors.threads > 0 ? options.form_factors.threads : DefaultThreadCount();
+      ThreadCount(options.form_factors.threads);
   nlohmann::json report = {
       {"scene", scene_name},
       {"options", OptionsJson(options)},

@@ -188,7 +188,7 @@ void JobManager::RunOne(const std::string& job_id) {
   context.farm = options_.farm;
   context.block_delay_ms = options_.block_delay_ms;
   context.max_memory = PerJobMemoryLimit(options_.max_memory);
-  const int threads = options_.threads > 0 ? options_.threads : DefaultThreadCount();
+  const int threads = ThreadCount(options_.threads);
   context.threads = std::max(1, threads / std::max(1, options_.jobs));
   std::mutex failure_mu;
   absl::Status failure;  // the first write of the job's files that failed (guarded)

@@ -101,7 +101,7 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   }
   if (done > 0) spdlog::info("job {}: reusing {} stored rows of {}", job.job_id(), done, n);
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(prepared.rows, options);
-  const int threads = c.threads > 0 ? c.threads : DefaultThreadCount();
+  const int threads = ThreadCount(c.threads);
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
   std::mutex mu;  // guards done, rays, sink_error and event publishing order
   uint64_t rays = 0;
@@ -260,6 +260,7 @@ nlohmann::json WorkersJson(const FarmReport& r) {
 
 absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
   if (job.options().has_viewfactors()) return RunStoredViewFactorJob(job, c);
+  const ScopedThreadCount job_threads(c.threads);  // the light probe and the rest too
   const auto start = Clock::now();
   absl::StatusOr<std::shared_ptr<const LoadedScene>> loaded =
       c.scenes->Get(job.scene_sha256(), job.options().import_options());

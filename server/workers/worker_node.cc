@@ -299,7 +299,7 @@ int RunWorkerNode(const WorkerNodeOptions& options, const std::atomic<bool>& sto
   if (!options.tls_server_name.empty()) args.SetSslTargetNameOverride(options.tls_server_name);
   auto stub = v1::Worker::NewStub(grpc::CreateCustomChannel(options.server, credentials, args));
   JobCache cache(*stub, options.worker_token);
-  const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
+  const int threads = ThreadCount(options.threads);
   auto backoff = std::chrono::milliseconds(500);
   while (!stop) {
     bool welcomed = false;

@@ -154,7 +154,7 @@ class RowSource {
       pairs_.emplace(context);
     } else {
       builder_ = MakeRowBuilder(context, ff);
-      const int threads = ff.threads > 0 ? ff.threads : DefaultThreadCount();
+      const int threads = ThreadCount(ff.threads);
       scratch_.assign(static_cast<size_t>(threads), RowAccumulator(context.mesh->size()));
     }
   }

@@ -73,7 +73,7 @@ absl::StatusOr<RowBlockStats> BuildBlocks(
   const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
 
   std::vector<RowBlockStats> block_stats(block_count);
-  const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
+  const int threads = ThreadCount(options.threads);
   std::vector<std::unique_ptr<RowAccumulator>> scratch(static_cast<size_t>(threads));
   std::atomic<int64_t> rows_done{0};
   std::atomic<bool> cancelled{false};

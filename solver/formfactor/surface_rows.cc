@@ -71,7 +71,7 @@ void BuildTriangleRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh&
 }
 
 size_t BlockRows(size_t radiating, const SurfaceRowsOptions& options) {
-  const size_t threads = options.threads > 0 ? options.threads : DefaultThreadCount();
+  const auto threads = static_cast<size_t>(ThreadCount(options.threads));
   size_t rows = 64 * threads;
   if (options.memory_limit > 0) {
     rows = std::min<size_t>(rows, options.memory_limit / (sizeof(double) * std::max<size_t>(radiating, 1)));
@@ -144,7 +144,7 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
   auto last_print = start;
   for (size_t first = 0; first < n; first += block) {
     const size_t count = std::min(block, n - first);
-    std::vector<SurfaceRowsStats> per_thread(DefaultThreadCount() + 1);
+    std::vector<SurfaceRowsStats> per_thread(ThreadCount(options.threads));
     ParallelFor(static_cast<int64_t>(count), 1, options.threads, [&](int64_t b, int64_t e) {
       for (int64_t r = b; r < e; ++r) {
         const size_t i = first + r;
@@ -204,7 +204,7 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   auto last_print = start;
   for (size_t first = 0; first < radiating; first += block) {
     const size_t count = std::min(block, radiating - first);
-    std::vector<SurfaceRowsStats> per_thread(DefaultThreadCount() + 1);
+    std::vector<SurfaceRowsStats> per_thread(ThreadCount(options.threads));
     ParallelFor(static_cast<int64_t>(count), 1, options.threads, [&](int64_t b, int64_t e) {
       for (int64_t r = b; r < e; ++r) {
         BuildRow(shapes, blockers, static_cast<uint32_t>(first + r), options.integration,
@@ -252,7 +252,7 @@ size_t SurfaceRowPlan::BlockValues(size_t first, size_t count) const {
 
 void SurfaceRowPlan::BuildBlock(size_t first, size_t count, std::span<double> values,
                                 SurfaceRowsStats& stats) const {
-  std::vector<SurfaceRowsStats> per_thread(DefaultThreadCount() + 1);
+  std::vector<SurfaceRowsStats> per_thread(ThreadCount(options_.threads));
   ParallelFor(static_cast<int64_t>(count), 1, options_.threads, [&](int64_t b, int64_t e) {
     for (int64_t r = b; r < e; ++r) {
       const size_t i = first + static_cast<size_t>(r);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "howell_closed_forms.h"
+#include "solver/core/parallel.h"
 #include "solver/core/physical_memory.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
@@ -221,6 +222,25 @@ TEST(SurfaceRows, ReciprocalRowsMatchRowByRow) {
       EXPECT_NEAR(f[i][j] * shapes[i].area, f[j][i] * shapes[j].area, 1e-14);
       EXPECT_NEAR(f[i][j], g[i][j], 5e-3 * g[i][j] + 1e-7) << i << " " << j;
     }
+  }
+}
+
+// Rows do not depend on the thread count, more threads than cores included (their per-thread
+// statistics were sized by the cores: --threads 8 on two cores wrote past their end).
+TEST(SurfaceRows, MoreThreadsThanCoresGiveTheSameRows) {
+  std::vector<SurfaceShape> shapes = CubeRoom(2);
+  shapes.push_back(Square({0.4, 0.4, 0.5}, {0.2, 0, 0}, {0, 0.2, 0}));  // a blocker
+  for (const size_t memory_limit : {size_t{0}, size_t{1}}) {  // reciprocal, then row by row
+    SurfaceRowsOptions options;
+    options.memory_limit = memory_limit;
+    options.threads = 1;
+    SurfaceRowsStats one, many;
+    const std::vector<std::vector<double>> f = Rows(shapes, options, one);
+    options.threads = 4 * DefaultThreadCount() + 1;
+    const std::vector<std::vector<double>> g = Rows(shapes, options, many);
+    EXPECT_EQ(f, g);
+    EXPECT_EQ(one.traced_pairs, many.traced_pairs);
+    EXPECT_GT(one.traced_pairs, 0u);
   }
 }
 
