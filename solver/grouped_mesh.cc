@@ -1,5 +1,6 @@
 #include "solver/grouped_mesh.h"
 
+#include <chrono>
 #include <utility>
 
 #include "solver/formfactor/direct_lit.h"
@@ -17,9 +18,12 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
   absl::StatusOr<PatchMesh> mesh = SubdivideForGrouping(scene, options);
   if (!mesh.ok()) return mesh.status();
   out.mesh = *std::move(mesh);
+  const auto start = std::chrono::steady_clock::now();
   absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(out.mesh);
   if (!caster.ok()) return caster.status();
   out.caster = *std::move(caster);
+  out.caster_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells,
                               ProbeDirectLight(scene, out.mesh, *out.caster));
   return out;

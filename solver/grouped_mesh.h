@@ -18,6 +18,7 @@ struct GroupedMesh {
   PatchClusters cells;     // the direct-light cells; each lies inside one unknown (an
                            // emitter is a cell of its own); empty when not grouped
   std::unique_ptr<EmbreeRayCaster> caster;  // grouped: the probe's rays, on `mesh`
+  double caster_seconds = 0;                // building `caster` (the job's Embree phase)
 };
 
 // The scene's patches and unknowns: with GroupsFaces, split (SubdivideForGrouping), probed

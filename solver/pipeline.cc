@@ -123,7 +123,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
   job->attributes = job->clusters.empty()
                         ? ComputePatchAttributes(job->scene, job->mesh)
                         : ComputeClusterAttributes(job->scene, job->mesh, job->clusters);
-  job->mesh_seconds = SecondsSince(start);
+  job->mesh_seconds = SecondsSince(start) - mesh->caster_seconds;
 
   start = std::chrono::steady_clock::now();
   if (job->caster == nullptr) {  // grouped: built already for the lit probe
@@ -132,7 +132,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
     job->caster = *std::move(caster);
   }
   job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
-  job->embree_seconds = SecondsSince(start);
+  job->embree_seconds = mesh->caster_seconds + SecondsSince(start);  // grouped: built meshing
   return job;
 }
 
