@@ -26,8 +26,8 @@ uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& 
     RowAccumulator& row = *rows[t];
     for (int64_t c = begin; c < end; ++c) {
       if (!sampled[c]) continue;
-      rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c), LightSamplesPerRow(options),
-                                              options.seed, row);
+      rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c),
+                                              CellLightSamplesPerGroup(options), options.seed, row);
       Rgb& d = direct[c];
       for (uint32_t j : row.Touched()) {
         for (int k = 0; k < kBands; ++k) d[k] += row.Value(j) * b[j][k];

@@ -6,13 +6,16 @@
 // patches, near-field rule included):
 //     D_c = sum over emitter unknowns j of F_cj B_j              (W/m^2 per band)
 // and each patch of cell c shows
-//     B_p = B_g + rho_g (D_c - Dbar_g),   Dbar_g = sum over cells c of g of A_c D_c / A_g,
-// that is E_g + rho_g (D_c + I_g) with I_g = (B_g - E_g) / rho_g - Dbar_g the group's
-// irradiance from everything but its cells' mean direct light (the group's reflected light,
-// in expectation: the group row's own emitter columns and the cells' mean estimate the same
-// F_gj). The area-weighted mean of B over the group's patches is B_g exactly, so the power
-// the solve balanced is the power the outputs show; only a patch whose B would fall below
-// E_g is lifted to E_g (it cannot reflect negative light), which the summary counts.
+//     B_p = B_g + rho_g (D_c - Dbar_g),   Dbar_g = sum over cells c of g of A_c D_c / A_g.
+// The group's row took its emitter columns from these very samples (monte_carlo:
+// LightSampler::AddGroupEmitterColumns, F_gj = sum_c A_c F_cj / A_g), so Dbar_g is the direct
+// light the solve put into B_g (but for the float rows' rounding and a row the row-sum cap
+// scaled back) and B_p = E_g + rho_g (D_c + I_g), I_g the group's irradiance from all but the
+// emitters. The group's mean direct light is thus the cells' estimate (CellLightSamplesPerGroup,
+// stratified over the cells), in the solve as well: the light the group reflects on carries
+// it. The area-weighted mean of B over the group's patches is B_g exactly, so the power the
+// solve balanced is the power the outputs show; only a patch whose B would fall below E_g is
+// lifted to E_g (it cannot reflect negative light), which the summary counts.
 #pragma once
 
 #include <cstdint>
@@ -35,8 +38,8 @@ struct CellDirectResult {
 };
 
 // B per patch as above, from `b` per unknown of context (grouped: context.clusters and
-// context.cells set) and `attributes` per unknown; each group's cells share one row's budget
-// of LightSamplesPerRow(options) light samples, seeded from options.seed; on options.threads
+// context.cells set) and `attributes` per unknown; each group's cells share a budget of
+// CellLightSamplesPerGroup(options) light samples, seeded from options.seed; on options.threads
 // threads (the result does not depend on them). Unknowns of one cell, and those with rho = 0,
 // show their B unchanged; without cells every patch shows its unknown's B.
 CellDirectResult PushDownWithCellDirect(const RowContext& context,

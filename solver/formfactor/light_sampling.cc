@@ -141,7 +141,7 @@ double LightSampler::CosineHitValue(const CosineHit& hit, double k, double n) co
 }
 
 uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed,
-                                             RowAccumulator& row) const {
+                                             RowAccumulator& row, double weight) const {
   if (tree_.empty() || budget < 1) return 0;
   const std::span<const uint32_t> members = context_.cells->Members(c);
   const uint32_t receiver = context_.UnknownOf(members[0]);
@@ -151,12 +151,21 @@ uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t se
       SetNearFieldFactor(*context_.mesh, members[0],
                          members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
   return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, 1,
-                    seed ^ kCellSeed, c, row);
+                    seed ^ kCellSeed, c, row, 0, weight);
+}
+
+uint64_t LightSampler::AddGroupEmitterColumns(uint32_t g, int budget, uint64_t seed,
+                                              RowAccumulator& row) const {
+  uint64_t rays = 0;
+  for (uint32_t c : context_.CellsOf(g)) {
+    rays += AddCellEmitterColumns(c, budget, seed, row, context_.cells->area[c] / context_.Area(g));
+  }
+  return rays;
 }
 
 uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
                                   int points, int per_point, uint64_t seed, uint64_t index,
-                                  RowAccumulator& row, double cosine_share) const {
+                                  RowAccumulator& row, double cosine_share, double weight) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -186,7 +195,7 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
     if (!rays[r].Occluded()) {
-      row.Add(pending[r].emitter, pending[r].form_factor / static_cast<double>(count));
+      row.Add(pending[r].emitter, weight * pending[r].form_factor / static_cast<double>(count));
     }
   }
   return rays.size();

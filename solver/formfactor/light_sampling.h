@@ -72,13 +72,18 @@ class LightSampler {
                              RowAccumulator& row, std::span<const CosineHit> hits = {},
                              uint32_t cosine_rays = 0) const;
 
-  // Adds the estimate of F_cj, cell c's (context.cells) area-averaged form factor to each
-  // emitter unknown j, to `row`: cell c of a group of k cells takes ceil(budget / k) light
-  // samples (times its own near-field factor), each at its own stratified point over the
-  // cell's patches by area, seeded from (seed, c) apart from the rows' patterns. So the
-  // cells of a group share one row's budget of light samples, spread over the group's cells
-  // (cell_direct.h). Returns the shadow rays cast.
-  uint64_t AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed, RowAccumulator& row) const;
+  // Adds `weight` times the estimate of F_cj, cell c's (context.cells) area-averaged form
+  // factor to each emitter unknown j, to `row`: cell c of a group of k cells takes
+  // ceil(budget / k) light samples (times its own near-field factor), each at its own
+  // stratified point over the cell's patches by area, seeded from (seed, c) apart from the
+  // rows' patterns. So the cells of a group share a budget of light samples spread over the
+  // group (cell_direct.h). Returns the shadow rays cast.
+  uint64_t AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed, RowAccumulator& row,
+                                 double weight = 1) const;
+  // Adds group g's emitter columns as its cells estimate them: sum over the cells c of g of
+  // (A_c / A_g) F_cj, each F_cj by AddCellEmitterColumns(c, budget, seed), the very samples
+  // cell_direct.h takes after the solve. Returns the shadow rays cast.
+  uint64_t AddGroupEmitterColumns(uint32_t g, int budget, uint64_t seed, RowAccumulator& row) const;
 
   // One light sample waiting for its shadow ray: the emitter patch it chose and its
   // estimate of that emitter's form factor F_j(x) from the receiver point, if the ray is
@@ -101,9 +106,10 @@ class LightSampler {
  private:
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
   // `receiver` (never its own emitter), patterns seeded from (seed, index).
+  // Each unoccluded sample adds `weight` times its estimate.
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
                       int per_point, uint64_t seed, uint64_t index, RowAccumulator& row,
-                      double cosine_share = 0) const;
+                      double cosine_share = 0, double weight = 1) const;
   // A cosine ray's share of F_ij for its hit (above): F_s(x) / (k F_s(x) + N P(s | x)) where
   // F_s(x) >= kRejectionFormFactor, else 0.
   double CosineHitValue(const CosineHit& hit, double k, double n) const;

@@ -4,7 +4,10 @@
 // direct light would be the noisiest term): a fixed budget of light samples per row,
 // whatever the number of emitter patches, combined by multiple importance sampling with the
 // cosine rays that hit emitters which fill much of the hemisphere (light_sampling.h); the
-// other hits on emitters count for nothing, so nothing is counted twice. Entries towards
+// other hits on emitters count for nothing, so nothing is counted twice. A group with
+// direct-light cells takes its emitter columns from its cells' light samples instead
+// (cell_direct.h: 4 times a row's budget, stratified over the cells), the very estimate that
+// spreads its direct light over its patches after the solve. Entries towards
 // hidden unknowns (slots) come from their own rows by reciprocity (reciprocal_columns.h).
 #include <map>
 #include <vector>
@@ -42,6 +45,15 @@ RaySet MakeRaySet(uint32_t k) {
   return set;
 }
 
+// `lit` (WithBrightReflectors(context)) with only its bright reflectors as emitter columns.
+RowContext OnlyBrightReflectors(const RowContext& lit, const RowContext& context) {
+  RowContext out = lit;
+  for (uint32_t j = 0; j < out.emitter.size(); ++j) {
+    if (context.emitter[j]) out.emitter[j] = 0;
+  }
+  return out;
+}
+
 class MonteCarloBuilder final : public RowBuilder {
  public:
   // One ray set per row size in use, computed once; each patch shifts its set toroidally by
@@ -51,8 +63,10 @@ class MonteCarloBuilder final : public RowBuilder {
       : context_(context),
         options_(options),
         lit_(WithBrightReflectors(context)),
+        reflectors_(OnlyBrightReflectors(lit_, context)),
         lights_(context),
-        bright_lights_(lit_, &lights_) {
+        bright_lights_(lit_, &lights_),
+        reflector_lights_(reflectors_, &lights_) {
     sets_.emplace(Rays(0), MakeRaySet(Rays(0)));  // a context without unknowns' areas
     for (uint32_t u = 0; u < context.needs_row.size(); ++u) {
       const uint32_t k = Rays(u);
@@ -93,8 +107,11 @@ class MonteCarloBuilder final : public RowBuilder {
     // power in the energy balance: its cosine rays keep the bright reflectors' columns, so
     // that its sum stays one multinomial draw (light_sampling.h), not two independent parts.
     const bool plain = lit_.emitter[i] != 0;
-    const RowContext& columns = plain ? context_ : lit_;
-    const LightSampler& lights = plain ? lights_ : bright_lights_;
+    // A group with direct-light cells: the emitter columns come from the cells, its own light
+    // samples and cosine hits estimate the bright reflectors' alone.
+    const bool from_cells = context_.CellsOf(i).size() > 1;
+    const RowContext& columns = plain ? context_ : from_cells ? reflectors_ : lit_;
+    const LightSampler& lights = plain ? lights_ : from_cells ? reflector_lights_ : bright_lights_;
     const double weight = 1.0 / static_cast<double>(set.positions.size());
     // A group that is not flat sees itself (F_ii > 0, Galerkin's diagonal: face_grouping.h);
     // a single patch is flat and cannot.
@@ -106,6 +123,8 @@ class MonteCarloBuilder final : public RowBuilder {
       if (j == i && !group) continue;
       if (columns.emitter[j]) {
         emitter_hits.push_back({origins[r].x, origins[r].n, j});
+      } else if (from_cells && context_.emitter[j]) {
+        continue;
       } else if (!hidden_.Fills(i, j)) {
         row.Add(j, weight);
       }
@@ -115,9 +134,13 @@ class MonteCarloBuilder final : public RowBuilder {
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
-    const uint64_t light_rays = lights.AddEmitterColumns(
+    uint64_t light_rays = lights.AddEmitterColumns(
         i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,
         emitter_hits, static_cast<uint32_t>(stream.size()));
+    if (from_cells) {
+      light_rays +=
+          lights_.AddGroupEmitterColumns(i, CellLightSamplesPerGroup(options_), options_.seed, row);
+    }
     // The light samples' part of the emitter columns varies apart from the cosine rays'
     // part of the row: where emitters fill much of the hemisphere their noise can add up to
     // more than 1. Only a row that would then return more light
@@ -198,8 +221,10 @@ class MonteCarloBuilder final : public RowBuilder {
   const RowContext& context_;
   FormFactorOptions options_;
   RowContext lit_;                   // context_ with its bright reflectors as emitter columns
+  RowContext reflectors_;            // ... with its bright reflectors alone
   LightSampler lights_;              // the emitter columns
   LightSampler bright_lights_;       // the emitter and bright reflector columns
+  LightSampler reflector_lights_;    // the bright reflector columns
   std::map<uint32_t, RaySet> sets_;  // by rays per row
   ReciprocalColumns hidden_;         // the rows' entries towards hidden unknowns
 };
