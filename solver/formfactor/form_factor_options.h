@@ -15,14 +15,14 @@ std::optional<FormFactorMethod> ParseMethod(std::string_view name);
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::kMonteCarlo;
-  int rays = 64;          // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
-  int hemicube_res = 32;  // r: hemicube top-face resolution (r x r), even
-  int samples = 4;        // s: analytic points per patch (also monte_carlo's emitter columns)
-  double cutoff = 1e-6;   // entries F_ij below this are dropped (their sum is reported),
-                          // except in emitter columns (direct light is never cut)
-  uint64_t seed = 1;      // job seed; each patch's samples are seeded from (seed, patch)
-  int threads = 0;        // 0 = all cores
-  int block_size = 64;    // rows per block: the unit of work, checkpoint and retry
+  int rays = 64;           // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
+  int hemicube_res = 32;   // r: hemicube top-face resolution (r x r), even
+  int samples = 4;         // s: analytic points per patch (also monte_carlo's emitter columns)
+  double cutoff = 1e-6;    // entries F_ij below this are dropped (their sum is reported),
+                           // except in emitter columns (direct light is never cut)
+  uint64_t seed = 1;       // job seed; each patch's samples are seeded from (seed, patch)
+  int threads = 0;         // 0 = all cores
+  int block_size = 64;     // rows per block: the unit of work, checkpoint and retry
 };
 
 // monte_carlo's light samples per s (--samples): a row casts 16 s shadow rays for its emitter
@@ -44,16 +44,6 @@ inline int SampledRays(const FormFactorOptions& o) {
 // The light samples behind a row's emitter columns, at least (monte_carlo: 16 s), else 0.
 inline int LightSamplesPerRow(const FormFactorOptions& o) {
   return o.method == FormFactorMethod::kMonteCarlo ? kLightSamplesPerS * o.samples : 0;
-}
-
-// The light samples a group's direct-light cells take together (cell_direct.h), which are
-// also the group row's emitter columns (monte_carlo): 4 times a row's, stratified over the
-// cells. On a plate's 28 groups of 16 cells under a small lamp (face_grouping_test) the
-// groups' direct light is 0.35% RMS off its closed form, against 1.0% with a row's budget
-// over the cells and 1.4-2.2% with the row's own samples. The conference room's rays: 0.95 M
-// (rows 0.73 M, the direct-light pass 0.22 M) against 0.57 M with a row's budget.
-inline int CellLightSamplesPerGroup(const FormFactorOptions& o) {
-  return 4 * LightSamplesPerRow(o);
 }
 
 }  // namespace radflux

@@ -41,6 +41,16 @@
 
 namespace radflux {
 
+// The light samples a group's direct-light cells take together (cell_direct.h), which are
+// also the group row's emitter columns (monte_carlo): 4 times a row's, stratified over the
+// cells. On a plate's 28 groups of 16 cells under a small lamp (face_grouping_test) the
+// groups' direct light is 0.35% RMS off its closed form, against 1.0% with a row's budget
+// over the cells and 1.4-2.2% with the row's own samples. The conference room's rays: 0.95 M
+// (rows 0.73 M, the direct-light pass 0.22 M) against 0.57 M with a row's budget.
+inline int CellLightSamplesPerGroup(const FormFactorOptions& o) {
+  return 4 * LightSamplesPerRow(o);
+}
+
 // The shapes of `context`'s emitting unknowns (each one patch), in unknown order, their power
 // from context.emission: the LightTree of a LightSampler.
 std::vector<EmitterShape> EmitterShapes(const RowContext& context);
