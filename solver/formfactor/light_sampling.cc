@@ -190,7 +190,7 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
     const SurfacePoint at = sample_point(on_patch[p]);
     SamplePoint(at.x, at.n, receiver, seed, index, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending,
-                cosine_share);
+                cosine_share, per_point == 1 ? static_cast<uint32_t>(count) : 0);
   }
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
@@ -204,7 +204,7 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
 void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed,
                                uint64_t index, uint32_t first, std::span<const Point2> directions,
                                std::vector<StreamRay>& rays, std::vector<PendingSample>& pending,
-                               double cosine_share) const {
+                               double cosine_share, uint32_t strata) const {
   if (tree_.empty()) return;
   const uint32_t per_point = static_cast<uint32_t>(directions.size());
   const uint32_t choice_pattern = PatternSeed(seed, index, kLightChoiceStream);
@@ -227,10 +227,14 @@ void LightSampler::SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, 
     return samplers[m].emplace(tree_.Shape(node), x, n);
   };
   for (uint32_t k = 0; k < per_point; ++k) {
-    // One stratum of [0, 1) per sample of the point, in a permuted order, jittered.
+    // One stratum of [0, 1) per sample of the point (with `strata`: per sample of the set),
+    // in a permuted order, jittered.
     const uint32_t s = first + k;
-    const uint32_t stratum = one_choice ? 0 : PermuteIndex(k, per_point, choice_pattern + s);
-    const double u = one_choice ? 0.5 : (stratum + RandomFloat(s, choice_pattern)) / per_point;
+    const uint32_t count = strata > 0 ? strata : per_point;
+    const uint32_t stratum = one_choice   ? 0
+                             : strata > 0 ? PermuteIndex(s, strata, choice_pattern)
+                                          : PermuteIndex(k, per_point, choice_pattern + s);
+    const double u = one_choice ? 0.5 : (stratum + RandomFloat(s, choice_pattern)) / count;
     const auto choice = tree_.Choose(cut, x, n, std::min(u, 0x1.fffffffffffffp-1));
     if (!choice) continue;
     const EmitterShape& shape = tree_.Shape(choice->node);

@@ -1,6 +1,7 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
-// patch a few samples share each point, on a group each takes its own), a sampled node s
+// patch a few samples share each point, on a group each takes its own and their choices of s
+// are stratified across them), a sampled node s
 // chosen with probability P(s | x) (LightTree: one emitter, or a plane of emitters that tile
 // a rectangle; by the tree's cut at x: near x, or among at most 16 emitters, in proportion
 // to their exact unoccluded contributions), a direction in the solid angle Omega_s that s
@@ -108,10 +109,12 @@ class LightSampler {
   // that can see an emitter to `rays` and their samples to `pending`, index for index. The
   // choices are stratified over [0, 1) across the directions.size() samples. `cosine_share`
   // is k / N of a row that combines N light samples with k cosine rays (0: light samples
-  // alone).
+  // alone). With `strata` > 0 (one sample a point, numbered first of a set of `strata`), the
+  // choices are stratified across the set instead.
   void SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed, uint64_t index,
                    uint32_t first, std::span<const Point2> directions, std::vector<StreamRay>& rays,
-                   std::vector<PendingSample>& pending, double cosine_share = 0) const;
+                   std::vector<PendingSample>& pending, double cosine_share = 0,
+                   uint32_t strata = 0) const;
 
  private:
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
