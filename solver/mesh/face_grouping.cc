@@ -13,8 +13,8 @@ namespace {
 
 constexpr uint32_t kUnassigned = 0xffffffffu;
 
-// The binary trees of the non-emitting patches (one per (material, sidedness) run of
-// `order`), built by top-down median splits, and the cut of them into groups.
+// The binary trees of the non-emitting patches (one per (object, material, sidedness, side,
+// direct light) run of `order`), built by top-down median splits, and the cut of them into groups.
 class GroupTree {
  public:
   // `target_area`: a*, the area of a group of the cut when the budget spreads evenly.
@@ -153,7 +153,7 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   const uint32_t n = static_cast<uint32_t>(mesh.size());
   std::vector<uint32_t> group_of(n, kUnassigned);
   // The patches that are not unknowns of their own (emitters, hidden patches), sorted by
-  // (object, material, sidedness): a tree per run.
+  // (object, material, sidedness, side, direct light): a tree per run.
   std::vector<uint32_t> small;
   uint32_t singles = 0;
   for (uint32_t p = 0; p < n; ++p) {
@@ -167,7 +167,7 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   }
   const auto set_of = [&](uint32_t p) {
     const Face& face = scene.faces[mesh.patches[p].face];
-    return std::make_tuple(face.object, face.material, mesh.patches[p].two_sided,
+    return std::make_tuple(face.object, face.material, mesh.patches[p].two_sided, face.back_face,
                            light.empty() ? DirectLight::kUnlit : light[p]);
   };
   std::stable_sort(small.begin(), small.end(),

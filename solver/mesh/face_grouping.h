@@ -13,17 +13,20 @@
 //    patch through its own Embree scene, kept for the job's rows): a patch whose reflected
 //    direct light makes it a light source (kBright: a lamp housing's inside) is an unknown of
 //    its own, so that the rows light-sample it as a bright reflector (bright_reflectors.h);
-//  - the other patches are put, per (object, material, two-sidedness, lit or not), in a binary
-//    tree by top-down median splits (a BVH build); a lit patch never shares an unknown with an
-//    unlit one (a housing's inside, 2 cm from its tube, with its outer side and the cavity
-//    between its shells: grouped, RenderPark's classroom's ceiling 2 cm above the housings
-//    gathered the insides' light and read +95%); a node whose normals spread beyond kMaxConeDegrees
-//    of their area-weighted mean and whose centroids span at most kMaxExtent sqrt(a*) is split
-//    along the normal component that varies most (so that groups are flat, and a group's rays
-//    seldom hit the group itself), any other node along its centroids' longest axis (a bent
-//    node as large as a room, all its chairs, is split in space first: split by normals, its
-//    children would span the room as it does, and the cut would spend the unknowns on them
-//    before the ceiling got any);
+//  - the other patches are put, per (object, material, two-sidedness, side, lit or not), in a
+//    binary tree by top-down median splits (a BVH build); a face never shares an unknown with
+//    a back-face twin (two_sided.h: at the same centroids, the splits never parted them, and a
+//    ceiling grouped with its outward twins sent half its light out of the room: RenderPark's
+//    classroom lost 25% of its emitted power at --patches 1000, 6% at 2000, its ceiling -45%
+//    and -9%); a lit patch never shares an unknown with an unlit one (a housing's inside, 2 cm from
+//    its tube, with its outer side and the cavity between its shells: grouped, RenderPark's
+//    classroom's ceiling 2 cm above the housings gathered the insides' light and read +95%); a node
+//    whose normals spread beyond kMaxConeDegrees of their area-weighted mean and whose centroids
+//    span at most kMaxExtent sqrt(a*) is split along the normal component that varies most (so that
+//    groups are flat, and a group's rays seldom hit the group itself), any other node along its
+//    centroids' longest axis (a bent node as large as a room, all its chairs, is split in space
+//    first: split by normals, its children would span the room as it does, and the cut would spend
+//    the unknowns on them before the ceiling got any);
 //  - the unknowns are a cut of these trees with N nodes in all (fewer only when the trees
 //    run out of nodes): starting from the roots, the node of largest
 //        max(area, (diagonal / kMaxExtent)^2) * (1 + kConeWeight (1 - min cos))
@@ -78,8 +81,8 @@ enum class DirectLight : uint8_t {
 absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options);
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
-// per emitting, hidden or kBright patch and per (object, material, two-sidedness, `light`);
-// or fewer: when every group is one patch) by the rule above; `light` per patch
+// per emitting, hidden or kBright patch and per (object, material, two-sidedness, side,
+// `light`); or fewer: when every group is one patch) by the rule above; `light` per patch
 // (ProbeDirectLight), or empty: every patch unlit. A group never spans two objects, so per-object
 // means stay each object's own. With `cells`, also the direct-light cells: the same cut with
 // kDirectCellsPerUnknown times the budget of non-emitting groups, a refinement of the groups

@@ -17,8 +17,8 @@ namespace radflux {
 
 struct Material {
   std::string name;
-  Rgb reflectance{};  // diffuse reflectance rho per band, in [0, 1)
-  Rgb emission{};     // emitted radiosity E = pi * L_e, W/m^2 per band
+  Rgb reflectance{};       // diffuse reflectance rho per band, in [0, 1)
+  Rgb emission{};          // emitted radiosity E = pi * L_e, W/m^2 per band
   bool two_sided = false;  // each face is two back-to-back patches, each lit from its side
   // Opaque fraction of each face's area, in (0, 1] (alpha cut-outs, face_textures.h): a ray
   // meeting the face passes through with probability 1 - opacity, and the face reflects and
@@ -35,7 +35,8 @@ struct Face {
   uint32_t group = 0;              // index into Scene::groups ('g' name)
   int source_line = 0;             // 1-based line in the source file, 0 if unknown
   uint32_t source_file = 0;        // index into Scene::files (0: the main file, Scene::source)
-  bool obstruction = false;  // blocks light but has no view factors (View3D 'O' surface)
+  bool obstruction = false;        // blocks light but has no view factors (View3D 'O' surface)
+  bool back_face = false;          // the back-face twin of a two-sided face (two_sided.h)
 };
 
 struct Scene {

@@ -10,6 +10,7 @@ uint64_t AddBackFaces(Scene& scene) {
     if (!scene.materials[scene.faces[f].material].two_sided) continue;
     Face twin = scene.faces[f];
     std::reverse(twin.vertices.begin(), twin.vertices.end());
+    twin.back_face = true;
     scene.faces.push_back(std::move(twin));
   }
   return scene.faces.size() - count;

@@ -11,7 +11,8 @@
 namespace radflux {
 
 // Appends the twin of every face whose material has two_sided set, after all the faces,
-// with the same material, object, group and source line. Returns how many were added.
+// with the same material, object, group and source line, marked back_face. Returns how many
+// were added.
 uint64_t AddBackFaces(Scene& scene);
 
 }  // namespace radflux

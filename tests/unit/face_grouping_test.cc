@@ -2,6 +2,7 @@
 // changes no closed-form result beyond the Monte Carlo error of the rows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -9,6 +10,7 @@
 #include "solver/formfactor/light_sampling.h"
 #include "solver/grouped_mesh.h"
 #include "solver/pipeline.h"
+#include "solver/scene/two_sided.h"
 #include "tests/unit/howell_closed_forms.h"
 #include "tests/unit/test_scenes.h"
 
@@ -239,6 +241,59 @@ TEST(FaceGrouping, GroupedClosedBoxKeepsTheTotalPowerAndTheBalance) {
     for (uint32_t p : job.clusters.Members(u)) EXPECT_GT(Dot(job.mesh.patches[p].normal, n), 0.99);
   }
   EXPECT_NEAR(power / (emitted / (1 - 0.5)), 1.0, 0.01);
+  ASSERT_TRUE(result->solved_balance.has_value());
+  ASSERT_TRUE(result->solved_balance->ok());
+  EXPECT_TRUE((*result->solved_balance)->Ok()) << (*result->solved_balance)->RelativeImbalance();
+}
+
+// The closed box with two-sided white walls (each face has a back-face twin facing out of
+// the box, where nothing is) and a lamp strip, 0.2 x 1, across the middle of its top: the
+// top's white strips beside the lamp get no direct light, nor do the outward twins, so both
+// fall in trees of the same (object, material, sidedness, direct light). Solved as 40
+// unknowns, the twins (at the same centroids) were never split apart: one B over both sides
+// of the top, half its light sent out of the box: the power, exact as above, was 1.6% low
+// (now within 0.13%). RenderPark's classroom lost 25% of its emitted power so at --patches
+// 1000 (its ceiling -45%), 6% at the defaults (-9%). No unknown holds a face and a back face.
+TEST(FaceGrouping, GroupedTwoSidedBoxKeepsItsLightInside) {
+  int next = 1;
+  std::string obj;
+  obj += TessellatedQuad("top", "white", {0, 0, 1}, {0, 1, 0}, {0.4, 0, 0}, 10, next);
+  obj += TessellatedQuad("lamp", "lamp", {0.4, 0, 1}, {0, 1, 0}, {0.2, 0, 0}, 4, next);
+  obj += TessellatedQuad("top", "white", {0.6, 0, 1}, {0, 1, 0}, {0.4, 0, 0}, 10, next);
+  obj += TessellatedQuad("bottom", "white", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 20, next);
+  obj += TessellatedQuad("x0", "white", {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 20, next);
+  obj += TessellatedQuad("x1", "white", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 20, next);
+  obj += TessellatedQuad("y0", "white", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 20, next);
+  obj += TessellatedQuad("y1", "white", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, 20, next);
+  Scene scene = SceneFromObj(obj);
+  for (Material& material : scene.materials) material.two_sided = !material.IsEmitter();
+  AddBackFaces(scene);
+  JobOptions options;
+  options.mesh.target_patches = 40;
+  options.form_factors.rays = 1024;
+  options.form_factors.samples = 16;
+  options.solver.tolerance = 1e-6;
+  absl::StatusOr<JobResult> result = RunJob(std::move(scene), options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PreparedJob& job = *result->job;
+  ASSERT_FALSE(job.clusters.empty());
+  const auto back = [&](uint32_t p) { return job.scene.faces[job.mesh.patches[p].face].back_face; };
+  int mixed = 0;  // unknowns that hold a face and a back face
+  for (uint32_t u = 0; u < job.clusters.size(); ++u) {
+    const auto members = job.clusters.Members(u);
+    mixed += std::any_of(members.begin(), members.end(),
+                         [&](uint32_t p) { return back(p) != back(members[0]); });
+  }
+  EXPECT_EQ(mixed, 0);
+  double power = 0, emitted = 0;
+  for (uint32_t p = 0; p < job.mesh.size(); ++p) {
+    power += job.mesh.patches[p].area * result->solve.radiosity[p][0];
+  }
+  for (uint32_t u = 0; u < job.Unknowns(); ++u) {
+    emitted += job.attributes.area[u] * job.attributes.emission[u][0];
+  }
+  EXPECT_NEAR(emitted, 0.2 * std::numbers::pi, 1e-9);
+  EXPECT_NEAR(power / (emitted / (1 - 0.5)), 1.0, 0.005);
   ASSERT_TRUE(result->solved_balance.has_value());
   ASSERT_TRUE(result->solved_balance->ok());
   EXPECT_TRUE((*result->solved_balance)->Ok()) << (*result->solved_balance)->RelativeImbalance();
