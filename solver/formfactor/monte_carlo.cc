@@ -86,13 +86,12 @@ class MonteCarloBuilder final : public RowBuilder {
     return SampleRow(i, row);
   }
 
-  // The pairs of rows whose columns are cosine rays' alone averaged: neither light sampled nor
-  // a hidden unknown (whose pairs are exactly reciprocal already: reciprocal_columns.h).
+  // The pairs of rows whose columns are cosine rays' alone (neither light sampled) averaged.
   void FinishRows(CsrMatrix& rows) const override {
     if (!options_.reciprocal_pairs) return;
     std::vector<uint8_t> cosine(context_.Unknowns());
     for (uint32_t u = 0; u < cosine.size(); ++u) {
-      cosine[u] = context_.needs_row[u] && !lit_.emitter[u] && !hidden_.Hidden(u) ? 1 : 0;
+      cosine[u] = context_.needs_row[u] && !lit_.emitter[u] ? 1 : 0;
     }
     AverageReciprocalPairs(context_, options_.rays, cosine, options_.threads, rows);
   }

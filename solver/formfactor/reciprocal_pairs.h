@@ -17,8 +17,9 @@
 //
 // Only pairs of two cosine-ray rows take part: not an emitter's or a bright reflector's column
 // (light sampled: light_sampling.h, bright_reflectors.h) nor their rows, not rows of patches
-// without a row (rho = 0), not the diagonal (a group's F_ii), not a hidden unknown's (its
-// pairs are exactly reciprocal already: reciprocal_columns.h).
+// without a row (rho = 0), not the diagonal (a group's F_ii). Columns towards hidden unknowns
+// that come from their rows already (reciprocal_columns.h) are reciprocal and stay as they are
+// but for the scaling.
 #pragma once
 
 #include <cstdint>
