@@ -161,7 +161,6 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   if (!sink_error.ok()) return sink_error;
   absl::StatusOr<JobRows> rows = sink.Finish();
-  if (rows.ok() && rows->store == nullptr) builder->FinishRows(rows->matrix);
   if (rows.ok()) rows->seconds = SecondsSince(start);
   return rows;
 }

@@ -9,8 +9,6 @@
 // (cell_direct.h: 4 times a row's budget, stratified over the cells), the very estimate that
 // spreads its direct light over its patches after the solve. Entries towards
 // hidden unknowns (slots) come from their own rows by reciprocity (reciprocal_columns.h).
-// Once all rows are in memory, each pair of rows averages its two estimates of the pair's
-// exchange (reciprocal_pairs.h).
 #include <map>
 #include <vector>
 
@@ -19,7 +17,6 @@
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/formfactor/reciprocal_columns.h"
-#include "solver/formfactor/reciprocal_pairs.h"
 #include "solver/formfactor/row_rays.h"
 
 namespace radflux {
@@ -84,16 +81,6 @@ class MonteCarloBuilder final : public RowBuilder {
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
     if (hidden_.Hidden(i)) return hidden_.AddOwnRow(i, row);
     return SampleRow(i, row);
-  }
-
-  // The pairs of rows whose columns are cosine rays' alone (neither light sampled) averaged.
-  void FinishRows(CsrMatrix& rows) const override {
-    if (!options_.reciprocal_pairs) return;
-    std::vector<uint8_t> cosine(context_.Unknowns());
-    for (uint32_t u = 0; u < cosine.size(); ++u) {
-      cosine[u] = context_.needs_row[u] && !lit_.emitter[u] ? 1 : 0;
-    }
-    AverageReciprocalPairs(context_, options_.rays, cosine, options_.threads, rows);
   }
 
  private:

@@ -65,11 +65,12 @@ namespace {
 // it is done (on any thread, in any order). Stops early and returns the error when deliver
 // fails, CANCELLED when progress returns false.
 absl::StatusOr<RowBlockStats> BuildBlocks(
-    const RowBuilder& builder, const RowContext& context, const FormFactorOptions& options,
-    const PhaseProgress& progress, const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
+    const RowContext& context, const FormFactorOptions& options, const PhaseProgress& progress,
+    const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
   const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
+  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
 
   std::vector<RowBlockStats> block_stats(block_count);
   const int threads = ThreadCount(options.threads);
@@ -87,7 +88,7 @@ absl::StatusOr<RowBlockStats> BuildBlocks(
       const uint32_t count = std::min(block_size, n - first);
       absl::Status s = deliver(
           static_cast<uint32_t>(b),
-          BuildRowBlock(builder, context, options.cutoff, first, count, *row, block_stats[b]));
+          BuildRowBlock(*builder, context, options.cutoff, first, count, *row, block_stats[b]));
       if (!s.ok()) {
         std::lock_guard lock(error_mutex);
         if (error.ok()) error = std::move(s);
@@ -119,9 +120,8 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
   const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   std::vector<RowBlock> blocks((n + block_size - 1) / block_size);
-  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
   absl::StatusOr<RowBlockStats> stats =
-      BuildBlocks(*builder, context, options, progress, [&](uint32_t b, RowBlock block) {
+      BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
         blocks[b] = std::move(block);
         return absl::OkStatus();
       });
@@ -136,7 +136,6 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
     result.matrix.Append(block);
     block = RowBlock{};
   }
-  builder->FinishRows(result.matrix);
   result.stats = *stats;
   result.seconds = SecondsSince(start);
   return result;
@@ -148,9 +147,8 @@ absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   OrderedRowAppender appender(store);
-  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
   absl::StatusOr<RowBlockStats> stats =
-      BuildBlocks(*builder, context, options, progress,
+      BuildBlocks(context, options, progress,
                   [&](uint32_t b, RowBlock block) { return appender.Put(b, std::move(block)); });
   if (!stats.ok()) return stats.status();
   if (absl::Status s = appender.Finish(); !s.ok()) return s;

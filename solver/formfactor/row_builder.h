@@ -75,10 +75,6 @@ class RowBuilder {
   virtual ~RowBuilder() = default;
   // Adds F_ij (j != i) for patch i into `row`; returns the number of rays cast.
   virtual uint64_t BuildRow(uint32_t i, RowAccumulator& row) const = 0;
-  // One pass over all the rows once they are built and in memory (BuildFormFactors, the
-  // service's rows in memory; never rows that spill): monte_carlo averages reciprocal pairs
-  // (reciprocal_pairs.h); the others leave the rows as they are.
-  virtual void FinishRows(CsrMatrix& /*rows*/) const {}
 };
 
 std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
@@ -108,8 +104,8 @@ struct FormFactorResult {
   double seconds = 0;
 };
 
-// All rows of the mesh, in parallel over blocks, then the builder's pass over them
-// (RowBuilder::FinishRows). Returns CANCELLED when progress returns false.
+// All rows of the mesh, in parallel over blocks. Returns CANCELLED when progress
+// returns false.
 absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
                                                   const FormFactorOptions& options,
                                                   const PhaseProgress& progress = {});
@@ -120,9 +116,8 @@ struct RowBuildSummary {
 };
 
 // All rows of the mesh, in parallel over blocks, appended to `store` in row order as they
-// finish (rows that do not fit its budget spill while the build goes on; no FinishRows pass,
-// which needs every row in memory); finishes the store. Returns CANCELLED when progress returns
-// false, or the store's error.
+// finish (rows that do not fit its budget spill while the build goes on); finishes the
+// store. Returns CANCELLED when progress returns false, or the store's error.
 absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const FormFactorOptions& options,
                                                      RowStore& store,

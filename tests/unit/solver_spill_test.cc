@@ -14,8 +14,7 @@ namespace radflux {
 namespace {
 
 // The Cornell box at ~600 patches, rows in memory and in a store whose budget keeps a
-// two 16 KB chunks in memory and spills the rest (rows that spill are not averaged by
-// reciprocity, reciprocal_pairs.h: neither are these in memory).
+// two 16 KB chunks in memory and spills the rest.
 class SpilledCornell : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -23,7 +22,6 @@ class SpilledCornell : public ::testing::Test {
     ASSERT_TRUE(scene.ok()) << scene.status();
     JobOptions options;
     options.mesh.target_patches = 600;
-    options.form_factors.reciprocal_pairs = false;
     absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(*std::move(scene), options);
     ASSERT_TRUE(job.ok()) << job.status();
     job_ = job->release();
@@ -138,15 +136,13 @@ TEST_F(SpilledCornell, EnergyBalanceStreamsToTheSameNumbers) {
   EXPECT_TRUE(memory.Ok()) << memory.RelativeImbalance() << " tolerance " << memory.Tolerance();
 }
 
-// RunJob with --memory-limit: the whole pipeline on spilled rows, same B as in memory
-// without the reciprocity averaging (which needs every row in memory: reciprocal_pairs.h).
+// RunJob with --memory-limit: the whole pipeline on spilled rows, same B as in memory.
 TEST(SpillJob, RunJobWithAMemoryLimitMatchesTheInMemoryJob) {
   absl::StatusOr<Scene> scene = LoadObjFile(testing::SourcePath("scenes/cornell_box.obj"));
   ASSERT_TRUE(scene.ok()) << scene.status();
   JobOptions options;
   options.mesh.target_patches = 300;
   options.solver.method = SolverMethod::kAuto;
-  options.form_factors.reciprocal_pairs = false;
   const absl::StatusOr<JobResult> memory = RunJob(*scene, options);
   ASSERT_TRUE(memory.ok()) << memory.status();
   options.spill.memory_limit = 1;  // every chunk spills
