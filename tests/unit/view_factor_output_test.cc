@@ -36,7 +36,10 @@ std::string ReadAll(const std::string& path) {
 }
 
 std::string Write(ViewFactorFormat format, double min_vf, const std::string& svf = "") {
-  const std::string path = testing::TempDir() + "/vf_out.txt";
+  // One file per test: ctest runs this file's tests at once, in processes of their own.
+  const std::string path = testing::TempDir() + "/vf_out_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                           ".txt";
   const ViewFactorOutput output{format, path, min_vf, svf};
   const ViewFactorSurfaces surfaces{
       {"a", "b,c", "d", "e"}, {1, 2, 0.5, 4}, {0.9, 0.999, 1, 0.5}, false, false};
