@@ -3,16 +3,19 @@
 #include <chrono>
 #include <utility>
 
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/direct_lit.h"
 
 namespace radflux {
 
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
+  const auto begin = std::chrono::steady_clock::now();
   GroupedMesh out;
   if (!GroupsFaces(scene, options)) {
     absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
     if (!mesh.ok()) return mesh.status();
     out.mesh = *std::move(mesh);
+    out.seconds = SecondsSince(begin);
     return out;
   }
   absl::StatusOr<PatchMesh> mesh = SubdivideForGrouping(scene, options);
@@ -22,10 +25,10 @@ absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOpti
   absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(out.mesh);
   if (!caster.ok()) return caster.status();
   out.caster = *std::move(caster);
-  out.caster_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.caster_seconds = SecondsSince(start);
   out.clusters = GroupPatches(scene, out.mesh, options.target_patches, &out.cells,
                               ProbeDirectLight(scene, out.mesh, *out.caster));
+  out.seconds = SecondsSince(begin);
   return out;
 }
 

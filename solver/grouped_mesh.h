@@ -19,6 +19,7 @@ struct GroupedMesh {
                            // emitter is a cell of its own); empty when not grouped
   std::unique_ptr<EmbreeRayCaster> caster;  // grouped: the probe's rays, on `mesh`
   double caster_seconds = 0;                // building `caster` (the job's Embree phase)
+  double seconds = 0;                       // SubdivideAndGroup's whole time, caster included
 };
 
 // The scene's patches and unknowns: with GroupsFaces, split (SubdivideForGrouping), probed

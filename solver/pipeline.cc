@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/cell_direct.h"
 #include "solver/formfactor/reciprocal_columns.h"
 #include "solver/formfactor/row_context.h"
@@ -14,10 +15,6 @@
 
 namespace radflux {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 absl::Status Require(bool ok, const std::string& what) {
   return ok ? absl::OkStatus() : absl::InvalidArgumentError(what);
@@ -110,20 +107,27 @@ absl::Status ValidateJobOptions(const JobOptions& o) {
 absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
   if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
   if (absl::Status s = ValidateScene(scene, options.require_emitter); !s.ok()) return s;
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
+  if (!mesh.ok()) return mesh.status();
+  return PrepareJob(std::move(scene), *std::move(mesh), options);
+}
+
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh mesh,
+                                                        const JobOptions& options) {
+  if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
+  if (absl::Status s = ValidateScene(scene, options.require_emitter); !s.ok()) return s;
   auto job = std::make_unique<PreparedJob>();
   job->scene = std::move(scene);
   auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(job->scene, JobMeshOptions(options));
-  if (!mesh.ok()) return mesh.status();
-  job->mesh = std::move(mesh->mesh);
-  job->clusters = std::move(mesh->clusters);
-  job->cells = std::move(mesh->cells);
-  job->caster = std::move(mesh->caster);
+  job->mesh = std::move(mesh.mesh);
+  job->clusters = std::move(mesh.clusters);
+  job->cells = std::move(mesh.cells);
+  job->caster = std::move(mesh.caster);
   job->mesh_stats = ComputeMeshStats(job->mesh);
   job->attributes = job->clusters.empty()
                         ? ComputePatchAttributes(job->scene, job->mesh)
                         : ComputeClusterAttributes(job->scene, job->mesh, job->clusters);
-  job->mesh_seconds = SecondsSince(start) - mesh->caster_seconds;
+  job->mesh_seconds = mesh.seconds - mesh.caster_seconds + SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
   if (job->caster == nullptr) {  // grouped: built already for the lit probe
@@ -132,7 +136,7 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOp
     job->caster = *std::move(caster);
   }
   job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
-  job->embree_seconds = mesh->caster_seconds + SecondsSince(start);  // grouped: built meshing
+  job->embree_seconds = mesh.caster_seconds + SecondsSince(start);  // grouped: built meshing
   return job;
 }
 

@@ -82,6 +82,12 @@ struct PreparedJob {
 
 // Validates the scene and options, subdivides, builds the Embree scene.
 absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options);
+// The same around a mesh meshed already: `mesh` must be SubdivideAndGroup(scene,
+// JobMeshOptions(options)) (a server counts a job's unknowns before it starts; the job then
+// takes that mesh instead of meshing twice), or any mesh of the scene without groups. Its
+// meshing time is booked as the job's.
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh mesh,
+                                                        const JobOptions& options);
 
 // Upper estimate of a job's peak memory in bytes for n patches (mesh, Embree, rows, solver),
 // so a server can refuse before any work starts.

@@ -17,6 +17,7 @@
 #include "server/workers/row_check.h"
 #include "server/workers/row_farm.h"
 #include "solver/core/parallel.h"
+#include "solver/core/seconds_since.h"
 #include "solver/pipeline.h"
 #include "solver/report.h"
 #include "solver/sparse/file_block_spill.h"
@@ -26,10 +27,6 @@ namespace radflux {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 bool Stopped(const RunContext& c) { return c.stop && c.stop->load(); }
 
@@ -250,12 +247,9 @@ absl::StatusOr<SolveResult> SolveStored(const v1::Job& job, const PreparedJob& p
 }  // namespace
 
 nlohmann::json WorkersJson(const FarmReport& r) {
-  return {{"remote_rows", r.remote_rows},
-          {"verified_rows", r.verified_rows},
-          {"verify_seconds", r.verify_seconds},
-          {"remote_build_seconds", r.remote_build_seconds},
-          {"rejected_blocks", r.rejected_blocks},
-          {"rejected", r.rejected}};
+  return {{"remote_rows", r.remote_rows},         {"verified_rows", r.verified_rows},
+          {"verify_seconds", r.verify_seconds},   {"remote_build_seconds", r.remote_build_seconds},
+          {"rejected_blocks", r.rejected_blocks}, {"rejected", r.rejected}};
 }
 
 absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext& c) {
@@ -274,8 +268,12 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   options->spill.memory_limit = *row_budget;  // > 0: the rows spill (and the report says so)
   const double load_seconds = SecondsSince(start);
   c.on_phase(v1::PHASE_PREPARE, 0);
-  // PrepareJob takes its own copy of the scene.
-  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared = PrepareJob((*loaded)->scene, *options);
+  // PrepareJob takes its own copy of the scene, and the mesh the job's count built if it is
+  // still there.
+  std::optional<GroupedMesh> counted = (*loaded)->TakeMesh(JobMeshOptions(*options));
+  absl::StatusOr<std::unique_ptr<PreparedJob>> prepared =
+      counted ? PrepareJob((*loaded)->scene, *std::move(counted), *options)
+              : PrepareJob((*loaded)->scene, *options);
   if (!prepared.ok()) return prepared.status();
   const PreparedJob& p = **prepared;
   const int64_t n = static_cast<int64_t>(p.Unknowns());

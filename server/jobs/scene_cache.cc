@@ -6,9 +6,13 @@
 
 namespace radflux {
 
+LoadedScene::Key LoadedScene::KeyOf(const MeshOptions& options) {
+  return {options.target_patches, options.max_edge, options.group_faces, options.follow_contacts,
+          options.min_contact_area};
+}
+
 uint64_t LoadedScene::PatchCount(const MeshOptions& options) const {
-  const std::tuple<int64_t, double, bool> key{options.target_patches, options.max_edge,
-                                              options.group_faces};
+  const Key key = KeyOf(options);
   {
     std::lock_guard lock(mu_);
     if (auto it = counts_.find(key); it != counts_.end()) return it->second;
@@ -18,7 +22,16 @@ uint64_t LoadedScene::PatchCount(const MeshOptions& options) const {
       !mesh.ok() ? 0 : (mesh->clusters.empty() ? mesh->mesh.size() : mesh->clusters.size());
   std::lock_guard lock(mu_);
   counts_.emplace(key, count);
+  if (mesh.ok()) mesh_.emplace(key, *std::move(mesh));
   return count;
+}
+
+std::optional<GroupedMesh> LoadedScene::TakeMesh(const MeshOptions& options) const {
+  std::lock_guard lock(mu_);
+  if (!mesh_.has_value() || mesh_->first != KeyOf(options)) return std::nullopt;
+  std::optional<GroupedMesh> taken(std::move(mesh_->second));
+  mesh_.reset();
+  return taken;
 }
 
 absl::StatusOr<std::shared_ptr<const LoadedScene>> SceneCache::Get(

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -22,9 +23,10 @@
 
 namespace radflux {
 
-// A stored scene as loaded: its upload name and its solver Scene, and the patch counts of
+// A stored scene as loaded: its upload name and its solver Scene, and the unknowns of
 // meshing it, each counted once (SubmitJob's limits check and the job's start both need
-// it; counting is subdividing, ~1 ms for the Cornell box at 8,500 patches).
+// it; counting is meshing: ~1 ms for the Cornell box at 8,500 patches, ~2 CPU-s for the
+// conference room's probe and grouping).
 struct LoadedScene {
   std::string name;
   Scene scene;
@@ -33,10 +35,19 @@ struct LoadedScene {
   // them), 0 when it fails. Thread-safe.
   uint64_t PatchCount(const MeshOptions& options) const;
 
+  // The mesh the latest PatchCount that meshed built, when it was for `options` and is not
+  // taken yet: the job it was counted for takes it instead of meshing again (PrepareJob).
+  // One mesh at most is held (the latest count's), until taken or the scene leaves the
+  // cache. Thread-safe.
+  std::optional<GroupedMesh> TakeMesh(const MeshOptions& options) const;
+
  private:
-  mutable std::mutex mu_;  // guards counts_
-  // by target_patches, max_edge, group_faces
-  mutable std::map<std::tuple<int64_t, double, bool>, uint64_t> counts_;
+  using Key = std::tuple<int64_t, double, bool, bool, double>;  // MeshOptions' fields
+  static Key KeyOf(const MeshOptions& options);
+
+  mutable std::mutex mu_;  // guards counts_ and mesh_
+  mutable std::map<Key, uint64_t> counts_;
+  mutable std::optional<std::pair<Key, GroupedMesh>> mesh_;
 };
 
 class SceneCache {

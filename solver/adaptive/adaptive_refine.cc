@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "solver/core/parallel.h"
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/analytic_pair.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/formfactor/row_context.h"
@@ -20,10 +21,6 @@ constexpr uint64_t kLeafPointStream = 21;
 constexpr uint64_t kShadowStream = 22;
 constexpr uint64_t kContactStream = 23;
 using Row = std::vector<std::pair<uint32_t, float>>;
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Sample points of leaf patch i, seeded by its element (so they survive renumbering).
 std::vector<Vec3> LeafPoints(const ElementTree& tree, uint32_t node, int s, uint64_t seed) {
@@ -325,7 +322,7 @@ absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptio
       stats.change_in_b = b2 > 0 ? std::sqrt(d2 / b2) : 0;
     }
     if (pass_index == options.passes || result.solve.cancelled) {
-      stats.seconds = Seconds(start);
+      stats.seconds = SecondsSince(start);
       result.passes.push_back(stats);
       result.leaf_mesh = std::move(pass.mesh);
       break;
@@ -344,7 +341,7 @@ absl::StatusOr<AdaptiveResult> SolveAdaptive(const Scene& scene, const MeshOptio
         ++splits;
       }
     }
-    stats.seconds = Seconds(start);
+    stats.seconds = SecondsSince(start);
     result.passes.push_back(stats);
     if (splits == 0) {
       result.leaf_mesh = std::move(pass.mesh);

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "solver/core/parallel.h"
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/builders.h"
 #include "solver/sparse/ordered_row_appender.h"
 
@@ -105,10 +106,6 @@ absl::StatusOr<RowBlockStats> BuildBlocks(
   for (const RowBlockStats& s : block_stats) stats.Merge(s);
   if (progress) progress("rows", n, n);
   return stats;
-}
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace

@@ -1,14 +1,15 @@
 #include "solver/formfactor/surface_rows.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
 
 #include "solver/core/parallel.h"
 #include "solver/core/physical_memory.h"
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/blocker_bvh.h"
 #include "solver/formfactor/shaft_cull.h"
 #include "solver/formfactor/shaft_visibility.h"
@@ -17,10 +18,6 @@ namespace radflux {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // F_ij with occlusion: the unoccluded factor, times the visible fraction when the pair's
 // segments may meet a blocker. A pair taking one segment (far for its size) traces it at
@@ -38,7 +35,8 @@ double PairFactor(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blo
     return blockers.SegmentBlocked(a, b, i, j, last);
   };
   const uint64_t before = stats.segments;
-  std::optional<double> seen = OneSegmentVisibleFraction(shapes[i], shapes[j], blocked, stats.segments);
+  std::optional<double> seen =
+      OneSegmentVisibleFraction(shapes[i], shapes[j], blocked, stats.segments);
   if (!seen) {
     if (!blockers.AnyInShaft(i, j)) return f;
     seen = VisibleFraction(shapes[i], shapes[j], blocked, stats.segments);
@@ -52,7 +50,9 @@ void BuildRow(const std::vector<SurfaceShape>& shapes, const BlockerBvh& blocker
               const PairIntegration& integration, std::span<double> row, SurfaceRowsStats& stats) {
   uint32_t last = BlockerBvh::kNoBlocker;
   for (uint32_t j = 0; j < row.size(); ++j) {
-    row[j] = j == i ? 0 : PairFactor(shapes, blockers, i, j, integration, last, stats) * shapes[j].opacity;
+    row[j] = j == i
+                 ? 0
+                 : PairFactor(shapes, blockers, i, j, integration, last, stats) * shapes[j].opacity;
   }
 }
 
@@ -74,14 +74,16 @@ size_t BlockRows(size_t radiating, const SurfaceRowsOptions& options) {
   const auto threads = static_cast<size_t>(ThreadCount(options.threads));
   size_t rows = 64 * threads;
   if (options.memory_limit > 0) {
-    rows = std::min<size_t>(rows, options.memory_limit / (sizeof(double) * std::max<size_t>(radiating, 1)));
+    rows = std::min<size_t>(
+        rows, options.memory_limit / (sizeof(double) * std::max<size_t>(radiating, 1)));
   }
   return std::max<size_t>(rows, 1);
 }
 
 void PrintProgress(const char* what, size_t done, size_t total, Clock::time_point start) {
   const double elapsed = SecondsSince(start);
-  const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0;
+  const double eta =
+      done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0;
   std::fprintf(stderr, "\rviewfactors: %s %zu/%zu (%.0f%%), %.0f s, ETA %.0f s   ", what, done,
                total, 100.0 * static_cast<double>(done) / static_cast<double>(total), elapsed, eta);
   if (done == total) std::fputc('\n', stderr);
@@ -101,8 +103,7 @@ size_t TriangleIndex(size_t n, size_t i, size_t j) { return i * (2 * n - i - 1) 
 // a triangle larger than the caches).
 constexpr size_t kEmitBlockBytes = size_t{8} << 20;
 absl::Status EmitTriangleRows(const std::vector<SurfaceShape>& shapes, size_t n,
-                              std::span<const double> af, int threads,
-                              const SurfaceRowSink& sink) {
+                              std::span<const double> af, int threads, const SurfaceRowSink& sink) {
   const size_t block = std::clamp<size_t>(kEmitBlockBytes / (sizeof(double) * n), 1, n);
   std::vector<double> rows(block * n);
   const auto factor = [&](size_t i, size_t j, double a) {
@@ -175,8 +176,9 @@ absl::Status BuildReciprocalRows(const std::vector<SurfaceShape>& shapes, size_t
 uint64_t SurfaceRowsBudget(uint64_t memory_limit) {
   if (memory_limit > 0) return memory_limit;
   const uint64_t physical = PhysicalMemoryBytes();
-  return physical > 0 ? static_cast<uint64_t>(kDefaultMemoryFraction * static_cast<double>(physical))
-                      : kFallbackBudget;
+  return physical > 0
+             ? static_cast<uint64_t>(kDefaultMemoryFraction * static_cast<double>(physical))
+             : kFallbackBudget;
 }
 
 uint64_t TriangleBytes(size_t n) { return TriangleSize(n) * sizeof(double); }
@@ -197,7 +199,8 @@ absl::Status BuildSurfaceRows(const std::vector<SurfaceShape>& shapes, size_t ra
   stats.budget = SurfaceRowsBudget(options.memory_limit);
   stats.triangle = TriangleBytes(radiating);
   stats.reciprocal = radiating > 1 && stats.triangle <= stats.budget;
-  if (stats.reciprocal) return BuildReciprocalRows(shapes, radiating, blockers, options, sink, stats);
+  if (stats.reciprocal)
+    return BuildReciprocalRows(shapes, radiating, blockers, options, sink, stats);
   start = Clock::now();
   const size_t block = BlockRows(radiating, options);
   std::vector<double> rows(block * radiating);
@@ -258,8 +261,8 @@ void SurfaceRowPlan::BuildBlock(size_t first, size_t count, std::span<double> va
       const size_t i = first + static_cast<size_t>(r);
       const std::span<double> row = values.subspan(BlockValues(first, i - first), RowWidth(i));
       if (reciprocal_) {
-        BuildTriangleRow(shapes_, *blockers_, static_cast<uint32_t>(i), options_.integration,
-                         row, per_thread[ThreadIndex()]);
+        BuildTriangleRow(shapes_, *blockers_, static_cast<uint32_t>(i), options_.integration, row,
+                         per_thread[ThreadIndex()]);
       } else {
         BuildRow(shapes_, *blockers_, static_cast<uint32_t>(i), options_.integration, row,
                  per_thread[ThreadIndex()]);
@@ -270,7 +273,8 @@ void SurfaceRowPlan::BuildBlock(size_t first, size_t count, std::span<double> va
 }
 
 absl::Status SurfaceRowPlan::Emit(
-    size_t block_rows, const std::function<absl::StatusOr<std::vector<double>>(size_t first)>& block,
+    size_t block_rows,
+    const std::function<absl::StatusOr<std::vector<double>>(size_t first)>& block,
     const SurfaceRowSink& sink) const {
   const size_t n = radiating_;
   std::vector<double> triangle;

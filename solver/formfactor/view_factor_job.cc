@@ -5,14 +5,11 @@
 #include <map>
 
 #include "absl/strings/str_format.h"
+#include "solver/core/seconds_since.h"
 #include "solver/scene/validation.h"
 
 namespace radflux {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 ViewFactorSurfaces MakeSurfaces(std::vector<std::string> names, std::vector<double> area,
                                 std::vector<double> emittance, const ViewFactorJobOptions& o) {
@@ -112,7 +109,8 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
   report.rays = stats.segments;
   report.patches = surfaces.shapes.size();
   report.adaptive = stats;
-  if (!surfaces.names.empty()) report.row_sums.worst_name = surfaces.names[report.row_sums.worst_row];
+  if (!surfaces.names.empty())
+    report.row_sums.worst_name = surfaces.names[report.row_sums.worst_row];
   return report;
 }
 
@@ -136,7 +134,8 @@ absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOpti
   report.rows_seconds = rows->seconds;
   report.rays = rows->stats.rays;
   const auto start = std::chrono::steady_clock::now();
-  SurfaceViewFactors f = AggregateViewFactors(prepared.scene, prepared.mesh, rows->matrix, options.by);
+  SurfaceViewFactors f =
+      AggregateViewFactors(prepared.scene, prepared.mesh, rows->matrix, options.by);
   report.surfaces = f.names.size();
   for (size_t s = 0; s < f.factor.size(); ++s) report.row_sums.Add(s, f.factor[s]);
   if (!f.names.empty()) report.row_sums.worst_name = f.names[report.row_sums.worst_row];
@@ -184,8 +183,9 @@ absl::StatusOr<ViewFactorReport> RunViewFactorJob(Scene scene,
     if (surfaces) return RunAdaptive(*std::move(surfaces), options);
     if (options.integration == ViewFactorIntegration::kAdaptive) {
       return absl::InvalidArgumentError(
-          scene.source + ": --integration adaptive needs every surface to be one face (use "
-                         "--by face, or --integration patches)");
+          scene.source +
+          ": --integration adaptive needs every surface to be one face (use "
+          "--by face, or --integration patches)");
     }
   }
   return RunPatches(std::move(scene), options);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "solver/core/parallel.h"
+#include "solver/core/seconds_since.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/hierarchical/hierarchical_state.h"
 #include "solver/hierarchical/link_refine.h"
@@ -15,10 +16,6 @@
 
 namespace radflux {
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Push-pull below `p`: `down` is the exposed radiosity gathered by p's ancestors (with rho).
 // A node's gathered radiosity is averaged over all its area, so it is divided by the node's
@@ -197,7 +194,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
   PullClusters(c, faces, state);
   LinkSet links = InitialLinks(c, tree, state, stats.rays);
   stats.initial_links = links.size();
-  stats.refine_seconds += Seconds(start);
+  stats.refine_seconds += SecondsSince(start);
 
   SolveResult& solve = result.solve;
   std::vector<uint32_t> leaves;
@@ -208,7 +205,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
       changed = true;
       ++stats.refine_rounds;
     }
-    stats.refine_seconds += Seconds(start);
+    stats.refine_seconds += SecondsSince(start);
     if (pass > 0 && !changed) break;
     ++stats.passes;
     start = std::chrono::steady_clock::now();
@@ -240,7 +237,7 @@ absl::StatusOr<HierarchicalResult> SolveHierarchical(const Scene& scene,
         break;
       }
     }
-    stats.solve_seconds += Seconds(start);
+    stats.solve_seconds += SecondsSince(start);
   }
   result.leaves = tree.Leaves();
   for (uint32_t l : result.leaves) result.leaf_radiosity.push_back(LeafRadiosity(state, l));

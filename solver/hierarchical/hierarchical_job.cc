@@ -2,29 +2,19 @@
 
 #include <chrono>
 
-#include "solver/formfactor/row_context.h"
+#include "solver/core/seconds_since.h"
 #include "solver/scene/validation.h"
 #include "solver/solve/energy_balance.h"
 
 namespace radflux {
 namespace {
 
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// A PreparedJob around an already built output mesh.
-absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareFromMesh(Scene scene, PatchMesh mesh) {
-  auto job = std::make_unique<PreparedJob>();
-  job->scene = std::move(scene);
-  job->mesh = std::move(mesh);
-  job->mesh_stats = ComputeMeshStats(job->mesh);
-  job->attributes = ComputePatchAttributes(job->scene, job->mesh);
-  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(job->mesh);
-  if (!caster.ok()) return caster.status();
-  job->caster = *std::move(caster);
-  job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster);
-  return job;
+// A PreparedJob around an already built output mesh (one unknown per patch).
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareFromMesh(Scene scene, PatchMesh mesh,
+                                                             const JobOptions& options) {
+  GroupedMesh ungrouped;
+  ungrouped.mesh = std::move(mesh);
+  return PrepareJob(std::move(scene), std::move(ungrouped), options);
 }
 
 absl::Status Validate(const Scene& scene, const JobOptions& options) {
@@ -50,11 +40,11 @@ absl::StatusOr<JobResult> RunHierarchicalJob(Scene scene, const JobOptions& opti
   absl::StatusOr<HierarchicalResult> solved =
       SolveHierarchical(scene, h, WithThreads(options), callbacks.solve);
   if (!solved.ok()) return solved.status();
-  const double seconds = Seconds(start);
+  const double seconds = SecondsSince(start);
   const HierarchicalStats& st = solved->stats;
   JobResult result;
   absl::StatusOr<std::unique_ptr<PreparedJob>> job =
-      PrepareFromMesh(std::move(scene), std::move(solved->mesh));
+      PrepareFromMesh(std::move(scene), std::move(solved->mesh), options);
   if (!job.ok()) return job.status();
   result.job = *std::move(job);
   const uint32_t n = static_cast<uint32_t>(result.job->mesh.size());
@@ -89,12 +79,12 @@ absl::StatusOr<JobResult> RunAdaptiveJob(Scene scene, const JobOptions& options,
   AdaptiveResult& a = *solved;
   const PatchMesh& display = a.mesh;
   const PatchAttributes leaf_attributes = ComputePatchAttributes(scene, a.leaf_mesh);
-  const EnergyBalance balance =
-      ComputeEnergyBalance({&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity,
-                           {SampledRays(options.form_factors),
-                            LightSamplesPerRow(options.form_factors)});
+  const EnergyBalance balance = ComputeEnergyBalance(
+      {&a.form_factors, &leaf_attributes, nullptr}, a.leaf_radiosity,
+      {SampledRays(options.form_factors), LightSamplesPerRow(options.form_factors)});
   JobResult result;
-  absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareFromMesh(std::move(scene), display);
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
+      PrepareFromMesh(std::move(scene), display, options);
   if (!job.ok()) return job.status();
   result.job = *std::move(job);
   result.form_factors = std::move(a.form_factors);

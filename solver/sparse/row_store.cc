@@ -7,13 +7,10 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "solver/core/seconds_since.h"
 
 namespace radflux {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Appends `block`'s rows to `chunk` (row offsets rebased).
 void AppendRows(const RowBlock& block, RowBlock& chunk) {

@@ -96,6 +96,25 @@ TEST_F(ServiceTest, SubmitWatchResultEqualsInProcessRunJobBitForBit) {
   EXPECT_EQ(chunks[1].report_json(), report);
 }
 
+// A job whose faces are grouped (more faces than --patches) takes the mesh its admission
+// built to count its unknowns (LoadedScene::TakeMesh) instead of meshing again: the result is
+// still RunJob's, bit for bit.
+TEST_F(ServiceTest, GroupedJobTakesTheMeshItsAdmissionCountedBitForBit) {
+  StartServer();
+  const std::string sha = UploadCornell();
+  const v1::SolveOptions options = SmallOptions(8, "gauss_seidel");  // 17 faces: grouped
+  v1::Job job;
+  ASSERT_TRUE(Submit(options, &job, sha).ok());
+  const std::vector<v1::JobEvent> events = Watch(job.job_id());
+  ASSERT_EQ(events.back().state(), v1::JOB_STATE_SUCCEEDED) << events.back().message();
+  std::vector<double> served;
+  std::string report;
+  ASSERT_TRUE(Result(job.job_id(), &served, &report).ok());
+  ExpectBitIdentical(served, InProcess(options));
+  const nlohmann::json r = nlohmann::json::parse(report);
+  EXPECT_TRUE(r["mesh"]["unknowns"]["grouped"].get<bool>()) << r["mesh"].dump();
+}
+
 // Progress events are throttled (at most one per 50 ms, the newest): the newest of each
 // phase is never lost, whatever was coalesced before it.
 TEST_F(ServiceTest, ThrottledProgressEndsEachPhaseWithItsNewestEvent) {
