@@ -30,34 +30,18 @@ Rgb Dot(const Field& a, const Field& b) {
   return sum;
 }
 
-// The patches' mean weights, with each shown patch's area as its weight in the least squares
-// (hidden patches: 0).
-struct MeanMap {
-  std::vector<PatchMeanWeights> patches;
-  std::vector<double> weight;
-  // Per patch, the mean of `values` (one per welded vertex).
-  Field Means(const Field& values) const {
-    Field means(patches.size(), Rgb{});
-    for (size_t p = 0; p < patches.size(); ++p) {
-      for (int c = 0; c < patches[p].n; ++c) {
-        for (int k = 0; k < kBands; ++k) {
-          means[p][k] += patches[p].weight[c] * values[patches[p].welded[c]][k];
-        }
-      }
-    }
-    return means;
-  }
-  // The transpose of Means, with each patch's value times its weight, added into `out`.
-  void AddWeightedTranspose(const Field& per_patch, Field& out) const {
-    for (size_t p = 0; p < patches.size(); ++p) {
-      for (int c = 0; c < patches[p].n; ++c) {
-        for (int k = 0; k < kBands; ++k) {
-          out[patches[p].welded[c]][k] += weight[p] * patches[p].weight[c] * per_patch[p][k];
-        }
-      }
+// The transpose of GouraudMeans::Means with each shown patch's value times its area (hidden
+// patches: 0), added into `out`: the least squares' weighted adjoint.
+void AddWeightedTranspose(const PatchMesh& mesh, const GouraudMeans& means, const Field& per_patch,
+                          Field& out) {
+  for (size_t p = 0; p < means.patches.size(); ++p) {
+    const double area = mesh.patches[p].hidden ? 0.0 : mesh.patches[p].area;
+    const PatchMeanWeights& w = means.patches[p];
+    for (int c = 0; c < w.n; ++c) {
+      for (int k = 0; k < kBands; ++k) out[w.welded[c]][k] += area * w.weight[c] * per_patch[p][k];
     }
   }
-};
+}
 
 }  // namespace
 
@@ -131,19 +115,35 @@ void TJunctionMap::ApplyTransposed(std::vector<Rgb>& values) const {
   }
 }
 
-void MatchPatchMeans(const PatchMesh& mesh, const ShadingMesh& shading, const std::vector<Rgb>& b,
+GouraudMeans::GouraudMeans(const PatchMesh& mesh, const ShadingMesh& shading)
+    : junctions(mesh, shading) {
+  patches.reserve(mesh.size());
+  for (uint32_t p = 0; p < mesh.size(); ++p)
+    patches.push_back(GouraudMeanWeights(mesh, shading, p));
+}
+
+std::vector<Rgb> GouraudMeans::Means(const std::vector<Rgb>& values) const {
+  std::vector<Rgb> means(patches.size(), Rgb{});
+  for (size_t p = 0; p < patches.size(); ++p) {
+    for (int c = 0; c < patches[p].n; ++c) {
+      for (int k = 0; k < kBands; ++k)
+        means[p][k] += patches[p].weight[c] * values[patches[p].welded[c]][k];
+    }
+  }
+  return means;
+}
+
+void MatchPatchMeans(const PatchMesh& mesh, const GouraudMeans& means, const std::vector<Rgb>& b,
                      std::vector<Rgb>& values) {
   const size_t nv = values.size();
-  const TJunctionMap junctions(mesh, shading);
-  MeanMap map;
+  const TJunctionMap& junctions = means.junctions;
   std::vector<double> carried(nv, 0), diagonal(nv, 0);
   for (uint32_t p = 0; p < mesh.size(); ++p) {
-    map.patches.push_back(GouraudMeanWeights(mesh, shading, p));
-    map.weight.push_back(mesh.patches[p].hidden ? 0.0 : mesh.patches[p].area);
-    const PatchMeanWeights& w = map.patches.back();
+    const double weight = mesh.patches[p].hidden ? 0.0 : mesh.patches[p].area;
+    const PatchMeanWeights& w = means.patches[p];
     for (int c = 0; c < w.n; ++c) {
       carried[w.welded[c]] += mesh.patches[p].area * w.weight[c];
-      diagonal[w.welded[c]] += map.weight.back() * w.weight[c] * w.weight[c];
+      diagonal[w.welded[c]] += weight * w.weight[c] * w.weight[c];
     }
   }
   double mean_carried = 0;
@@ -158,7 +158,7 @@ void MatchPatchMeans(const PatchMesh& mesh, const ShadingMesh& shading, const st
     Field tx = x;
     junctions.Apply(tx);
     Field out(nv, Rgb{});
-    map.AddWeightedTranspose(map.Means(tx), out);
+    AddWeightedTranspose(mesh, means, means.Means(tx), out);
     junctions.ApplyTransposed(out);
     for (size_t v = 0; v < nv; ++v) {
       for (int k = 0; k < kBands; ++k) out[v][k] += kDamping * carried[v] * x[v][k];
@@ -167,11 +167,11 @@ void MatchPatchMeans(const PatchMesh& mesh, const ShadingMesh& shading, const st
   };
   Field residual(nv, Rgb{});
   {
-    Field deficit = map.Means(values);
+    Field deficit = means.Means(values);
     for (size_t p = 0; p < deficit.size(); ++p) {
       for (int k = 0; k < kBands; ++k) deficit[p][k] = b[p][k] - deficit[p][k];
     }
-    map.AddWeightedTranspose(deficit, residual);
+    AddWeightedTranspose(mesh, means, deficit, residual);
     junctions.ApplyTransposed(residual);
   }
   const auto precondition = [&](const Field& r) {

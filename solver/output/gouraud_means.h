@@ -45,13 +45,23 @@ class TJunctionMap {
   std::vector<Step> steps_;  // in the order Apply takes them
 };
 
+// Every patch's Gouraud mean weights and the shading mesh's T-junctions, built once for a
+// picture (the vertex fit's correction step and MatchPatchMeans both take them).
+struct GouraudMeans {
+  GouraudMeans(const PatchMesh& mesh, const ShadingMesh& shading);
+  std::vector<PatchMeanWeights> patches;  // per patch: GouraudMeanWeights
+  TJunctionMap junctions;
+  // Per patch, the Gouraud mean of `values` (one per welded vertex).
+  std::vector<Rgb> Means(const std::vector<Rgb>& values) const;
+};
+
 // Moves `values` (welded, junctions applied) by the change x that minimises
 //   sum over shown patches of A_p (Gouraud mean_p - b_p)^2 + kDamping sum_v a_v x_v^2
 // (a_v: the area vertex v carries in its patches' means), then clamps at zero and applies the
 // junctions again: smooth deficits go (to 9%), rough ones that only noise makes stay smoothed
 // (gouraud_means.cc). A field the values already carry (a linear one) is left as it is.
-// Hidden patches (Patch::hidden) constrain nothing.
-void MatchPatchMeans(const PatchMesh& mesh, const ShadingMesh& shading, const std::vector<Rgb>& b,
+// Hidden patches (Patch::hidden) constrain nothing. `means` is GouraudMeans(mesh, shading).
+void MatchPatchMeans(const PatchMesh& mesh, const GouraudMeans& means, const std::vector<Rgb>& b,
                      std::vector<Rgb>& values);
 
 }  // namespace radflux

@@ -170,9 +170,9 @@ FitWeights PlaneFitWeights(const PatchMesh& mesh, std::vector<uint32_t> patches,
   double along_mean[2];
   for (int e = 0; e < 2; ++e) {
     along_mean[e] = ex[e] * mx + ey[e] * my;  // the vertex is at 0
-    sloped[e] = lambda[e] > 1e-6 * lambda[0] &&
-                along_mean[e] * along_mean[e] * weight <=
-                    kMaxExtrapolation * kMaxExtrapolation * lambda[e];
+    sloped[e] =
+        lambda[e] > 1e-6 * lambda[0] &&
+        along_mean[e] * along_mean[e] * weight <= kMaxExtrapolation * kMaxExtrapolation * lambda[e];
   }
   for (size_t i = 0; i < fit.patches.size(); ++i) {
     const uint32_t p = fit.patches[i];
@@ -192,24 +192,11 @@ std::vector<Rgb> ApplyFits(const std::vector<FitWeights>& fits, const std::vecto
   std::vector<Rgb> values(fits.size(), Rgb{});
   for (size_t w = 0; w < fits.size(); ++w) {
     for (size_t i = 0; i < fits[w].patches.size(); ++i) {
-      for (int k = 0; k < kBands; ++k) values[w][k] += fits[w].weights[i] * b[fits[w].patches[i]][k];
+      for (int k = 0; k < kBands; ++k)
+        values[w][k] += fits[w].weights[i] * b[fits[w].patches[i]][k];
     }
   }
   return values;
-}
-
-// Per patch, `b` minus the mean of its Gouraud interpolant with `values`: what Gouraud
-// shading fails to carry of each patch's radiosity.
-std::vector<Rgb> PatchMeanDeficit(const PatchMesh& mesh, const ShadingMesh& s,
-                                  const std::vector<Rgb>& values, const std::vector<Rgb>& b) {
-  std::vector<Rgb> deficit = b;
-  for (uint32_t p = 0; p < mesh.size(); ++p) {
-    const PatchMeanWeights w = GouraudMeanWeights(mesh, s, p);
-    for (int c = 0; c < w.n; ++c) {
-      for (int k = 0; k < kBands; ++k) deficit[p][k] -= w.weight[c] * values[w.welded[c]][k];
-    }
-  }
-  return deficit;
 }
 
 }  // namespace
@@ -238,19 +225,22 @@ absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
   // mean falls below its B, and a coarse wall's picture came out 2-3% dark. One correction
   // step fits the patches' deficits the same way and adds them, so the deficit left is
   // second order in the smoothing (and zero, as before, for a linear field).
-  const TJunctionMap t_junctions(mesh, shading);
+  const GouraudMeans means(mesh, shading);
   std::vector<Rgb> values = ApplyFits(fits, patch_radiosity);
-  t_junctions.Apply(values);
-  const std::vector<Rgb> correction =
-      ApplyFits(fits, PatchMeanDeficit(mesh, shading, values, patch_radiosity));
+  means.junctions.Apply(values);
+  std::vector<Rgb> deficit = means.Means(values);  // what Gouraud shading fails to carry
+  for (size_t p = 0; p < deficit.size(); ++p) {
+    for (int k = 0; k < kBands; ++k) deficit[p][k] = patch_radiosity[p][k] - deficit[p][k];
+  }
+  const std::vector<Rgb> correction = ApplyFits(fits, deficit);
   for (size_t w = 0; w < values.size(); ++w) {
     for (int k = 0; k < kBands; ++k) values[w][k] = std::max(values[w][k] + correction[w][k], 0.0);
   }
-  t_junctions.Apply(values);
+  means.junctions.Apply(values);
   // What the step leaves still moves light between neighbouring patches where B is curved
   // (under a lamp in a wall's plane, its second row of patches read 1.7% dark); the damped
   // matching takes all but 9% of the smooth part of it (gouraud_means.h).
-  MatchPatchMeans(mesh, shading, patch_radiosity, values);
+  MatchPatchMeans(mesh, means, patch_radiosity, values);
   return values;
 }
 
