@@ -136,6 +136,10 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh
     job->caster = *std::move(caster);
   }
   job->rows = MakeRowContext(job->mesh, job->attributes, *job->caster, &job->clusters, &job->cells);
+  if (job->rows.cells != nullptr) {
+    job->cell_columns = CellColumnCache(job->cells.size());
+    job->rows.cell_columns = &job->cell_columns;
+  }
   job->embree_seconds = mesh.caster_seconds + SecondsSince(start);  // grouped: built meshing
   return job;
 }
@@ -206,6 +210,7 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
                                                    result.unknown_radiosity, options.form_factors);
   result.solve.radiosity = std::move(pushed.radiosity);
   result.direct_cells = pushed.cells;
+  result.direct_kept = pushed.kept;
   result.direct_rays = pushed.rays;
   result.direct_lifted = pushed.lifted;
   result.timings.direct = pushed.seconds;

@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "solver/adaptive/adaptive_refine.h"
 #include "solver/core/cancel.h"
+#include "solver/formfactor/cell_columns.h"
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/grouped_mesh.h"
@@ -69,7 +70,10 @@ struct PreparedJob {
   MeshStats mesh_stats;
   PatchAttributes attributes;  // per unknown
   std::unique_ptr<EmbreeRayCaster> caster;
-  RowContext rows;  // points into mesh and caster: PreparedJob is not copyable or movable
+  // The cells' emitter columns the group rows keep for the push-down (rows.cell_columns).
+  CellColumnCache cell_columns;
+  RowContext rows;  // points into mesh, caster and cell_columns: PreparedJob is not copyable
+                    // or movable
   double load_seconds = 0, mesh_seconds = 0, embree_seconds = 0;
 
   // The number of unknowns: rows of the system and values the solve computes.
@@ -114,7 +118,7 @@ struct JobResult {
   // Grouped jobs: the solved B per unknown (solve.radiosity is then per patch, with each
   // direct-light cell's own direct light), and what the cells' pass did.
   std::vector<Rgb> unknown_radiosity;
-  uint64_t direct_cells = 0, direct_rays = 0, direct_lifted = 0;
+  uint64_t direct_cells = 0, direct_kept = 0, direct_rays = 0, direct_lifted = 0;
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
   // by one or more patches): the energy balance of the system that was solved, or why there
   // is none (hierarchical: light moves along links, there are no rows). The report uses it

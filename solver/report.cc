@@ -148,6 +148,7 @@ nlohmann::json UnknownsJson(const JobResult& result) {
           {"largest_group", largest},
           {"direct_cells", job.cells.size()},
           {"direct_cells_sampled", result.direct_cells},
+          {"direct_cells_kept", result.direct_kept},
           {"direct_rays", result.direct_rays},
           {"direct_lifted_patches", result.direct_lifted}};
 }
@@ -197,8 +198,7 @@ nlohmann::json MakeJobReport(JobResult& result, const JobOptions& options,
   const JobTimings& t = result.timings;
   nlohmann::json spill = nullptr;
   if (result.row_store != nullptr) spill = SpillJson(*result.row_store, options);
-  const int threads =
-      ThreadCount(options.form_factors.threads);
+  const int threads = ThreadCount(options.form_factors.threads);
   nlohmann::json report = {
       {"scene", scene_name},
       {"options", OptionsJson(options)},

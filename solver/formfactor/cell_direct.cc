@@ -2,41 +2,49 @@
 
 #include <algorithm>
 #include <chrono>
-#include <memory>
 
 #include "solver/core/parallel.h"
+#include "solver/formfactor/cell_columns.h"
 #include "solver/formfactor/light_sampling.h"
 
 namespace radflux {
 namespace {
 
-// D_c per cell (zero for cells not sampled: `sampled` 0); returns the shadow rays cast.
+// D_c per cell (zero for cells not sampled: `sampled` 0), from the columns the rows kept
+// (context.cell_columns) or else drawn again; counts the cells found kept into `kept` and
+// returns the shadow rays cast.
 uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& sampled,
                          const std::vector<Rgb>& b, const FormFactorOptions& options,
-                         std::vector<Rgb>& direct) {
+                         std::vector<Rgb>& direct, uint64_t& kept) {
   const LightSampler lights(context);
   const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
-  std::vector<std::unique_ptr<RowAccumulator>> rows(
-      static_cast<size_t>(std::max(threads, DefaultThreadCount())));
-  std::vector<uint64_t> rays(rows.size(), 0);
+  const int budget = CellLightSamplesPerGroup(options);
+  const size_t slots = static_cast<size_t>(std::max(threads, DefaultThreadCount()));
+  std::vector<uint64_t> rays(slots, 0), found(slots, 0);
   direct.assign(sampled.size(), Rgb{});
   ParallelFor(static_cast<int64_t>(sampled.size()), 64, threads, [&](int64_t begin, int64_t end) {
     const size_t t = static_cast<size_t>(ThreadIndex());
-    if (rows[t] == nullptr) rows[t] = std::make_unique<RowAccumulator>(context.Unknowns());
-    RowAccumulator& row = *rows[t];
+    thread_local std::vector<CellColumn> drawn;
     for (int64_t c = begin; c < end; ++c) {
       if (!sampled[c]) continue;
-      rays[t] += lights.AddCellEmitterColumns(static_cast<uint32_t>(c),
-                                              CellLightSamplesPerGroup(options), options.seed, row);
-      Rgb& d = direct[c];
-      for (uint32_t j : row.Touched()) {
-        for (int k = 0; k < kBands; ++k) d[k] += row.Value(j) * b[j][k];
+      const uint32_t cell = static_cast<uint32_t>(c);
+      const std::vector<CellColumn>* columns =
+          context.cell_columns != nullptr ? context.cell_columns->Find(cell, options.seed, budget)
+                                          : nullptr;
+      if (columns != nullptr) {
+        ++found[t];
+      } else {
+        rays[t] += lights.CellEmitterColumns(cell, budget, options.seed, drawn);
+        columns = &drawn;
       }
-      row.Clear();
+      Rgb& d = direct[c];
+      for (const CellColumn& column : *columns) {
+        for (int k = 0; k < kBands; ++k) d[k] += column.form_factor * b[column.emitter][k];
+      }
     }
   });
   uint64_t total = 0;
-  for (uint64_t r : rays) total += r;
+  for (size_t t = 0; t < slots; ++t) total += rays[t], kept += found[t];
   return total;
 }
 
@@ -62,7 +70,7 @@ CellDirectResult PushDownWithCellDirect(const RowContext& context,
     result.cells += sampled[c];
   }
   std::vector<Rgb> direct;
-  result.rays = CellDirectLight(context, sampled, b, options, direct);
+  result.rays = CellDirectLight(context, sampled, b, options, direct, result.kept);
   std::vector<Rgb> mean(unknowns, Rgb{});  // Dbar_g
   for (uint32_t c = 0; c < cells.size(); ++c) {
     for (int k = 0; k < kBands; ++k) mean[group[c]][k] += cells.area[c] * direct[c][k];

@@ -2,7 +2,7 @@
 // unknown with one B, but the direct light on its patches can vary a lot within it (a wall
 // beside a lamp, a ceiling above a lit screen). So the light is split in two levels: the
 // solve's B_g carries the group's power, and each direct-light cell c of group g gets its
-// own direct light by light sampling (LightSampler::AddCellEmitterColumns over the cell's
+// own direct light by light sampling (LightSampler::CellEmitterColumns over the cell's
 // patches, near-field rule included):
 //     D_c = sum over emitter unknowns j of F_cj B_j              (W/m^2 per band)
 // and each patch of cell c shows
@@ -32,16 +32,19 @@ namespace radflux {
 struct CellDirectResult {
   std::vector<Rgb> radiosity;  // per patch of context.mesh, W/m^2 per band
   uint64_t cells = 0;          // cells sampled (those of groups with more than one cell)
-  uint64_t rays = 0;           // their shadow rays
+  uint64_t kept = 0;           // of them, those whose columns the rows kept (cell_columns.h)
+  uint64_t rays = 0;           // the shadow rays of the others
   uint64_t lifted = 0;         // patches lifted to E_g (see above)
   double seconds = 0;
 };
 
 // B per patch as above, from `b` per unknown of context (grouped: context.clusters and
 // context.cells set) and `attributes` per unknown; each group's cells share a budget of
-// CellLightSamplesPerGroup(options) light samples, seeded from options.seed; on options.threads
-// threads (the result does not depend on them). Unknowns of one cell, and those with rho = 0,
-// show their B unchanged; without cells every patch shows its unknown's B.
+// CellLightSamplesPerGroup(options) light samples, seeded from options.seed: the cells'
+// columns the rows kept in context.cell_columns for them, the others drawn here (the same
+// numbers either way); on options.threads threads (the result does not depend on them). Unknowns of
+// one cell, and those with rho = 0, show their B unchanged; without cells every patch shows its
+// unknown's B.
 CellDirectResult PushDownWithCellDirect(const RowContext& context,
                                         const PatchAttributes& attributes,
                                         const std::vector<Rgb>& b,

@@ -128,7 +128,8 @@ uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, 
     row.Add(hit.emitter, CosineHitValue(hit, cosine_rays, samples));
   }
   return AddSamples(UnknownPointSampler(*context_.mesh, context_.clusters, i), i, points, per_point,
-                    seed, i, row, cosine_rays / samples);
+                    seed, i, cosine_rays / samples,
+                    [&row](uint32_t j, double v) { row.Add(j, v); });
 }
 
 double LightSampler::CosineHitValue(const CosineHit& hit, double k, double n) const {
@@ -140,8 +141,9 @@ double LightSampler::CosineHitValue(const CosineHit& hit, double k, double n) co
   return form_factor / (k * form_factor + n * probability);
 }
 
-uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed,
-                                             RowAccumulator& row, double weight) const {
+uint64_t LightSampler::CellEmitterColumns(uint32_t c, int budget, uint64_t seed,
+                                          std::vector<CellColumn>& columns) const {
+  columns.clear();
   if (tree_.empty() || budget < 1) return 0;
   const std::span<const uint32_t> members = context_.cells->Members(c);
   const uint32_t receiver = context_.UnknownOf(members[0]);
@@ -151,21 +153,27 @@ uint64_t LightSampler::AddCellEmitterColumns(uint32_t c, int budget, uint64_t se
       SetNearFieldFactor(*context_.mesh, members[0],
                          members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
   return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, 1,
-                    seed ^ kCellSeed, c, row, 0, weight);
+                    seed ^ kCellSeed, c, 0,
+                    [&columns](uint32_t j, double v) { AddCellColumn(columns, j, v); });
 }
 
 uint64_t LightSampler::AddGroupEmitterColumns(uint32_t g, int budget, uint64_t seed,
                                               RowAccumulator& row) const {
+  thread_local std::vector<CellColumn> columns;
   uint64_t rays = 0;
   for (uint32_t c : context_.CellsOf(g)) {
-    rays += AddCellEmitterColumns(c, budget, seed, row, context_.cells->area[c] / context_.Area(g));
+    rays += CellEmitterColumns(c, budget, seed, columns);
+    const double weight = context_.cells->area[c] / context_.Area(g);
+    for (const CellColumn& column : columns) row.Add(column.emitter, weight * column.form_factor);
+    if (context_.cell_columns != nullptr) context_.cell_columns->Keep(c, seed, budget, columns);
   }
   return rays;
 }
 
+template <typename AddFn>
 uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
                                   int points, int per_point, uint64_t seed, uint64_t index,
-                                  RowAccumulator& row, double cosine_share, double weight) const {
+                                  double cosine_share, const AddFn& add) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -195,7 +203,7 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {
     if (!rays[r].Occluded()) {
-      row.Add(pending[r].emitter, weight * pending[r].form_factor / static_cast<double>(count));
+      add(pending[r].emitter, pending[r].form_factor / static_cast<double>(count));
     }
   }
   return rays.size();

@@ -37,6 +37,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/formfactor/cell_columns.h"
 #include "solver/formfactor/light_tree.h"
 #include "solver/formfactor/row_builder.h"
 
@@ -46,8 +47,8 @@ namespace radflux {
 // also the group row's emitter columns (monte_carlo): 4 times a row's, stratified over the
 // cells. On a plate's 28 groups of 16 cells under a small lamp (face_grouping_test) the
 // groups' direct light is 0.35% RMS off its closed form, against 1.0% with a row's budget
-// over the cells and 1.4-2.2% with the row's own samples. The conference room's rays: 0.95 M
-// (rows 0.73 M, the direct-light pass 0.22 M) against 0.57 M with a row's budget.
+// over the cells and 1.4-2.2% with the row's own samples. The conference room's rays: 0.73 M
+// (the push-down reads the rows' samples: cell_columns.h) against 0.57 M with a row's budget.
 inline int CellLightSamplesPerGroup(const FormFactorOptions& o) {
   return 4 * LightSamplesPerRow(o);
 }
@@ -83,17 +84,18 @@ class LightSampler {
                              RowAccumulator& row, std::span<const CosineHit> hits = {},
                              uint32_t cosine_rays = 0) const;
 
-  // Adds `weight` times the estimate of F_cj, cell c's (context.cells) area-averaged form
-  // factor to each emitter unknown j, to `row`: cell c of a group of k cells takes
-  // ceil(budget / k) light samples (times its own near-field factor), each at its own
-  // stratified point over the cell's patches by area, seeded from (seed, c) apart from the
-  // rows' patterns. So the cells of a group share a budget of light samples spread over the
-  // group (cell_direct.h). Returns the shadow rays cast.
-  uint64_t AddCellEmitterColumns(uint32_t c, int budget, uint64_t seed, RowAccumulator& row,
-                                 double weight = 1) const;
+  // Cell c's (context.cells) area-averaged form factor F_cj to each emitter unknown j, into
+  // `columns` (emptied first): cell c of a group of k cells takes ceil(budget / k) light
+  // samples (times its own near-field factor), each at its own stratified point over the
+  // cell's patches by area, seeded from (seed, c) apart from the rows' patterns. So the cells
+  // of a group share a budget of light samples spread over the group (cell_direct.h). Returns
+  // the shadow rays cast.
+  uint64_t CellEmitterColumns(uint32_t c, int budget, uint64_t seed,
+                              std::vector<CellColumn>& columns) const;
   // Adds group g's emitter columns as its cells estimate them: sum over the cells c of g of
-  // (A_c / A_g) F_cj, each F_cj by AddCellEmitterColumns(c, budget, seed), the very samples
-  // cell_direct.h takes after the solve. Returns the shadow rays cast.
+  // (A_c / A_g) F_cj, each F_cj by CellEmitterColumns(c, budget, seed), the very samples
+  // cell_direct.h takes after the solve; keeps each cell's F_cj in context.cell_columns when
+  // it is set. Returns the shadow rays cast.
   uint64_t AddGroupEmitterColumns(uint32_t g, int budget, uint64_t seed, RowAccumulator& row) const;
 
   // One light sample waiting for its shadow ray: the emitter patch it chose and its
@@ -118,11 +120,12 @@ class LightSampler {
 
  private:
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
-  // `receiver` (never its own emitter), patterns seeded from (seed, index).
-  // Each unoccluded sample adds `weight` times its estimate.
+  // `receiver` (never its own emitter), patterns seeded from (seed, index). Each unoccluded
+  // sample adds its estimate to its emitter's column by add(j, v).
+  template <typename AddFn>
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
-                      int per_point, uint64_t seed, uint64_t index, RowAccumulator& row,
-                      double cosine_share = 0, double weight = 1) const;
+                      int per_point, uint64_t seed, uint64_t index, double cosine_share,
+                      const AddFn& add) const;
   // A cosine ray's share of F_ij for its hit (above): F_s(x) / (k F_s(x) + N P(s | x)) where
   // F_s(x) >= kRejectionFormFactor, else 0.
   double CosineHitValue(const CosineHit& hit, double k, double n) const;

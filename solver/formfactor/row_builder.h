@@ -22,6 +22,8 @@
 
 namespace radflux {
 
+class CellColumnCache;
+
 // What the row builders need to know about the scene besides its geometry. Rows and
 // columns are unknowns: the mesh's patches, or the groups of them in `clusters` (rays still
 // hit patches: UnknownOf maps them). Only monte_carlo builds rows of grouped unknowns.
@@ -38,6 +40,9 @@ struct RowContext {
   const PatchClusters* cells = nullptr;
   std::vector<uint32_t> cell_first, cell_order;  // cells of unknown u, in cell order:
                                                  // cell_order[cell_first[u], cell_first[u + 1])
+  // Where the group rows keep their cells' emitter columns for the push-down (cell_columns.h;
+  // null: not kept, the push-down draws them again).
+  CellColumnCache* cell_columns = nullptr;
   std::vector<uint8_t> needs_row;  // per unknown, 1 where rho > 0 in some band: only those get rows
   std::vector<uint8_t> emitter;    // 1 where the unknown emits
   std::vector<double> emission;    // E summed over bands, W/m^2 (light sampling's importance;

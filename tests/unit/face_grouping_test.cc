@@ -7,6 +7,8 @@
 #include <numbers>
 #include <set>
 
+#include "solver/formfactor/cell_columns.h"
+#include "solver/formfactor/cell_direct.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/grouped_mesh.h"
 #include "solver/pipeline.h"
@@ -390,15 +392,16 @@ TEST(FaceGrouping, GroupsTakeTheirDirectLightFromTheirCells) {
     ASSERT_EQ(job.Unknowns(), 30u);
     const RowContext& context = job.rows;
     const LightSampler lights(context);
-    RowAccumulator row(context.Unknowns());
+    std::vector<CellColumn> columns;
     double worst = 0;
     for (uint32_t c = 0; c < job.cells.size(); ++c) {
       const uint32_t g = context.UnknownOf(job.cells.Members(c)[0]);
       if (context.CellsOf(g).size() < 2) continue;
-      lights.AddCellEmitterColumns(c, CellLightSamplesPerGroup(options.form_factors), seed, row);
+      lights.CellEmitterColumns(c, CellLightSamplesPerGroup(options.form_factors), seed, columns);
       double direct = 0;  // D_c
-      for (uint32_t j : row.Touched()) direct += row.Value(j) * result->unknown_radiosity[j][0];
-      row.Clear();
+      for (const CellColumn& column : columns) {
+        direct += column.form_factor * result->unknown_radiosity[column.emitter][0];
+      }
       for (uint32_t p : job.cells.Members(c)) {
         const double ours = result->solve.radiosity[p][0];
         worst = std::max(worst, std::abs(ours / (0.5 * direct) - 1));
@@ -420,6 +423,62 @@ TEST(FaceGrouping, GroupsTakeTheirDirectLightFromTheirCells) {
     ASSERT_EQ(groups, 28);
     const double rms = std::sqrt(squares / groups);
     EXPECT_LT(rms, 0.008) << "seed " << seed;
+  }
+}
+
+// The group rows keep their cells' emitter columns (cell_columns.h), so the push-down after the
+// solve casts no ray; where a cell's are missing (rows from remote workers or read back from
+// disk) or were drawn for another seed, it draws them again from the same seeds: every
+// patch's B is the same bit for bit either way, whichever cells were kept.
+TEST(FaceGrouping, KeptAndRedrawnCellColumnsPushDownTheSameRadiosity) {
+  const Scene scene = PlateUnderSmallLamp();
+  for (uint64_t seed = 1; seed <= 2; ++seed) {
+    JobOptions options;
+    options.mesh.target_patches = 30;
+    options.form_factors.seed = seed;
+    absl::StatusOr<JobResult> result = RunJob(scene, options);
+    ASSERT_TRUE(result.ok()) << result.status();
+    const PreparedJob& job = *result->job;
+    ASSERT_EQ(result->direct_cells, 16u * 28u);
+    EXPECT_EQ(result->direct_kept, result->direct_cells);
+    EXPECT_EQ(result->direct_rays, 0u);
+    const int budget = CellLightSamplesPerGroup(options.form_factors);
+    // Every other cell kept, the rest missing; and a cache of another seed's columns.
+    CellColumnCache half(job.cells.size()), other(job.cells.size());
+    for (uint32_t c = 0; c < job.cells.size(); c += 2) {
+      if (const auto* kept = job.cell_columns.Find(c, seed, budget)) {
+        half.Keep(c, seed, budget, *kept);
+        other.Keep(c, seed + 1, budget, *kept);
+      }
+    }
+    const auto push = [&](CellColumnCache* cache) {
+      RowContext context = job.rows;
+      context.cell_columns = cache;
+      return PushDownWithCellDirect(context, job.attributes, result->unknown_radiosity,
+                                    options.form_factors);
+    };
+    CellColumnCache all = job.cell_columns;  // a copy: the push-down only reads it
+    const CellDirectResult kept = push(&all);
+    const CellDirectResult redrawn = push(nullptr);
+    const CellDirectResult halved = push(&half);
+    const CellDirectResult mismatched = push(&other);
+    EXPECT_EQ(kept.kept, kept.cells);
+    EXPECT_EQ(kept.rays, 0u);
+    EXPECT_EQ(redrawn.kept, 0u);
+    EXPECT_GT(redrawn.rays, 0u);
+    EXPECT_EQ(halved.kept, redrawn.cells / 2);
+    EXPECT_GT(halved.rays, 0u);
+    EXPECT_LT(halved.rays, redrawn.rays);
+    EXPECT_EQ(mismatched.rays, redrawn.rays);
+    size_t differ = 0;
+    for (uint32_t p = 0; p < job.mesh.size(); ++p) {
+      for (int k = 0; k < kBands; ++k) {
+        const double b = result->solve.radiosity[p][k];
+        differ += kept.radiosity[p][k] != b || redrawn.radiosity[p][k] != b ||
+                  halved.radiosity[p][k] != b || mismatched.radiosity[p][k] != b;
+      }
+    }
+    EXPECT_EQ(differ, 0u) << "seed " << seed;
   }
 }
 
