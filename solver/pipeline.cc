@@ -104,18 +104,16 @@ absl::Status ValidateJobOptions(const JobOptions& o) {
   return absl::OkStatus();
 }
 
-absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
+namespace {
+
+// The scene and options as PrepareJob takes them (ValidateJobOptions, ValidateScene).
+absl::Status ValidateJob(const Scene& scene, const JobOptions& options) {
   if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
-  if (absl::Status s = ValidateScene(scene, options.require_emitter); !s.ok()) return s;
-  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
-  if (!mesh.ok()) return mesh.status();
-  return PrepareJob(std::move(scene), *std::move(mesh), options);
+  return ValidateScene(scene, options.require_emitter);
 }
 
-absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh mesh,
-                                                        const JobOptions& options) {
-  if (absl::Status s = ValidateJobOptions(options); !s.ok()) return s;
-  if (absl::Status s = ValidateScene(scene, options.require_emitter); !s.ok()) return s;
+// PrepareJob once the scene and options are valid and `mesh` is the scene's.
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareValidJob(Scene scene, GroupedMesh mesh) {
   auto job = std::make_unique<PreparedJob>();
   job->scene = std::move(scene);
   auto start = std::chrono::steady_clock::now();
@@ -142,6 +140,21 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh
   }
   job->embree_seconds = mesh.caster_seconds + SecondsSince(start);  // grouped: built meshing
   return job;
+}
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
+  if (absl::Status s = ValidateJob(scene, options); !s.ok()) return s;
+  absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
+  if (!mesh.ok()) return mesh.status();
+  return PrepareValidJob(std::move(scene), *std::move(mesh));
+}
+
+absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh mesh,
+                                                        const JobOptions& options) {
+  if (absl::Status s = ValidateJob(scene, options); !s.ok()) return s;
+  return PrepareValidJob(std::move(scene), std::move(mesh));
 }
 
 uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {
