@@ -7,6 +7,7 @@
 // numbers, bit for bit.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,11 +38,15 @@ class CellColumnCache {
  public:
   explicit CellColumnCache(size_t cells = 0) : cells_(cells) {}
 
-  // Keeps cell c's columns, drawn with (seed, budget). Each cell is kept by its group's row
-  // alone: rows built in parallel write distinct cells.
+  // Keeps cell c's columns, drawn with (seed, budget), unless the cell was kept before: the
+  // first row to keep it wins. A group's row can be built twice at once (a server's backup of
+  // a worker's block while that worker's rows are checked by recomputing some), and both
+  // draw the same numbers; the claim keeps the second from writing under the first.
+  // Thread-safe for distinct and equal cells alike; Find only after the rows are built.
   void Keep(uint32_t c, uint64_t seed, int budget, std::span<const CellColumn> columns) {
     if (c >= cells_.size()) return;
     Entry& e = cells_[c];
+    if (e.claimed.exchange(true, std::memory_order_acq_rel)) return;
     e.columns.assign(columns.begin(), columns.end());
     e.seed = seed;
     e.budget = budget;
@@ -59,6 +64,7 @@ class CellColumnCache {
     std::vector<CellColumn> columns;
     uint64_t seed = 0;
     int budget = 0;
+    std::atomic<bool> claimed{false};  // a Keep has begun
     bool kept = false;
   };
   std::vector<Entry> cells_;
