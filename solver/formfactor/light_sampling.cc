@@ -148,13 +148,16 @@ uint64_t LightSampler::CellEmitterColumns(uint32_t c, int budget, uint64_t seed,
   const std::span<const uint32_t> members = context_.cells->Members(c);
   const uint32_t receiver = context_.UnknownOf(members[0]);
   const int cells = static_cast<int>(context_.CellsOf(receiver).size());
+  const int samples = (budget + cells - 1) / std::max(cells, 1);
+  const int per_point = CellSamplesAtAPoint(samples, members.size());
   const int points =
-      (budget + cells - 1) / std::max(cells, 1) *
+      (samples + per_point - 1) / per_point *
       SetNearFieldFactor(*context_.mesh, members[0],
                          members.size() > 1 ? members : std::span<const uint32_t>(), tree_);
-  return AddSamples(UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, 1,
-                    seed ^ kCellSeed, c, 0,
-                    [&columns](uint32_t j, double v) { AddCellColumn(columns, j, v); });
+  return AddSamples(
+      UnknownPointSampler(*context_.mesh, context_.cells, c), receiver, points, per_point,
+      seed ^ kCellSeed, c, 0, [&columns](uint32_t j, double v) { AddCellColumn(columns, j, v); },
+      /*choices_across_set=*/true);
 }
 
 uint64_t LightSampler::AddGroupEmitterColumns(uint32_t g, int budget, uint64_t seed,
@@ -173,7 +176,8 @@ uint64_t LightSampler::AddGroupEmitterColumns(uint32_t g, int budget, uint64_t s
 template <typename AddFn>
 uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver,
                                   int points, int per_point, uint64_t seed, uint64_t index,
-                                  double cosine_share, const AddFn& add) const {
+                                  double cosine_share, const AddFn& add,
+                                  bool choices_across_set) const {
   const size_t count = static_cast<size_t>(points) * static_cast<size_t>(per_point);
   // Per-thread scratch, reused row to row.
   thread_local std::vector<Point2> on_patch, directions;
@@ -198,7 +202,8 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
     const SurfacePoint at = sample_point(on_patch[p]);
     SamplePoint(at.x, at.n, receiver, seed, index, first,
                 std::span<const Point2>(directions).subspan(first, per_point), rays, pending,
-                cosine_share, per_point == 1 ? static_cast<uint32_t>(count) : 0);
+                cosine_share,
+                per_point == 1 || choices_across_set ? static_cast<uint32_t>(count) : 0);
   }
   context_.caster->OccludedStream(rays);
   for (size_t r = 0; r < rays.size(); ++r) {

@@ -1,7 +1,8 @@
 // Emitter columns of a form-factor row by light sampling with a fixed per-row budget:
 // each of the row's light samples takes a point x on the receiver patch i (stratified; on one
-// patch a few samples share each point, on a group each takes its own and their choices of s
-// are stratified across them), a sampled node s
+// patch, or a direct-light cell of one patch, a few samples share each point, on a group each
+// takes its own; on a group or a cell their choices of s are stratified across them), a
+// sampled node s
 // chosen with probability P(s | x) (LightTree: one emitter, or a plane of emitters that tile
 // a rectangle; by the tree's cut at x: near x, or among at most 16 emitters, in proportion
 // to their exact unoccluded contributions), a direction in the solid angle Omega_s that s
@@ -33,6 +34,7 @@
 // non-emitter entries and emitter entries no longer vary independently).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -51,6 +53,17 @@ namespace radflux {
 // (the push-down reads the rows' samples: cell_columns.h) against 0.57 M with a row's budget.
 inline int CellLightSamplesPerGroup(const FormFactorOptions& o) {
   return 4 * LightSamplesPerRow(o);
+}
+
+// How many of a cell's `samples` light samples share one point (and its cut of the light
+// tree, most of a sample's cost among many emitters: 42% of the classroom's run when each of
+// its cells' samples cut at a point of its own): a cell of one patch, as a single patch's row,
+// up to kLightSamplesAtAPoint (the point rounds the cell's samples up to a multiple of it);
+// a cell of several patches, whose direct light varies across its members as a group's does,
+// one (a plate's cells of ~7 triangles under a small lamp: 0.32-0.39% RMS off the closed form
+// over its groups, 0.9-1.3% at 4 a point; face_grouping_test).
+inline int CellSamplesAtAPoint(int samples, size_t patches) {
+  return patches == 1 ? std::clamp(samples, 1, kLightSamplesAtAPoint) : 1;
 }
 
 // The shapes of `context`'s emitting unknowns (each one patch), in unknown order, their power
@@ -86,9 +99,10 @@ class LightSampler {
 
   // Cell c's (context.cells) area-averaged form factor F_cj to each emitter unknown j, into
   // `columns` (emptied first): cell c of a group of k cells takes ceil(budget / k) light
-  // samples (times its own near-field factor), each at its own stratified point over the
-  // cell's patches by area, seeded from (seed, c) apart from the rows' patterns. So the cells
-  // of a group share a budget of light samples spread over the group (cell_direct.h). Returns
+  // samples (times its own near-field factor) at stratified points over the cell's patches by
+  // area, CellSamplesAtAPoint of them a point, their choices of emitter stratified across
+  // the cell's samples, seeded from (seed, c) apart from the rows' patterns. So the cells of
+  // a group share a budget of light samples spread over the group (cell_direct.h). Returns
   // the shadow rays cast.
   uint64_t CellEmitterColumns(uint32_t c, int budget, uint64_t seed,
                               std::vector<CellColumn>& columns) const;
@@ -111,8 +125,8 @@ class LightSampler {
   // that can see an emitter to `rays` and their samples to `pending`, index for index. The
   // choices are stratified over [0, 1) across the directions.size() samples. `cosine_share`
   // is k / N of a row that combines N light samples with k cosine rays (0: light samples
-  // alone). With `strata` > 0 (one sample a point, numbered first of a set of `strata`), the
-  // choices are stratified across the set instead.
+  // alone). With `strata` > 0 (the samples of a set of `strata`, this point's numbered from
+  // `first`), the choices are stratified across the set instead.
   void SamplePoint(const Vec3& x, const Vec3& n, uint32_t receiver, uint64_t seed, uint64_t index,
                    uint32_t first, std::span<const Point2> directions, std::vector<StreamRay>& rays,
                    std::vector<PendingSample>& pending, double cosine_share = 0,
@@ -121,11 +135,13 @@ class LightSampler {
  private:
   // The light samples of `points` stratified points of `sample_point`, `per_point` each, for
   // `receiver` (never its own emitter), patterns seeded from (seed, index). Each unoccluded
-  // sample adds its estimate to its emitter's column by add(j, v).
+  // sample adds its estimate to its emitter's column by add(j, v). Their choices of emitter
+  // are stratified across all of them when per_point is 1 or `choices_across_set`, else
+  // across each point's.
   template <typename AddFn>
   uint64_t AddSamples(const UnknownPointSampler& sample_point, uint32_t receiver, int points,
                       int per_point, uint64_t seed, uint64_t index, double cosine_share,
-                      const AddFn& add) const;
+                      const AddFn& add, bool choices_across_set = false) const;
   // A cosine ray's share of F_ij for its hit (above): F_s(x) / (k F_s(x) + N P(s | x)) where
   // F_s(x) >= kRejectionFormFactor, else 0.
   double CosineHitValue(const CosineHit& hit, double k, double n) const;

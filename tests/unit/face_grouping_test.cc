@@ -3,15 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <set>
+#include <span>
 
 #include "solver/formfactor/cell_columns.h"
 #include "solver/formfactor/cell_direct.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/grouped_mesh.h"
 #include "solver/pipeline.h"
+#include "solver/raytrace/ray_caster.h"
 #include "solver/scene/two_sided.h"
 #include "tests/unit/howell_closed_forms.h"
 #include "tests/unit/test_scenes.h"
@@ -429,6 +433,161 @@ TEST(FaceGrouping, GroupsTakeTheirDirectLightFromTheirCells) {
     ASSERT_EQ(groups, 28);
     const double rms = std::sqrt(squares / groups);
     EXPECT_LT(rms, 0.008) << "seed " << seed;
+  }
+}
+
+// A 2 x 2 plate (12 x 12 x 2 triangles) under a 5 x 5 grid of 0.2 x 0.2 lamps (two triangles
+// each) at height 0.3, facing it, grouped into 90 unknowns (the 50 lamp triangles' and 40
+// groups of ~7 triangles), each triangle a direct-light cell of its own, which shares its light
+// samples' points (CellSamplesAtAPoint) among the 50 emitter patches.
+constexpr double kGridLampHeight = 0.3, kGridLampHalf = 0.1;
+
+Scene PlateUnderLampGrid() {
+  int next = 1;
+  std::string obj = TessellatedQuad("plate", "white", {0, 0, 0}, {2, 0, 0}, {0, 2, 0}, 12, next);
+  for (int a = 0; a < 5; ++a) {
+    for (int b = 0; b < 5; ++b) {
+      const Vec3 centre{0.2 + 0.4 * a, 0.2 + 0.4 * b, kGridLampHeight};
+      obj += TessellatedQuad("lamp" + std::to_string(5 * a + b), "black",
+                             centre - Vec3{kGridLampHalf, kGridLampHalf, 0},
+                             {0, 2 * kGridLampHalf, 0}, {2 * kGridLampHalf, 0, 0}, 1, next);
+    }
+  }
+  return SceneFromObj(obj);
+}
+
+// The plate under the lamp grid as 90 unknowns, rows seeded with 1.
+JobOptions LampGridOptions() {
+  JobOptions options = PlateOptions(1);
+  options.mesh.target_patches = 90;
+  return options;
+}
+
+// The unoccluded form factor from plate point x (normal +z) to the whole lamp grid.
+double LampGridFormFactor(const Vec3& x) {
+  double f = 0;
+  for (int a = 0; a < 5; ++a) {
+    for (int b = 0; b < 5; ++b) {
+      const double x0 = 0.2 + 0.4 * a - kGridLampHalf - x.x, x1 = x0 + 2 * kGridLampHalf;
+      const double y0 = 0.2 + 0.4 * b - kGridLampHalf - x.y, y1 = y0 + 2 * kGridLampHalf;
+      const auto corner = [](double u, double v) {
+        return testing::PointToCornerRectangle(u, v, kGridLampHeight);
+      };
+      f += corner(x1, y1) - corner(x0, y1) - corner(x1, y0) + corner(x0, y0);
+    }
+  }
+  return f;
+}
+
+// The mean of `f` over triangle (a, b, c): the centroid rule on its 4^5 similar sub-triangles.
+template <class F>
+double TriangleMean(const Vec3& a, const Vec3& b, const Vec3& c, const F& f, int depth = 5) {
+  if (depth == 0) return f((a + b + c) / 3.0);
+  const Vec3 ab = (a + b) / 2.0, bc = (b + c) / 2.0, ca = (c + a) / 2.0;
+  return (TriangleMean(a, ab, ca, f, depth - 1) + TriangleMean(ab, b, bc, f, depth - 1) +
+          TriangleMean(ca, bc, c, f, depth - 1) + TriangleMean(ab, bc, ca, f, depth - 1)) /
+         4;
+}
+
+// Unbiased with shared points: a one-triangle cell's light samples, 4 at a point, each point's
+// choice of lamp stratified across the cell's samples (not the point's), estimate the cell's
+// area-averaged form factor to the 25 lamps. Over 400 seeds the mean of sum_j F_cj is within
+// 4 standard errors of the closed form (Howell's point-to-rectangle, averaged over the
+// triangle) for each of 8 cells across the plate (under a lamp, between lamps, at the edge).
+TEST(FaceGrouping, CellsSharingPointsAreUnbiased) {
+  absl::StatusOr<JobResult> result = RunJob(PlateUnderLampGrid(), LampGridOptions());
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PreparedJob& job = *result->job;
+  const RowContext& context = job.rows;
+  const LightSampler lights(context);
+  const int budget = CellLightSamplesPerGroup(FormFactorOptions{});
+  std::vector<uint32_t> cells;  // of one triangle, in groups of several cells
+  for (uint32_t c = 0; c < job.cells.size(); ++c) {
+    const auto members = job.cells.Members(c);
+    const size_t group_cells = context.CellsOf(context.UnknownOf(members[0])).size();
+    if (members.size() == 1 && group_cells > 1) cells.push_back(c);
+  }
+  ASSERT_GE(cells.size(), 200u);
+  std::vector<CellColumn> columns;
+  for (size_t k = 0; k < 8; ++k) {
+    const uint32_t c = cells[k * cells.size() / 8];
+    const auto members = job.cells.Members(c);
+    const int group_cells = static_cast<int>(context.CellsOf(context.UnknownOf(members[0])).size());
+    ASSERT_EQ(CellSamplesAtAPoint((budget + group_cells - 1) / group_cells, 1),
+              kLightSamplesAtAPoint);
+    const Patch& patch = job.mesh.patches[members[0]];
+    ASSERT_EQ(patch.VertexCount(), 3);
+    const double exact =
+        TriangleMean(job.mesh.positions[patch.v[0]], job.mesh.positions[patch.v[1]],
+                     job.mesh.positions[patch.v[2]], LampGridFormFactor);
+    const testing::SeedMean m = testing::MeanOverSeeds(400, [&](uint64_t seed) {
+      lights.CellEmitterColumns(c, budget, seed, columns);
+      double sum = 0;
+      for (const CellColumn& column : columns) sum += column.form_factor;
+      return sum;
+    });
+    std::printf("  cell %u: %.5f +- %.5f (exact %.5f)\n", c, m.mean, m.standard_error, exact);
+    EXPECT_NEAR(m.mean, exact, 4 * m.standard_error) << "cell " << c;
+    EXPECT_LT(m.standard_error, 0.01 * exact) << "cell " << c;
+  }
+}
+
+// A RayCaster that counts the distinct origins of the shadow rays it answers (and answers
+// them by the caster it wraps).
+class OriginCounter : public RayCaster {
+ public:
+  explicit OriginCounter(const RayCaster& caster) : caster_(caster) {}
+  Hit Intersect(const Ray& ray) const override { return caster_.Intersect(ray); }
+  bool Occluded(const Ray& ray) const override { return caster_.Occluded(ray); }
+  void OccludedStream(std::span<StreamRay> rays) const override {
+    for (const StreamRay& r : rays) origins_.insert({r.org_x, r.org_y, r.org_z});
+    rays_ += rays.size();
+    caster_.OccludedStream(rays);
+  }
+  size_t origins() const { return origins_.size(); }
+  uint64_t rays() const { return rays_; }
+
+ private:
+  const RayCaster& caster_;
+  mutable std::set<std::array<float, 3>> origins_;
+  mutable uint64_t rays_ = 0;
+};
+
+// What makes the classroom's cells cheap, counted: a cell of one patch casts its light samples
+// from a quarter as many points (each point one cut of the light tree), 4 a point; a cell of
+// several patches (the plate under the small lamp: ~7 triangles) from one point a sample.
+TEST(FaceGrouping, OnePatchCellsShareEachPointAmongFourSamples) {
+  for (const bool one_patch : {true, false}) {
+    absl::StatusOr<JobResult> result = one_patch ? RunJob(PlateUnderLampGrid(), LampGridOptions())
+                                                 : RunJob(PlateUnderSmallLamp(), PlateOptions(1));
+    ASSERT_TRUE(result.ok()) << result.status();
+    const PreparedJob& job = *result->job;
+    OriginCounter counter(*job.rows.caster);
+    RowContext context = job.rows;
+    context.caster = &counter;
+    const LightSampler lights(context);
+    const int budget = CellLightSamplesPerGroup(FormFactorOptions{});
+    std::vector<CellColumn> columns;
+    uint64_t rays = 0, cells = 0;
+    for (uint32_t c = 0; c < job.cells.size(); ++c) {
+      const uint32_t g = context.UnknownOf(job.cells.Members(c)[0]);
+      if (context.CellsOf(g).size() < 2) continue;
+      EXPECT_EQ(job.cells.Members(c).size() == 1, one_patch) << "cell " << c;
+      rays += lights.CellEmitterColumns(c, budget, 1, columns);
+      ++cells;
+    }
+    ASSERT_GT(cells, 100u);
+    ASSERT_EQ(counter.rays(), rays);
+    const double per_origin = double(rays) / double(counter.origins());
+    std::printf("  %s: %lu cells, %lu rays from %zu points\n",
+                one_patch ? "one-patch cells" : "cells of several patches", (unsigned long)cells,
+                (unsigned long)rays, counter.origins());
+    if (one_patch) {
+      EXPECT_GT(per_origin, 0.9 * kLightSamplesAtAPoint);  // a few samples see no lamp
+      EXPECT_LE(per_origin, kLightSamplesAtAPoint);
+    } else {
+      EXPECT_EQ(counter.origins(), rays);
+    }
   }
 }
 
