@@ -56,12 +56,12 @@ inline int CellLightSamplesPerGroup(const FormFactorOptions& o) {
 }
 
 // How many of a cell's `samples` light samples share one point (and its cut of the light
-// tree, most of a sample's cost among many emitters: 42% of the classroom's run when each of
-// its cells' samples cut at a point of its own): a cell of one patch, as a single patch's row,
-// up to kLightSamplesAtAPoint (the point rounds the cell's samples up to a multiple of it);
-// a cell of several patches, whose direct light varies across its members as a group's does,
-// one (a plate's cells of ~7 triangles under a small lamp: 0.32-0.39% RMS off the closed form
-// over its groups, 0.9-1.3% at 4 a point; face_grouping_test).
+// tree, most of a sample's cost among many emitters: half the classroom's instructions when
+// each of its cells' samples cut at a point of its own): a cell of one patch, as a single patch's
+// row, up to kLightSamplesAtAPoint (the point rounds the cell's samples up to a multiple of it); a
+// cell of several patches, whose direct light varies across its members as a group's does, one (a
+// plate's cells of ~7 triangles under a small lamp: 0.32-0.39% RMS off the closed form over its
+// groups, 0.9-1.3% at 4 a point; face_grouping_test).
 inline int CellSamplesAtAPoint(int samples, size_t patches) {
   return patches == 1 ? std::clamp(samples, 1, kLightSamplesAtAPoint) : 1;
 }
