@@ -266,6 +266,14 @@ bool IsFar(const Vec3& centre, double radius, const Vec3& x) {
   return Dot(d, d) >= kFarRadii * kFarRadii * radius * radius;
 }
 
+// Whether some corner of the box [lo, hi] lies in front of the plane through x with unit
+// normal n: the one farthest in front, which takes on each axis the side n points to (one
+// corner's dot product in place of eight).
+bool BoxInFront(const Vec3& lo, const Vec3& hi, const Vec3& x, const Vec3& n) {
+  const Vec3 front{n.x > 0 ? hi.x : lo.x, n.y > 0 ? hi.y : lo.y, n.z > 0 ? hi.z : lo.z};
+  return Dot(front - x, n) > 0;
+}
+
 // A sampled node's (an emitter's, a tiled rectangle's) importance at (x, n): from its exact
 // form factor, put into `form_factor`; from kFarRadii of its radii on FarEmitterImportance,
 // and `form_factor` -1 (not computed).
@@ -302,13 +310,7 @@ double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) con
     return node.power / node.bounds_area * std::numbers::pi * form_factor;
   }
   // Every corner of the node's box behind (or on) x's tangent plane: nothing to see.
-  bool any_front = false;
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
-                      k & 4 ? node.hi.z : node.lo.z};
-    any_front |= Dot(corner - x, n) > 0;
-  }
-  if (!any_front) return 0;
+  if (!BoxInFront(node.lo, node.hi, x, n)) return 0;
   const Vec3 d = node.centre - x;
   const double distance2 = Dot(d, d);
   const double radius2 = node.radius * node.radius;
@@ -339,12 +341,7 @@ bool LightTree::CanLight(const Node& node, const Vec3& x, const Vec3& n) const {
     const EmitterShape& e = emitters_[node.emitter];
     if (!(Dot(x - e.corner[0], e.normal) > 0)) return false;
   }
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 corner{k & 1 ? node.hi.x : node.lo.x, k & 2 ? node.hi.y : node.lo.y,
-                      k & 4 ? node.hi.z : node.lo.z};
-    if (Dot(corner - x, n) > 0) return true;
-  }
-  return false;
+  return BoxInFront(node.lo, node.hi, x, n);
 }
 
 LightTree::Cut LightTree::CutAt(const Vec3& x, const Vec3& n) const {
