@@ -290,7 +290,8 @@ double SampledImportance(const EmitterShape& shape, const Vec3& x, const Vec3& n
 
 }  // namespace
 
-double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) const {
+double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n,
+                             std::optional<std::array<double, 2>>* leaves) const {
   double unused;
   if (node.emitter >= 0) return SampledImportance(emitters_[node.emitter], x, n, unused);
   if (node.tiled >= 0) return SampledImportance(tiles_[node.tiled], x, n, unused);
@@ -298,8 +299,10 @@ double LightTree::Importance(const Node& node, const Vec3& x, const Vec3& n) con
   const Node& left = nodes_[node.left];
   const Node& right = nodes_[node.right];
   if (left.emitter >= 0 && right.emitter >= 0) {
-    return SampledImportance(emitters_[left.emitter], x, n, unused) +
-           SampledImportance(emitters_[right.emitter], x, n, unused);
+    const double l = SampledImportance(emitters_[left.emitter], x, n, unused);
+    const double r = SampledImportance(emitters_[right.emitter], x, n, unused);
+    if (leaves != nullptr) *leaves = std::array<double, 2>{l, r};
+    return l + r;
   }
   if (node.planar) {
     if (!(Dot(x - node.bounds_rectangle[0], node.axis) > 0)) return 0;  // x behind the plane
@@ -402,18 +405,25 @@ std::optional<LightTree::Choice> LightTree::Choose(const Cut& cut, const Vec3& x
   u = std::clamp((target - (below - entry.importance)) / entry.importance, 0.0,
                  0x1.fffffffffffffp-1);
   uint32_t at = entry.node;
+  // A node of two leaves weighs as their sum (Importance): the walk that enters one keeps its
+  // leaves' terms instead of evaluating them again.
+  std::optional<std::array<double, 2>> leaves;  // at's, when known
   while (!IsSampled(nodes_[at])) {
     const Node& node = nodes_[at];
-    const double left = Importance(nodes_[node.left], x, n);
-    const double right = Importance(nodes_[node.right], x, n);
+    std::optional<std::array<double, 2>> left_leaves, right_leaves;
+    const double left = leaves ? (*leaves)[0] : Importance(nodes_[node.left], x, n, &left_leaves);
+    const double right =
+        leaves ? (*leaves)[1] : Importance(nodes_[node.right], x, n, &right_leaves);
     if (!(left + right > 0)) return std::nullopt;
     const double p_left = left / (left + right);
     if (u < p_left) {
       at = node.left;
+      leaves = left_leaves;
       probability *= p_left;
       u = std::min(u / p_left, 0x1.fffffffffffffp-1);
     } else {
       at = node.right;
+      leaves = right_leaves;
       probability *= 1 - p_left;
       u = std::min((u - p_left) / (1 - p_left), 0x1.fffffffffffffp-1);
     }

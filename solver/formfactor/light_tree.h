@@ -136,7 +136,10 @@ class LightTree {
                                       double slack) const;
   // Whether the walk stops at `node`: a leaf or a tiled node.
   bool IsSampled(const Node& node) const { return node.emitter >= 0 || node.tiled >= 0; }
-  double Importance(const Node& node, const Vec3& x, const Vec3& n) const;
+  // A node's importance at (x, n); for a node of two leaves (their sum), also each leaf's
+  // into `leaves` when it is set.
+  double Importance(const Node& node, const Vec3& x, const Vec3& n,
+                    std::optional<std::array<double, 2>>* leaves = nullptr) const;
   // Whether x lies in the near field of inner node `index` (see kNearField).
   bool Opens(uint32_t index, const Vec3& x) const;
   // Whether an emitter under `node` may light x (normal n): x in front of the emitters' plane
