@@ -34,12 +34,14 @@ absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
     result.timings.rows = rows->seconds;
     return absl::OkStatus();
   }
-  result.row_store = std::make_unique<RowStore>(
-      static_cast<uint32_t>(result.job->Unknowns()), options.spill.memory_limit,
-      std::make_unique<FileBlockSpill>(options.spill.directory));
-  absl::StatusOr<RowBuildSummary> rows =
-      BuildFormFactorsInto(context, options.form_factors, *result.row_store, callbacks.phase);
+  absl::StatusOr<RowBuildSummary> rows = BuildFormFactorsInto(
+      context, options.form_factors,
+      std::make_unique<RowStore>(static_cast<uint32_t>(result.job->Unknowns()),
+                                 options.spill.memory_limit,
+                                 std::make_unique<FileBlockSpill>(options.spill.directory)),
+      std::make_unique<FileBlockSpill>(options.spill.directory), callbacks.phase);
   if (!rows.ok()) return rows.status();
+  result.row_store = std::move(rows->store);
   result.row_stats = rows->stats;
   result.timings.rows = rows->seconds;
   return absl::OkStatus();
@@ -177,7 +179,10 @@ uint64_t EstimateJobBytes(uint64_t n, const JobOptions& options) {
   }
   uint64_t rows = n * per_row * (sizeof(uint32_t) + sizeof(float)) * 2;  // rows + CG copy
   if (options.spill.memory_limit > 0) {  // no CG copy; beyond the budget, chunks in flight
-    rows = std::min(rows / 2, options.spill.memory_limit + (kRowReadAhead + 2) * kRowChunkBytes);
+    // and the reciprocity averaging's two (FinishRows)
+    const bool averaged = f.method == FormFactorMethod::kMonteCarlo && f.reciprocal_pairs;
+    const uint64_t chunks = kRowReadAhead + (averaged ? 4 : 2);
+    rows = std::min(rows / 2, options.spill.memory_limit + chunks * kRowChunkBytes);
   }
   const uint64_t mesh_bytes = n * (sizeof(Patch) + 4 * sizeof(Vec3) + 2 * sizeof(Rgb) + 64);
   const uint64_t embree = n * 128;

@@ -157,8 +157,19 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
   if (!all_done && !Stopped(c)) return absl::InternalError("row phase ended with blocks missing");
   if (Stopped(c)) return absl::CancelledError("stopped during form-factor rows");
   if (!sink_error.ok()) return sink_error;
+  // Stored, built here and by workers alike, the rows take the builder's pass once all are in.
   absl::StatusOr<JobRows> rows = sink.Finish();
-  if (rows.ok()) rows->seconds = SecondsSince(start);
+  if (!rows.ok()) return rows;
+  if (rows->store == nullptr) {
+    FinishRows(*builder, threads, rows->matrix);
+  } else {
+    absl::StatusOr<std::unique_ptr<RowStore>> finished =
+        FinishRows(*builder, threads, std::move(rows->store),
+                   std::make_unique<FileBlockSpill>(c.store->JobDir(job.job_id())));
+    if (!finished.ok()) return finished.status();
+    rows->store = *std::move(finished);
+  }
+  rows->seconds = SecondsSince(start);
   return rows;
 }
 

@@ -23,6 +23,9 @@ struct FormFactorOptions {
   uint64_t seed = 1;       // job seed; each patch's samples are seeded from (seed, patch)
   int threads = 0;         // 0 = all cores
   int block_size = 64;     // rows per block: the unit of work, checkpoint and retry
+  // monte_carlo: once every row is built (in memory or spilled), average each pair of
+  // cosine-ray rows by reciprocity (reciprocal_pairs.h).
+  bool reciprocal_pairs = true;
 };
 
 // monte_carlo's light samples per s (--samples): a row casts 16 s shadow rays for its emitter

@@ -9,7 +9,10 @@
 // (cell_direct.h: 4 times a row's budget, stratified over the cells), the very estimate that
 // spreads its direct light over its patches after the solve. Entries towards
 // hidden unknowns (slots) come from their own rows by reciprocity (reciprocal_columns.h).
+// Once all rows are built, each pair of rows averages its two estimates of the pair's
+// exchange (reciprocal_pairs.h, FinishRows in memory or in a store).
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "solver/core/sampling.h"
@@ -17,6 +20,7 @@
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/formfactor/reciprocal_columns.h"
+#include "solver/formfactor/reciprocal_pairs.h"
 #include "solver/formfactor/row_rays.h"
 
 namespace radflux {
@@ -76,12 +80,23 @@ class MonteCarloBuilder final : public RowBuilder {
     hidden_ =
         ReciprocalColumns(context, options.rays, options.threads,
                           [this](uint32_t j, RowAccumulator& row) { return SampleRow(j, row); });
+    // The pairs of rows whose columns are cosine rays' alone: neither light sampled nor a
+    // hidden unknown (whose pairs are exactly reciprocal already: reciprocal_columns.h).
+    if (options.reciprocal_pairs) {
+      std::vector<uint8_t> cosine(context.Unknowns());
+      for (uint32_t u = 0; u < cosine.size(); ++u) {
+        cosine[u] = context.needs_row[u] && !lit_.emitter[u] && !hidden_.Hidden(u) ? 1 : 0;
+      }
+      pairs_.emplace(context, options.rays, cosine);
+    }
   }
 
   uint64_t BuildRow(uint32_t i, RowAccumulator& row) const override {
     if (hidden_.Hidden(i)) return hidden_.AddOwnRow(i, row);
     return SampleRow(i, row);
   }
+
+  const ReciprocalPairs* Pairs() const override { return pairs_ ? &*pairs_ : nullptr; }
 
  private:
   // Row i from its own rays and light samples, but for the columns hidden_ fills.
@@ -220,13 +235,14 @@ class MonteCarloBuilder final : public RowBuilder {
 
   const RowContext& context_;
   FormFactorOptions options_;
-  RowContext lit_;                   // context_ with its bright reflectors as emitter columns
-  RowContext reflectors_;            // ... with its bright reflectors alone
-  LightSampler lights_;              // the emitter columns
-  LightSampler bright_lights_;       // the emitter and bright reflector columns
-  LightSampler reflector_lights_;    // the bright reflector columns
-  std::map<uint32_t, RaySet> sets_;  // by rays per row
-  ReciprocalColumns hidden_;         // the rows' entries towards hidden unknowns
+  RowContext lit_;                        // context_ with its bright reflectors as emitter columns
+  RowContext reflectors_;                 // ... with its bright reflectors alone
+  LightSampler lights_;                   // the emitter columns
+  LightSampler bright_lights_;            // the emitter and bright reflector columns
+  LightSampler reflector_lights_;         // the bright reflector columns
+  std::map<uint32_t, RaySet> sets_;       // by rays per row
+  ReciprocalColumns hidden_;              // the rows' entries towards hidden unknowns
+  std::optional<ReciprocalPairs> pairs_;  // options.reciprocal_pairs: the rows' averaging
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "solver/core/parallel.h"
 #include "solver/core/seconds_since.h"
 #include "solver/formfactor/builders.h"
+#include "solver/formfactor/reciprocal_pairs.h"
 #include "solver/sparse/ordered_row_appender.h"
 
 namespace radflux {
@@ -66,12 +67,11 @@ namespace {
 // it is done (on any thread, in any order). Stops early and returns the error when deliver
 // fails, CANCELLED when progress returns false.
 absl::StatusOr<RowBlockStats> BuildBlocks(
-    const RowContext& context, const FormFactorOptions& options, const PhaseProgress& progress,
-    const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
+    const RowBuilder& builder, const RowContext& context, const FormFactorOptions& options,
+    const PhaseProgress& progress, const std::function<absl::Status(uint32_t, RowBlock)>& deliver) {
   const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   const uint32_t block_count = (n + block_size - 1) / block_size;
-  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
 
   std::vector<RowBlockStats> block_stats(block_count);
   const int threads = ThreadCount(options.threads);
@@ -89,7 +89,7 @@ absl::StatusOr<RowBlockStats> BuildBlocks(
       const uint32_t count = std::min(block_size, n - first);
       absl::Status s = deliver(
           static_cast<uint32_t>(b),
-          BuildRowBlock(*builder, context, options.cutoff, first, count, *row, block_stats[b]));
+          BuildRowBlock(builder, context, options.cutoff, first, count, *row, block_stats[b]));
       if (!s.ok()) {
         std::lock_guard lock(error_mutex);
         if (error.ok()) error = std::move(s);
@@ -117,8 +117,9 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
   const uint32_t n = context.Unknowns();
   const uint32_t block_size = static_cast<uint32_t>(std::max(1, options.block_size));
   std::vector<RowBlock> blocks((n + block_size - 1) / block_size);
+  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
   absl::StatusOr<RowBlockStats> stats =
-      BuildBlocks(context, options, progress, [&](uint32_t b, RowBlock block) {
+      BuildBlocks(*builder, context, options, progress, [&](uint32_t b, RowBlock block) {
         blocks[b] = std::move(block);
         return absl::OkStatus();
       });
@@ -133,23 +134,48 @@ absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
     result.matrix.Append(block);
     block = RowBlock{};
   }
+  FinishRows(*builder, options.threads, result.matrix);
   result.stats = *stats;
   result.seconds = SecondsSince(start);
   return result;
 }
 
+void FinishRows(const RowBuilder& builder, int threads, CsrMatrix& rows) {
+  if (const ReciprocalPairs* pairs = builder.Pairs()) pairs->Average(threads, rows);
+}
+
+absl::StatusOr<std::unique_ptr<RowStore>> FinishRows(const RowBuilder& builder, int threads,
+                                                     std::unique_ptr<RowStore> rows,
+                                                     std::unique_ptr<BlockSpill> spill) {
+  const ReciprocalPairs* pairs = builder.Pairs();
+  if (pairs == nullptr) return rows;
+  const uint64_t budget = rows->budget() - std::min(rows->budget(), rows->MemoryBytes());
+  auto averaged =
+      std::make_unique<RowStore>(rows->cols(), budget, std::move(spill), rows->chunk_bytes());
+  if (absl::Status s = pairs->Average(threads, *rows, 2 * rows->chunk_bytes(), *averaged);
+      !s.ok()) {
+    return s;
+  }
+  return averaged;
+}
+
 absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const FormFactorOptions& options,
-                                                     RowStore& store,
+                                                     std::unique_ptr<RowStore> store,
+                                                     std::unique_ptr<BlockSpill> spill,
                                                      const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  OrderedRowAppender appender(store);
+  OrderedRowAppender appender(*store);
+  const std::unique_ptr<RowBuilder> builder = MakeRowBuilder(context, options);
   absl::StatusOr<RowBlockStats> stats =
-      BuildBlocks(context, options, progress,
+      BuildBlocks(*builder, context, options, progress,
                   [&](uint32_t b, RowBlock block) { return appender.Put(b, std::move(block)); });
   if (!stats.ok()) return stats.status();
   if (absl::Status s = appender.Finish(); !s.ok()) return s;
-  return RowBuildSummary{*stats, SecondsSince(start)};
+  absl::StatusOr<std::unique_ptr<RowStore>> rows =
+      FinishRows(*builder, options.threads, std::move(store), std::move(spill));
+  if (!rows.ok()) return rows.status();
+  return RowBuildSummary{*std::move(rows), *stats, SecondsSince(start)};
 }
 
 }  // namespace radflux

@@ -23,6 +23,7 @@
 namespace radflux {
 
 class CellColumnCache;
+class ReciprocalPairs;
 
 // What the row builders need to know about the scene besides its geometry. Rows and
 // columns are unknowns: the mesh's patches, or the groups of them in `clusters` (rays still
@@ -80,6 +81,9 @@ class RowBuilder {
   virtual ~RowBuilder() = default;
   // Adds F_ij (j != i) for patch i into `row`; returns the number of rays cast.
   virtual uint64_t BuildRow(uint32_t i, RowAccumulator& row) const = 0;
+  // The pass all rows take once built, wherever they are (FinishRows): monte_carlo's
+  // reciprocity averaging (reciprocal_pairs.h); null for the others, whose rows stay as built.
+  virtual const ReciprocalPairs* Pairs() const { return nullptr; }
 };
 
 std::unique_ptr<RowBuilder> MakeRowBuilder(const RowContext& context,
@@ -109,23 +113,37 @@ struct FormFactorResult {
   double seconds = 0;
 };
 
-// All rows of the mesh, in parallel over blocks. Returns CANCELLED when progress
-// returns false.
+// Rows built by `builder`, all in memory, after its pass (RowBuilder::Pairs), on `threads`.
+void FinishRows(const RowBuilder& builder, int threads, CsrMatrix& rows);
+// Rows built by `builder` into the finished store `rows`, after its pass: `rows` itself when
+// the builder has none, else a new store of the averaged rows spilling to `spill`. The new
+// store keeps in memory what `rows` leaves of its budget (the rows in memory never pass it),
+// and each pass of the averaging works in two of its chunks (reciprocal_pairs.h). The same
+// rows as FinishRows in memory, bit for bit. Returns a store's error.
+absl::StatusOr<std::unique_ptr<RowStore>> FinishRows(const RowBuilder& builder, int threads,
+                                                     std::unique_ptr<RowStore> rows,
+                                                     std::unique_ptr<BlockSpill> spill);
+
+// All rows of the mesh, in parallel over blocks, then the builder's pass over them
+// (FinishRows). Returns CANCELLED when progress returns false.
 absl::StatusOr<FormFactorResult> BuildFormFactors(const RowContext& context,
                                                   const FormFactorOptions& options,
                                                   const PhaseProgress& progress = {});
 
 struct RowBuildSummary {
+  std::unique_ptr<RowStore> store;  // the rows
   RowBlockStats stats;
   double seconds = 0;
 };
 
 // All rows of the mesh, in parallel over blocks, appended to `store` in row order as they
-// finish (rows that do not fit its budget spill while the build goes on); finishes the
-// store. Returns CANCELLED when progress returns false, or the store's error.
+// finish (rows that do not fit its budget spill while the build goes on), then the builder's
+// pass (FinishRows, spilling to `spill`): the same rows as BuildFormFactors. Returns
+// CANCELLED when progress returns false, or a store's error.
 absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const FormFactorOptions& options,
-                                                     RowStore& store,
+                                                     std::unique_ptr<RowStore> store,
+                                                     std::unique_ptr<BlockSpill> spill,
                                                      const PhaseProgress& progress = {});
 
 // Scene-relative ray offset: 1e-5 of the bounding-box diagonal.

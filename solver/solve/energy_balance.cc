@@ -34,8 +34,8 @@ int64_t PairSlot(const PatchAttributes& p, uint32_t i, uint32_t j) {
 }
 
 // Whether the pair {i, j} exchanges power exactly both ways (RowSampling::reciprocal).
-bool Exact(const PatchAttributes& p, const RowSampling& sampling, double mean_row_area,
-           uint32_t i, uint32_t j) {
+bool Exact(const PatchAttributes& p, const RowSampling& sampling, double mean_row_area, uint32_t i,
+           uint32_t j) {
   if (sampling.reciprocal.empty() || sampling.reciprocal[i] == sampling.reciprocal[j]) {
     return false;
   }
@@ -51,36 +51,42 @@ void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView&
   const double rays = sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area) : 0;
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
-  for (int band = 0; band < kBands; ++band) {
-    const double outgoing = p.area[i] * b[i][band];
-    double row_sum = 0, mean_w = 0, mean_w2 = 0;
-    for (size_t e = 0; e < cols.size(); ++e) {
-      const uint32_t j = cols[e];
-      const double f = vals[e];
-      pass.arriving[j][band] += outgoing * f;
-      row_sum += f;
-      if (!HasRow(p, j)) {
+  // Per band as below, entry by entry: each band's sums take the entries in the same order.
+  Rgb outgoing{}, row_sum{}, mean_w{}, mean_w2{};
+  for (int band = 0; band < kBands; ++band) outgoing[band] = p.area[i] * b[i][band];
+  for (size_t e = 0; e < cols.size(); ++e) {
+    const uint32_t j = cols[e];
+    const double f = vals[e];
+    const bool row_less = !HasRow(p, j);
+    const bool exact = Exact(p, sampling, mean_row_area, i, j);
+    const bool emits = Emits(p, j);
+    const int64_t slot = !exact && sampling.light_samples > 0 ? PairSlot(p, i, j) : -1;
+    for (int band = 0; band < kBands; ++band) {
+      pass.arriving[j][band] += outgoing[band] * f;
+      row_sum[band] += f;
+      if (row_less) {
         const double gathered = p.area[i] * f * b[j][band];
         pass.arriving[i][band] += gathered;
         pass.column_out[j][band] += gathered;
       }
-      if (Exact(p, sampling, mean_row_area, i, j)) continue;
+      if (exact) continue;
       const double w = p.reflectance[j][band] * b[i][band] - p.reflectance[i][band] * b[j][band];
-      if (!Emits(p, j)) {
-        mean_w += f * w;
-        mean_w2 += f * w * w;
+      if (!emits) {
+        mean_w[band] += f * w;
+        mean_w2[band] += f * w * w;
       }
-      const int64_t slot = sampling.light_samples > 0 ? PairSlot(p, i, j) : -1;
       if (slot < 0) continue;
       const double term = p.area[i] * f * w;
       pass.pairs[static_cast<size_t>(slot)][band] += term;
-      if (!Emits(p, j) && rays > 0 && f < 1)
+      if (!emits && rays > 0 && f < 1)
         pass.pairs_ray_variance[band] += term * term * (1 - f) / (f * rays);
     }
-    out.escaped[band] += outgoing * (1 - row_sum);
+  }
+  for (int band = 0; band < kBands; ++band) {
+    out.escaped[band] += outgoing[band] * (1 - row_sum[band]);
     if (rays > 0) {
       pass.variance[band] +=
-          p.area[i] * p.area[i] / rays * std::max(0.0, mean_w2 - mean_w * mean_w);
+          p.area[i] * p.area[i] / rays * std::max(0.0, mean_w2[band] - mean_w[band] * mean_w[band]);
     }
   }
 }

@@ -54,6 +54,8 @@ class RowStore {
   uint32_t rows() const { return rows_; }
   uint32_t cols() const { return cols_; }
   uint64_t nnz() const { return nnz_; }
+  uint64_t budget() const { return budget_; }            // bytes of rows kept in memory at most
+  uint64_t chunk_bytes() const { return chunk_bytes_; }  // a chunk is sealed at this size
   // All rows, CSR layout per chunk (one row offset more per chunk than one CsrMatrix).
   uint64_t Bytes() const { return memory_bytes_ + spilled_bytes_; }
   uint64_t MemoryBytes() const { return memory_bytes_; }    // rows held in memory

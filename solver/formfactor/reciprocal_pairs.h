@@ -1,0 +1,71 @@
+// Reciprocity averaging of Monte Carlo rows: every cosine ray between two patches counts for
+// both directions of the pair.
+//
+// Row i estimates F_ij from its own k_i cosine rays, h_ij / k_i (h_ij of them meet j), and
+// row j estimates the same F_ij by reciprocity (A_i F_ij = A_j F_ji), h_ji / (A_i d_j), with
+// d = k / A a row's rays per unit area. Both are unbiased, with (binomial) variances
+// F_ij / k_i and F_ij / (A_i d_j); weighted by their inverses they make
+//     F_ij = (h_ij + h_ji) / (A_i (d_i + d_j)),
+// half the variance of either when the two rows have the same rays per area (as the rows'
+// area-proportional rays give them, row_rays.h). Each row's averaged entries are then scaled
+// to the sum its own rays gave them: a row's sum stays one multinomial draw of its own rays,
+// so a closed room's rows still sum to 1 exactly (its B stays exact whatever the noise) and
+// no row passes its cap (RowContext::MaxRowSum), while the averaged pairs keep the lower
+// variance of how the sum is shared out. Without that scaling a pair's two entries vary
+// together (the same hits), which biases B up by the round trip i -> j -> i: +0.1-0.16% on the
+// Cornell box's surfaces at k = 64, and the row sums' own noise broke high-rho closed rooms.
+//
+// Only pairs of two cosine-ray rows take part: not an emitter's or a bright reflector's column
+// (light sampled: light_sampling.h, bright_reflectors.h) nor their rows, not rows of patches
+// without a row (rho = 0), not the diagonal (a group's F_ii), not a hidden unknown's (its
+// pairs are exactly reciprocal already: reciprocal_columns.h).
+//
+// The rows may be in memory or in a RowStore that spills (row_store.h): both give the same
+// averaged rows, bit for bit. Row i needs column i of the others (h_ji); a pass over all rows
+// gathers them for a range of rows at a time, so stored rows are averaged in as many passes
+// as their ranges' back hits and own rows need of the working memory given.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "solver/formfactor/row_builder.h"
+#include "solver/sparse/row_store.h"
+
+namespace radflux {
+
+class ReciprocalPairs {
+ public:
+  // The pairs of `context`'s rows (each built with RowRayCount(rays, ...) cosine rays,
+  // row_rays.h) whose unknowns both have cosine[u] != 0.
+  ReciprocalPairs(const RowContext& context, int rays, std::span<const uint8_t> cosine);
+
+  // Rows in memory, averaged in place, on `threads` threads (0 = all cores).
+  void Average(int threads, CsrMatrix& rows) const;
+  // The rows of `rows` averaged and appended to `out` (empty, same columns), which is then
+  // finished. Each pass over `rows` averages a range of rows whose back hits and own rows
+  // take at most `working_bytes` (one row at least). Returns a store's error.
+  absl::Status Average(int threads, const RowStore& rows, uint64_t working_bytes,
+                       RowStore& out) const;
+
+ private:
+  // Takes a range's averaged blocks, in row order.
+  using Emit = std::function<absl::Status(std::vector<RowBlock>&)>;
+  // One pass over the rows (in memory or in the store): per row, own[i] its entries and
+  // back[i] the other rows' entries that average with its own.
+  absl::Status Count(const CsrMatrix* matrix, const RowStore* store, std::vector<uint32_t>& own,
+                     std::vector<uint32_t>& back) const;
+  // One pass over the rows: rows [first, last) averaged and emitted in row order (blocks).
+  // Rows in a store are copied as the pass meets them; `back` as Count gave it.
+  absl::Status AverageRange(int threads, const CsrMatrix* matrix, const RowStore* store,
+                            std::span<const uint32_t> back, uint32_t first, uint32_t last,
+                            const Emit& emit) const;
+
+  std::vector<double> area_, rays_, density_;  // per unknown: A, k, k / A (0: takes no part)
+  std::vector<uint8_t> takes_part_;
+};
+
+}  // namespace radflux
