@@ -39,7 +39,7 @@ absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
       std::make_unique<RowStore>(static_cast<uint32_t>(result.job->Unknowns()),
                                  options.spill.memory_limit,
                                  std::make_unique<FileBlockSpill>(options.spill.directory)),
-      std::make_unique<FileBlockSpill>(options.spill.directory), callbacks.phase);
+      options.spill.directory, callbacks.phase);
   if (!rows.ok()) return rows.status();
   result.row_store = std::move(rows->store);
   result.row_stats = rows->stats;

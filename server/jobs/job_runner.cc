@@ -164,8 +164,7 @@ absl::StatusOr<JobRows> BuildStoredRows(const v1::Job& job, const PreparedJob& p
     FinishRows(*builder, threads, rows->matrix);
   } else {
     absl::StatusOr<std::unique_ptr<RowStore>> finished =
-        FinishRows(*builder, threads, std::move(rows->store),
-                   std::make_unique<FileBlockSpill>(c.store->JobDir(job.job_id())));
+        FinishRows(*builder, threads, std::move(rows->store), c.store->JobDir(job.job_id()));
     if (!finished.ok()) return finished.status();
     rows->store = *std::move(finished);
   }

@@ -21,21 +21,36 @@
 // pairs are exactly reciprocal already: reciprocal_columns.h).
 //
 // The rows may be in memory or in a RowStore that spills (row_store.h): both give the same
-// averaged rows, bit for bit. Row i needs column i of the others (h_ji); a pass over all rows
-// gathers them for a range of rows at a time, so stored rows are averaged in as many passes
-// as their ranges' back hits and own rows need of the working memory given.
+// averaged rows, bit for bit. Row i needs column i of the others (h_ji). Rows in memory gather
+// them in one pass. Stored rows are averaged in ranges of rows whose own rows and back hits fit
+// the working memory given, with bounded IO whatever the number of ranges: one pass counts
+// each row's entries and back hits; if there is more than one range, one pass writes each
+// back hit (i, j, h_ji) to its range's bucket (entry_buckets.h, 12 bytes a hit); one last pass
+// copies each range's own rows and, at the range's end, reads its bucket and averages it. So
+// the store's spilled chunks are read 3 times (2 with one range), and the buckets are written
+// and read once: 12 bytes per back hit <= 12 per stored entry <= 1.5 x the store's bytes.
+// Total reads <= 3 x SpilledBytes() + 1.5 x Bytes() (ReciprocalPairs.SpilledIoIsBounded).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/sparse/row_store.h"
 
 namespace radflux {
+
+// What averaging stored rows took (ReciprocalPairs::Average).
+struct SpilledAveraging {
+  int ranges = 0;                     // ranges averaged one at a time
+  uint64_t bucket_bytes_written = 0;  // back hits written to the bucket file
+  uint64_t bucket_bytes_read = 0;     // ... and read back
+};
 
 class ReciprocalPairs {
  public:
@@ -46,23 +61,24 @@ class ReciprocalPairs {
   // Rows in memory, averaged in place, on `threads` threads (0 = all cores).
   void Average(int threads, CsrMatrix& rows) const;
   // The rows of `rows` averaged and appended to `out` (empty, same columns), which is then
-  // finished. Each pass over `rows` averages a range of rows whose back hits and own rows
-  // take at most `working_bytes` (one row at least). Returns a store's error.
-  absl::Status Average(int threads, const RowStore& rows, uint64_t working_bytes,
-                       RowStore& out) const;
+  // finished. Ranges of rows whose own rows and back hits take at most `working_bytes` (one
+  // row at least) are averaged at a time; with more than one range, the back hits go to a
+  // bucket file in `directory` ("" = a fresh one under $TMPDIR, as FileBlockSpill). Returns a
+  // store's or the buckets' error (disk full, IO); `out` is then not to be used.
+  absl::StatusOr<SpilledAveraging> Average(int threads, const RowStore& rows,
+                                           uint64_t working_bytes, const std::string& directory,
+                                           RowStore& out) const;
 
  private:
-  // Takes a range's averaged blocks, in row order.
-  using Emit = std::function<absl::Status(std::vector<RowBlock>&)>;
+  class RangeHits;
   // One pass over the rows (in memory or in the store): per row, own[i] its entries and
   // back[i] the other rows' entries that average with its own.
   absl::Status Count(const CsrMatrix* matrix, const RowStore* store, std::vector<uint32_t>& own,
                      std::vector<uint32_t>& back) const;
-  // One pass over the rows: rows [first, last) averaged and emitted in row order (blocks).
-  // Rows in a store are copied as the pass meets them; `back` as Count gave it.
-  absl::Status AverageRange(int threads, const CsrMatrix* matrix, const RowStore* store,
-                            std::span<const uint32_t> back, uint32_t first, uint32_t last,
-                            const Emit& emit) const;
+  // The back hits on hits' rows from rows `rows`.
+  void Gather(const RowsView& rows, RangeHits& hits) const;
+  // Rows [hits.first, hits.last) of `own` averaged, in blocks in row order.
+  std::vector<RowBlock> AverageRows(int threads, const RowsView& own, const RangeHits& hits) const;
 
   std::vector<double> area_, rays_, density_;  // per unknown: A, k, k / A (0: takes no part)
   std::vector<uint8_t> takes_part_;

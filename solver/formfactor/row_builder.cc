@@ -10,6 +10,7 @@
 #include "solver/core/seconds_since.h"
 #include "solver/formfactor/builders.h"
 #include "solver/formfactor/reciprocal_pairs.h"
+#include "solver/sparse/file_block_spill.h"
 #include "solver/sparse/ordered_row_appender.h"
 
 namespace radflux {
@@ -146,23 +147,22 @@ void FinishRows(const RowBuilder& builder, int threads, CsrMatrix& rows) {
 
 absl::StatusOr<std::unique_ptr<RowStore>> FinishRows(const RowBuilder& builder, int threads,
                                                      std::unique_ptr<RowStore> rows,
-                                                     std::unique_ptr<BlockSpill> spill) {
+                                                     const std::string& spill_directory) {
   const ReciprocalPairs* pairs = builder.Pairs();
   if (pairs == nullptr) return rows;
   const uint64_t budget = rows->budget() - std::min(rows->budget(), rows->MemoryBytes());
-  auto averaged =
-      std::make_unique<RowStore>(rows->cols(), budget, std::move(spill), rows->chunk_bytes());
-  if (absl::Status s = pairs->Average(threads, *rows, 2 * rows->chunk_bytes(), *averaged);
-      !s.ok()) {
-    return s;
-  }
+  auto averaged = std::make_unique<RowStore>(
+      rows->cols(), budget, std::make_unique<FileBlockSpill>(spill_directory), rows->chunk_bytes());
+  absl::StatusOr<SpilledAveraging> done =
+      pairs->Average(threads, *rows, 2 * rows->chunk_bytes(), spill_directory, *averaged);
+  if (!done.ok()) return done.status();
   return averaged;
 }
 
 absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const FormFactorOptions& options,
                                                      std::unique_ptr<RowStore> store,
-                                                     std::unique_ptr<BlockSpill> spill,
+                                                     const std::string& spill_directory,
                                                      const PhaseProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   OrderedRowAppender appender(*store);
@@ -173,7 +173,7 @@ absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
   if (!stats.ok()) return stats.status();
   if (absl::Status s = appender.Finish(); !s.ok()) return s;
   absl::StatusOr<std::unique_ptr<RowStore>> rows =
-      FinishRows(*builder, options.threads, std::move(store), std::move(spill));
+      FinishRows(*builder, options.threads, std::move(store), spill_directory);
   if (!rows.ok()) return rows.status();
   return RowBuildSummary{*std::move(rows), *stats, SecondsSince(start)};
 }

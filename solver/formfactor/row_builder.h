@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -116,13 +117,15 @@ struct FormFactorResult {
 // Rows built by `builder`, all in memory, after its pass (RowBuilder::Pairs), on `threads`.
 void FinishRows(const RowBuilder& builder, int threads, CsrMatrix& rows);
 // Rows built by `builder` into the finished store `rows`, after its pass: `rows` itself when
-// the builder has none, else a new store of the averaged rows spilling to `spill`. The new
-// store keeps in memory what `rows` leaves of its budget (the rows in memory never pass it),
-// and each pass of the averaging works in two of its chunks (reciprocal_pairs.h). The same
-// rows as FinishRows in memory, bit for bit. Returns a store's error.
+// the builder has none, else a new store of the averaged rows spilling to a FileBlockSpill in
+// `spill_directory` ("" = a fresh one under $TMPDIR). The new store keeps in memory what
+// `rows` leaves of its budget (the rows in memory never pass it); the averaging works in
+// ranges of two of its chunks, its back hits in a bucket file in the same directory, its IO
+// bounded (reciprocal_pairs.h). The same rows as FinishRows in memory, bit for bit. Returns a
+// store's or the bucket file's error (disk full, IO).
 absl::StatusOr<std::unique_ptr<RowStore>> FinishRows(const RowBuilder& builder, int threads,
                                                      std::unique_ptr<RowStore> rows,
-                                                     std::unique_ptr<BlockSpill> spill);
+                                                     const std::string& spill_directory);
 
 // All rows of the mesh, in parallel over blocks, then the builder's pass over them
 // (FinishRows). Returns CANCELLED when progress returns false.
@@ -138,12 +141,12 @@ struct RowBuildSummary {
 
 // All rows of the mesh, in parallel over blocks, appended to `store` in row order as they
 // finish (rows that do not fit its budget spill while the build goes on), then the builder's
-// pass (FinishRows, spilling to `spill`): the same rows as BuildFormFactors. Returns
+// pass (FinishRows, spilling to `spill_directory`): the same rows as BuildFormFactors. Returns
 // CANCELLED when progress returns false, or a store's error.
 absl::StatusOr<RowBuildSummary> BuildFormFactorsInto(const RowContext& context,
                                                      const FormFactorOptions& options,
                                                      std::unique_ptr<RowStore> store,
-                                                     std::unique_ptr<BlockSpill> spill,
+                                                     const std::string& spill_directory,
                                                      const PhaseProgress& progress = {});
 
 // Scene-relative ray offset: 1e-5 of the bounding-box diagonal.

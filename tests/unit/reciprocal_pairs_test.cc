@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <memory>
 #include <vector>
 
@@ -73,6 +75,39 @@ TEST(ReciprocalPairs, AveragesEachPairByRaysPerArea) {
   EXPECT_NEAR(f.RowSum(2), 3.0 / 24 + 0.25, 1e-6);
 }
 
+// Closed forms of reciprocity. Three plates of one area in a ring, each row's 16 rays
+// meeting its neighbours 4 and 2 times the other way round (h_01 = 4, h_10 = 2, ...): every
+// pair averages to 6 / 32, every row's averaged sum equals its own (scale 1), so the rows
+// are exactly reciprocal, A_i F_ij = A_j F_ji, where the plain rows were off by 2x. Two
+// plates alone: the one averaged entry of each row is scaled back to its own rays' sum, so
+// the averaging leaves the pair as built (it only shares a row's sum out among its pairs).
+TEST(ReciprocalPairs, SymmetricRingIsExactlyReciprocal) {
+  RowContext context;
+  context.opaque_area = {1, 1, 1};
+  context.needs_row = {1, 1, 1};
+  context.mean_row_area = 1;
+  ASSERT_EQ(RowRayCount(16, 1, 1), 16u);
+  CsrMatrix ring = FromRows({{{1, 4 / 16.f}, {2, 2 / 16.f}},
+                             {{0, 2 / 16.f}, {2, 4 / 16.f}},
+                             {{0, 4 / 16.f}, {1, 2 / 16.f}}});
+  const std::vector<uint8_t> cosine = {1, 1, 1};
+  ReciprocalPairs(context, 16, cosine).Average(1, ring);
+  for (uint32_t i = 0; i < 3; ++i) {
+    for (uint32_t j = 0; j < 3; ++j) {
+      if (i == j) continue;
+      EXPECT_EQ(ring.At(i, j), 6 / 32.f) << i << " " << j;
+      EXPECT_EQ(ring.At(i, j), ring.At(j, i));
+    }
+  }
+
+  context.opaque_area = {1, 1};
+  context.needs_row = {1, 1};
+  CsrMatrix pair = FromRows({{{1, 4 / 16.f}}, {{0, 2 / 16.f}}});
+  ReciprocalPairs(context, 16, std::span<const uint8_t>(cosine).first(2)).Average(1, pair);
+  EXPECT_EQ(pair.At(0, 1), 4 / 16.f);
+  EXPECT_EQ(pair.At(1, 0), 2 / 16.f);
+}
+
 // The inward unit cube, 6 x 6 patches a face, no emitter: every cosine ray meets a face, so
 // each row sums to 1, and still does after the averaging (a furnace's B stays exact); the
 // averaged rows are nearly reciprocal (A_i F_ij = A_j F_ji up to the rows' scalings).
@@ -99,36 +134,56 @@ TEST(ReciprocalPairs, ClosedCubeRowsStillSumToOne) {
   EXPECT_LT(worst_reciprocity, 0.5);  // scalings of about 1 +- 2 / sqrt(k) each; plain: 1
 }
 
-// Rows in a store that spills, averaged in passes of a few rows (the working memory of one row,
-// or of 40 KB), are the rows averaged in memory, bit for bit; the row store holds
-// nothing in memory but what the budget left.
-TEST(ReciprocalPairs, StoredRowsInPassesAreTheRowsInMemory) {
-  RowFixture fixture(
-      testing::InwardUnitCube({"white", "white", "white", "white", "white", "white"}),
-      MeshOptions{216, 0});
-  FormFactorOptions options;
-  options.reciprocal_pairs = false;
-  const CsrMatrix raw = fixture.Rows(options);
-  std::vector<uint8_t> cosine(raw.rows, 1);
-  cosine[7] = 0;  // an unknown that takes no part
-  const ReciprocalPairs pairs(fixture.context, options.rays, cosine);
-  CsrMatrix memory = raw;
-  pairs.Average(1, memory);
-  for (const uint64_t working_bytes : {uint64_t{1}, uint64_t{40} << 10}) {
-    RowStore stored(raw.rows, 8 << 10, std::make_unique<FileBlockSpill>(""), 4 << 10);
+// The raw rows of the inward unit cube (6 x 6 patches a face), and a store of them that spills
+// all but 8 KB in 4 KB chunks.
+class StoredCube : public ::testing::Test {
+ protected:
+  StoredCube()
+      : fixture_(testing::InwardUnitCube({"white", "white", "white", "white", "white", "white"}),
+                 MeshOptions{216, 0}) {
+    options_.reciprocal_pairs = false;
+    raw_ = fixture_.Rows(options_);
+  }
+  std::unique_ptr<RowStore> Store() const {
+    auto stored = std::make_unique<RowStore>(raw_.rows, 8 << 10,
+                                             std::make_unique<FileBlockSpill>(""), 4 << 10);
     RowBlock block;
-    for (uint32_t i = 0; i < raw.rows; ++i) {
-      for (size_t e = 0; e < raw.RowCols(i).size(); ++e) {
-        block.Add(raw.RowCols(i)[e], raw.RowValues(i)[e]);
+    for (uint32_t i = 0; i < raw_.rows; ++i) {
+      for (size_t e = 0; e < raw_.RowCols(i).size(); ++e) {
+        block.Add(raw_.RowCols(i)[e], raw_.RowValues(i)[e]);
       }
       block.EndRow();
     }
-    ASSERT_TRUE(stored.Append(std::move(block)).ok());
-    ASSERT_TRUE(stored.Finish().ok());
-    ASSERT_GT(stored.SpilledBytes(), 0u);
-    RowStore averaged(raw.rows, 0, std::make_unique<FileBlockSpill>(""), 4 << 10);
-    ASSERT_TRUE(pairs.Average(2, stored, working_bytes, averaged).ok());
-    ASSERT_EQ(averaged.rows(), raw.rows);
+    EXPECT_TRUE(stored->Append(std::move(block)).ok());
+    EXPECT_TRUE(stored->Finish().ok());
+    EXPECT_GT(stored->SpilledBytes(), 0u);
+    return stored;
+  }
+  std::vector<uint8_t> Cosine() const {
+    std::vector<uint8_t> cosine(raw_.rows, 1);
+    cosine[7] = 0;  // an unknown that takes no part
+    return cosine;
+  }
+
+  RowFixture fixture_;
+  FormFactorOptions options_;
+  CsrMatrix raw_;
+};
+
+// Rows in a store that spills, averaged in ranges of one row, of 40 KB and all at once, are
+// the rows averaged in memory, bit for bit.
+TEST_F(StoredCube, StoredRowsInRangesAreTheRowsInMemory) {
+  const ReciprocalPairs pairs(fixture_.context, options_.rays, Cosine());
+  CsrMatrix memory = raw_;
+  pairs.Average(1, memory);
+  for (const uint64_t working_bytes : {uint64_t{1}, uint64_t{40} << 10, uint64_t{1} << 30}) {
+    const std::unique_ptr<RowStore> stored = Store();
+    RowStore averaged(raw_.rows, 0, std::make_unique<FileBlockSpill>(""), 4 << 10);
+    const absl::StatusOr<SpilledAveraging> done =
+        pairs.Average(2, *stored, working_bytes, "", averaged);
+    ASSERT_TRUE(done.ok()) << done.status();
+    EXPECT_EQ(done->ranges > 1, working_bytes < (uint64_t{1} << 30)) << working_bytes;
+    ASSERT_EQ(averaged.rows(), raw_.rows);
     EXPECT_EQ(averaged.nnz(), memory.nnz());
     size_t mismatched_rows = 0;
     ASSERT_TRUE(averaged
@@ -144,11 +199,46 @@ TEST(ReciprocalPairs, StoredRowsInPassesAreTheRowsInMemory) {
     EXPECT_EQ(mismatched_rows, 0u) << working_bytes;
   }
   uint32_t changed = 0;  // averaged indeed
-  for (uint32_t i = 0; i < raw.rows; ++i) {
-    const auto v = memory.RowValues(i), rv = raw.RowValues(i);
+  for (uint32_t i = 0; i < raw_.rows; ++i) {
+    const auto v = memory.RowValues(i), rv = raw_.RowValues(i);
     changed += !std::equal(v.begin(), v.end(), rv.begin(), rv.end());
   }
-  EXPECT_GT(changed, raw.rows * 9 / 10);
+  EXPECT_GT(changed, raw_.rows * 9 / 10);
+}
+
+// However many ranges (here one row each: 216), the averaging reads the store's spill three
+// times and its back hits once: bytes read <= 3 x SpilledBytes() + 1.5 x Bytes() (reading the
+// spill once per range, as it did, read it 216 + 1 times).
+TEST_F(StoredCube, SpilledIoIsBoundedWhateverTheRanges) {
+  const ReciprocalPairs pairs(fixture_.context, options_.rays, Cosine());
+  const std::unique_ptr<RowStore> stored = Store();
+  RowStore averaged(raw_.rows, 0, std::make_unique<FileBlockSpill>(""), 4 << 10);
+  const absl::StatusOr<SpilledAveraging> done = pairs.Average(2, *stored, 1, "", averaged);
+  ASSERT_TRUE(done.ok()) << done.status();
+  EXPECT_EQ(done->ranges, 216);
+  EXPECT_EQ(stored->read_stats().passes, 3);
+  EXPECT_EQ(stored->read_stats().bytes, 3 * stored->SpilledBytes());
+  EXPECT_EQ(done->bucket_bytes_read, done->bucket_bytes_written);
+  EXPECT_GT(done->bucket_bytes_written, 0u);
+  EXPECT_LE(done->bucket_bytes_written, stored->nnz() * 12);
+  EXPECT_LE(stored->read_stats().bytes + done->bucket_bytes_read,
+            3 * stored->SpilledBytes() + 3 * stored->Bytes() / 2);
+}
+
+// A bucket file that cannot be written fails the averaging plainly, naming where.
+TEST_F(StoredCube, BucketFileErrorsFailTheAveraging) {
+  const ReciprocalPairs pairs(fixture_.context, options_.rays, Cosine());
+  const std::unique_ptr<RowStore> stored = Store();
+  const std::string not_a_dir = ::testing::TempDir() + "/reciprocal_pairs_not_a_dir";
+  std::ofstream(not_a_dir) << "x";
+  RowStore averaged(raw_.rows, 0, std::make_unique<FileBlockSpill>(""), 4 << 10);
+  const absl::StatusOr<SpilledAveraging> done = pairs.Average(1, *stored, 1, not_a_dir, averaged);
+  ASSERT_FALSE(done.ok());
+  EXPECT_EQ(done.status().code(), absl::StatusCode::kFailedPrecondition) << done.status();
+  EXPECT_NE(done.status().message().find("cannot create a spill file in '" + not_a_dir + "'"),
+            std::string::npos)
+      << done.status();
+  std::remove(not_a_dir.c_str());
 }
 
 // Two parallel unit squares 0.5 apart, 8 x 8 patches each: per patch of "a", the form factor

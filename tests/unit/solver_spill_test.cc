@@ -35,7 +35,7 @@ class SpilledCornell : public ::testing::Test {
         job_->rows, options.form_factors,
         std::make_unique<RowStore>(matrix_->rows, 32 << 10, std::make_unique<FileBlockSpill>(""),
                                    16 << 10),
-        std::make_unique<FileBlockSpill>(""));
+        "");
     ASSERT_TRUE(built.ok()) << built.status();
     store_ = built->store.release();
   }
