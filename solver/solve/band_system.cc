@@ -76,6 +76,16 @@ Rgb GatherRow(const BandSystem& bands, const RowsView& rows, uint32_t i, const s
   size_t e =
       static_cast<size_t>(std::lower_bound(cols.begin(), cols.end(), col_begin) - cols.begin());
   Rgb s{};
+  if (bands.lanes == kBands) {  // the common case, unrolled: the same sums per lane
+    for (; e < cols.size() && cols[e] < col_end; ++e) {
+      const double fij = values[e];
+      const Rgb& xj = x[cols[e]];
+      s[0] += fij * xj[0];
+      s[1] += fij * xj[1];
+      s[2] += fij * xj[2];
+    }
+    return s;
+  }
   for (; e < cols.size() && cols[e] < col_end; ++e) {
     const double fij = values[e];
     const Rgb& xj = x[cols[e]];
