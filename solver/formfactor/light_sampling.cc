@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "solver/core/sampling.h"
+#include "solver/formfactor/row_rays.h"
 
 namespace radflux {
 namespace {
@@ -52,8 +53,9 @@ double RejectionFormFactor(const EmitterShape& shape, const Vec3& x, const Vec3&
 
 // A receiver whose size is not small against its distance to the nearest emitter that
 // lights it sees F_ij vary strongly across it (a reflector a few cm from a lamp in its
-// housing): it takes (size / distance)^2 times the points, at most this many times. Far
-// receivers (every one in the Cornell box) keep the points asked for.
+// housing): it takes (size / distance)^2 times the points, at most this many times (a row's
+// scaled by its area share: RowNearFieldFactor). Far receivers (every one in the Cornell box)
+// keep the points asked for.
 constexpr double kMaxNearFieldFactor = 16;
 
 int NearFieldFactor(double radius, double distance) {
@@ -118,11 +120,12 @@ LightSampler::LightSampler(const RowContext& context, const LightSampler* near_f
 
 uint64_t LightSampler::AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                                          RowAccumulator& row, std::span<const CosineHit> hits,
-                                         uint32_t cosine_rays) const {
+                                         uint32_t cosine_rays, double area_share) const {
   if (tree_.empty() || points < 1 || per_point < 1) return 0;
   const std::span<const uint32_t> members =
       context_.SinglePatch(i) ? std::span<const uint32_t>() : context_.clusters->Members(i);
-  points *= SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, near_field_);
+  points *= RowNearFieldFactor(
+      SetNearFieldFactor(*context_.mesh, context_.FirstPatch(i), members, near_field_), area_share);
   const double samples = static_cast<double>(points) * per_point;
   for (const CosineHit& hit : hits) {
     row.Add(hit.emitter, CosineHitValue(hit, cosine_rays, samples));

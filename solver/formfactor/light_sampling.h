@@ -91,11 +91,12 @@ class LightSampler {
   // stratified points on i with `per_point` light samples each, seeded from (seed, i),
   // combined with the `hits` of the row's `cosine_rays` cosine rays on emitters (above);
   // a receiver near an emitter against its size takes up to 16 times the points (about
-  // (size / distance)^2). Returns the shadow rays cast (at most 16 * points * per_point,
-  // whatever the number of emitter patches).
+  // (size / distance)^2), scaled by `area_share`, the row's area against the mean row's
+  // (RowNearFieldFactor; 1: all of them). Returns the shadow rays cast (at most 16 * points *
+  // per_point, whatever the number of emitter patches).
   uint64_t AddEmitterColumns(uint32_t i, int points, int per_point, uint64_t seed,
                              RowAccumulator& row, std::span<const CosineHit> hits = {},
-                             uint32_t cosine_rays = 0) const;
+                             uint32_t cosine_rays = 0, double area_share = 1) const;
 
   // Cell c's (context.cells) area-averaged form factor F_cj to each emitter unknown j, into
   // `columns` (emptied first): cell c of a group of k cells takes ceil(budget / k) light

@@ -151,7 +151,7 @@ class MonteCarloBuilder final : public RowBuilder {
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
     uint64_t light_rays = lights.AddEmitterColumns(
         i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,
-        emitter_hits, static_cast<uint32_t>(stream.size()));
+        emitter_hits, static_cast<uint32_t>(stream.size()), AreaShare(i));
     if (from_cells) {
       light_rays +=
           lights_.AddGroupEmitterColumns(i, CellLightSamplesPerGroup(options_), options_.seed, row);
@@ -166,6 +166,12 @@ class MonteCarloBuilder final : public RowBuilder {
     // books it as a term of its own.
     row.CapSum(context_.MaxRowSum(i));
     return stream.size() + light_rays;
+  }
+
+  // Unknown u's area against the mean row's (row_rays.h): its near-field light points follow it.
+  double AreaShare(uint32_t u) const {
+    return RowAreaShare(u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
+                        context_.mean_row_area);
   }
 
   // Unknown u's rays (row_rays.h).

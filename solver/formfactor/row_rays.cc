@@ -16,13 +16,21 @@ double MeanRowArea(std::span<const double> area, std::span<const uint8_t> has_ro
   return rows > 0 ? sum / static_cast<double>(rows) : 0;
 }
 
-uint32_t RowRayCount(int k, double area, double mean_area) {
+double RowAreaShare(double area, double mean_area) {
   const double share = area / mean_area;
-  if (!(mean_area > 0 && std::isfinite(mean_area)) || !(share >= 0 && std::isfinite(share))) {
-    return static_cast<uint32_t>(std::max(k, 1));
-  }
+  return mean_area > 0 && std::isfinite(mean_area) && share >= 0 && std::isfinite(share) ? share
+                                                                                         : 1.0;
+}
+
+uint32_t RowRayCount(int k, double area, double mean_area) {
   const double least = std::max({1, k / 4, std::min(k, kLeastRowRays)});
-  return static_cast<uint32_t>(std::clamp(std::round(k * share), least, std::max(least, 4.0 * k)));
+  return static_cast<uint32_t>(
+      std::clamp(std::round(k * RowAreaShare(area, mean_area)), least, std::max(least, 4.0 * k)));
+}
+
+int RowNearFieldFactor(int factor, double share) {
+  if (factor <= 1) return std::max(factor, 1);
+  return static_cast<int>(std::clamp(std::ceil(factor * share), 1.0, static_cast<double>(factor)));
 }
 
 bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area) {

@@ -22,7 +22,7 @@ TEST(RowRays, InProportionToAreaWithinTheClamp) {
   EXPECT_EQ(RowRayCount(64, 1.0, 1.0), 64u);
   EXPECT_EQ(RowRayCount(64, 1.5, 1.0), 96u);
   EXPECT_EQ(RowRayCount(64, 0.5, 1.0), 32u);
-  EXPECT_EQ(RowRayCount(64, 0.01, 1.0), 16u);   // k / 4
+  EXPECT_EQ(RowRayCount(64, 0.01, 1.0), 16u);    // k / 4
   EXPECT_EQ(RowRayCount(64, 100.0, 1.0), 256u);  // 4 k
   EXPECT_EQ(RowRayCount(256, 0.01, 1.0), 64u);   // k / 4 above kLeastRowRays
   // Below 64, k / 4 would leave a small row fewer than kLeastRowRays rays.
@@ -57,6 +57,21 @@ TEST(RowRays, TheBudgetIsKPerRowAndFollowsArea) {
     EXPECT_NEAR(k / a, 128 / mean, 0.5 / a);  // rounding only
   }
   EXPECT_NEAR(total, 128.0 * area.size(), 2.5);
+}
+
+// A row's near-field factor follows its area share: all of it from the mean row's area on,
+// ceil(factor * share) below, never under 1; a share RowAreaShare cannot tell is 1.
+TEST(RowRays, NearFieldPointsFollowTheRowsArea) {
+  EXPECT_EQ(RowNearFieldFactor(16, 1.0), 16);
+  EXPECT_EQ(RowNearFieldFactor(16, 20.0), 16);  // a large wall's: never more than its factor
+  EXPECT_EQ(RowNearFieldFactor(16, 0.3), 5);
+  EXPECT_EQ(RowNearFieldFactor(16, 0.06), 1);  // a slot over a lamp
+  EXPECT_EQ(RowNearFieldFactor(16, 0.0), 1);
+  EXPECT_EQ(RowNearFieldFactor(1, 0.3), 1);
+  EXPECT_DOUBLE_EQ(RowAreaShare(0.5, 2.0), 0.25);
+  EXPECT_DOUBLE_EQ(RowAreaShare(0.5, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(RowAreaShare(std::nan(""), 1.0), 1.0);
+  EXPECT_EQ(RowNearFieldFactor(16, RowAreaShare(1.0, std::numeric_limits<double>::infinity())), 16);
 }
 
 }  // namespace
