@@ -5,6 +5,7 @@
 #include <map>
 #include <span>
 #include <tuple>
+#include <utility>
 
 #include "solver/mesh/footprint_polygons.h"
 #include "solver/scene/polygon_triangulation.h"
@@ -122,18 +123,39 @@ bool AllOutside(const Polygon& p, const HalfPlane& h, double eps) {
                       [&](const Vec3& q) { return Dot(q - h.a, h.inward) > -eps; });
 }
 
+// Where convex `p` lies against `h`: all of it inside beyond eps (ClipSide keeps all of it
+// on the inside and nothing outside), all outside beyond eps (the reverse), or either.
+enum class SideOfLine { kInside, kOutside, kBoth };
+SideOfLine SideOf(const Polygon& p, const HalfPlane& h, double eps) {
+  bool inside = true, outside = true;
+  for (const Vec3& q : p) {
+    const double s = Dot(q - h.a, h.inward);
+    inside = inside && s > eps;
+    outside = outside && s < -eps;
+  }
+  return inside ? SideOfLine::kInside : outside ? SideOfLine::kOutside : SideOfLine::kBoth;
+}
+
 // Splits convex `piece` by `part`: its convex pieces outside `part` go to `outside`, the
 // piece inside to `inside` when given (else it is left out).
-void Split(const Polygon& piece, const ConvexPart& part, const Vec3& normal, double eps,
-           double min_area, std::vector<Polygon>& outside, std::vector<Polygon>* inside) {
+void Split(Polygon piece, const ConvexPart& part, const Vec3& normal, double eps, double min_area,
+           std::vector<Polygon>& outside, std::vector<Polygon>* inside) {
   if (Disjoint(piece, part, eps) ||
       std::any_of(part.span.begin(), part.span.end(),
                   [&](const HalfPlane& h) { return AllOutside(piece, h, eps); })) {
-    outside.push_back(piece);
+    outside.push_back(std::move(piece));
     return;
   }
-  Polygon remaining = piece;
+  Polygon remaining = std::move(piece);
   for (const HalfPlane& h : part.sides) {
+    // A side that does not cross the piece leaves it whole on one side, as ClipSide would,
+    // without clipping (most pieces near a foot lie clear of most of its sides and lines).
+    const SideOfLine side = SideOf(remaining, h, eps);
+    if (side == SideOfLine::kInside) continue;
+    if (side == SideOfLine::kOutside) {
+      if (Area(remaining, normal) > min_area) outside.push_back(std::move(remaining));
+      return;
+    }
     Polygon out = ClipSide(remaining, h, -1, eps);
     if (Area(out, normal) > min_area) outside.push_back(std::move(out));
     remaining = ClipSide(remaining, h, 1, eps);
@@ -186,9 +208,7 @@ Polygon Simplified(const Polygon& piece, const Vec3& normal, double eps) {
 
 // The patches PieceEmitter makes of a piece of `corners` corners: one for a triangle or an
 // uncut quad, else a fan of corners - 2 triangles.
-size_t PiecePatches(size_t corners, bool cut) {
-  return corners == 4 && !cut ? 1 : corners - 2;
-}
+size_t PiecePatches(size_t corners, bool cut) { return corners == 4 && !cut ? 1 : corners - 2; }
 
 // Adds the face's patches for the pieces, sharing equal points.
 class PieceEmitter {
@@ -337,8 +357,9 @@ std::vector<Piece> PatchPieces(const Polygon& corners, double area, const Cuts& 
   const double min_area = 1e-9 * area;
   auto split_all = [&](const ConvexPart& part, bool keep_inside) {
     next.clear();
-    for (const Polygon& piece : pieces) {
-      Split(piece, part, normal, cuts.eps, min_area, next, keep_inside ? &next : nullptr);
+    for (Polygon& piece : pieces) {
+      Split(std::move(piece), part, normal, cuts.eps, min_area, next,
+            keep_inside ? &next : nullptr);
     }
     pieces.swap(next);
   };
@@ -347,8 +368,8 @@ std::vector<Piece> PatchPieces(const Polygon& corners, double area, const Cuts& 
   std::vector<Polygon> hidden;  // pieces inside a slot, split no further
   for (const ConvexPart& slot : cuts.slots) {
     next.clear();
-    for (const Polygon& piece : pieces) {
-      Split(piece, slot, normal, cuts.eps, min_area, next, &hidden);
+    for (Polygon& piece : pieces) {
+      Split(std::move(piece), slot, normal, cuts.eps, min_area, next, &hidden);
     }
     pieces.swap(next);
   }
