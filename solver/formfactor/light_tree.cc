@@ -64,7 +64,61 @@ LightTree::LightTree(std::vector<EmitterShape> emitters) : emitters_(std::move(e
   }
 }
 
-// The subtree of emitters order[begin, end): split at the median of the centroids along
+size_t LightTree::PartByFacing(std::vector<uint32_t>& order, size_t begin, size_t end) const {
+  const Vec3 side = emitters_[order[begin]].normal;
+  for (size_t k = begin; k < end; ++k) {
+    if (std::abs(Dot(emitters_[order[k]].normal, side)) < 1 - 1e-9) return begin;
+  }
+  const auto middle =
+      std::stable_partition(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                            order.begin() + static_cast<std::ptrdiff_t>(end),
+                            [&](uint32_t k) { return Dot(emitters_[k].normal, side) > 0; });
+  const size_t m = static_cast<size_t>(middle - order.begin());
+  return m == end ? begin : m;
+}
+
+size_t LightTree::SplitAlongWidestAxis(std::vector<uint32_t>& order, size_t begin, size_t end,
+                                       const Vec3& lo, const Vec3& hi, int& axis) const {
+  const Vec3 extent = hi - lo;
+  axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  // An emitter's place along the axis: the middle of its extent there, the same for the two
+  // triangles of a quad, which then stay together (their boxes are one: split apart, the
+  // halves' boxes would overlap by a cell and Locate search both).
+  auto centre = [&](uint32_t k) {
+    const EmitterShape& e = emitters_[k];
+    double lo_k = e.corner[0][axis], hi_k = lo_k;
+    for (uint32_t c = 1; c < e.corners; ++c) {
+      lo_k = std::min(lo_k, e.corner[c][axis]);
+      hi_k = std::max(hi_k, e.corner[c][axis]);
+    }
+    return 0.5 * (lo_k + hi_k);
+  };
+  std::sort(order.begin() + begin, order.begin() + end, [&](uint32_t a, uint32_t b) {
+    return std::make_pair(centre(a), a) < std::make_pair(centre(b), b);
+  });
+  // The split nearest the median that keeps emitters of one coordinate together, so that
+  // the halves of a regular grid (a split lamp) are whole rows or columns: their bounding
+  // rectangles are then tiled and their importance exact.
+  const double tolerance = 1e-9 * extent[axis];
+  auto splits_between = [&](size_t m) {
+    return centre(order[m]) - centre(order[m - 1]) > tolerance;
+  };
+  size_t middle = begin + (end - begin) / 2;
+  for (size_t step = 0; step < (end - begin) / 2; ++step) {
+    if (splits_between(middle - step)) {
+      middle -= step;
+      break;
+    }
+    if (middle + step < end && splits_between(middle + step)) {
+      middle += step;
+      break;
+    }
+  }
+  return middle;
+}
+
+// The subtree of emitters order[begin, end): parted by facing where they face opposite ways,
+// else split at the median of the centroids along
 // the widest axis of their box (deterministic: ties broken by index).
 uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t parent) {
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
@@ -100,43 +154,10 @@ uint32_t LightTree::Build(std::vector<uint32_t>& order, size_t begin, size_t end
     node.emitter = order[begin];
     leaf_of_[order[begin]] = index;
   } else {
-    const Vec3 extent = hi - lo;
-    const int axis =
-        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    // An emitter's place along the axis: the middle of its extent there, the same for the two
-    // triangles of a quad, which then stay together (their boxes are one: split apart, the
-    // halves' boxes would overlap by a cell and Locate search both).
-    auto centre = [&](uint32_t k) {
-      const EmitterShape& e = emitters_[k];
-      double lo_k = e.corner[0][axis], hi_k = lo_k;
-      for (uint32_t c = 1; c < e.corners; ++c) {
-        lo_k = std::min(lo_k, e.corner[c][axis]);
-        hi_k = std::max(hi_k, e.corner[c][axis]);
-      }
-      return 0.5 * (lo_k + hi_k);
-    };
-    std::sort(order.begin() + begin, order.begin() + end, [&](uint32_t a, uint32_t b) {
-      return std::make_pair(centre(a), a) < std::make_pair(centre(b), b);
-    });
-    // The split nearest the median that keeps emitters of one coordinate together, so that
-    // the halves of a regular grid (a split lamp) are whole rows or columns: their bounding
-    // rectangles are then tiled and their importance exact.
-    const double tolerance = 1e-9 * extent[axis];
-    auto splits_between = [&](size_t m) {
-      return centre(order[m]) - centre(order[m - 1]) > tolerance;
-    };
-    size_t middle = begin + (end - begin) / 2;
-    for (size_t step = 0; step < (end - begin) / 2; ++step) {
-      if (splits_between(middle - step)) {
-        middle -= step;
-        break;
-      }
-      if (middle + step < end && splits_between(middle + step)) {
-        middle += step;
-        break;
-      }
-    }
-    node.axis_split = axis;
+    // Emitters facing opposite ways (a normal cone wider than a hemisphere) are parted by the
+    // way they face first (PartByFacing); else at the median along the widest axis.
+    size_t middle = node.cos_spread < 0 ? PartByFacing(order, begin, end) : begin;
+    if (middle == begin) middle = SplitAlongWidestAxis(order, begin, end, lo, hi, node.axis_split);
     node.left = Build(order, begin, middle, index);
     node.right = Build(order, middle, end, index);
   }

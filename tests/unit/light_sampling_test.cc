@@ -495,6 +495,60 @@ TEST(LightSampling, WallBesideLampsIsNotAHeavyTail) {
   EXPECT_LT(worst, 4);
 }
 
+// Two-sided lamps as in RenderPark's corridor (MGF: each side lit on its own): 8 x 4 lamps,
+// 0.4 square, 2 cm under a ceiling at z = 10, each a face lit downwards and its twin at the
+// same place lit upwards. From points on a wall beside them, the floor and the ceiling, a light
+// sample of lamp j weighs F_j(x) / P(j | x); it stays within 2 times sum_k F_k(x) for every
+// lamp that can light the point (1.2 measured). A tree that kept each lamp's twins together
+// faced both ways at every node above them (no cosine bound, no culling) and weighed samples
+// up to 5.5 times sum F: the corridor's walls and floor read 5 times noisier.
+TEST(LightSampling, TwoSidedLampsAreChosenByTheSideThatLights) {
+  int next = 1;
+  std::string obj;
+  for (int a = 0; a < 8; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      const double x0 = -4.2 + 2.5 * a, y0 = -0.2 + 2.5 * b, z = 9.98;
+      const Vec3 p00{x0, y0, z}, p10{x0 + 0.4, y0, z}, p11{x0 + 0.4, y0 + 0.4, z},
+          p01{x0, y0 + 0.4, z};
+      const std::string name = "lamp" + std::to_string(a) + "_" + std::to_string(b);
+      obj += ObjQuad(name + "down", "black", {p00, p01, p11, p10}, next);
+      obj += ObjQuad(name + "up", "black", {p00, p10, p11, p01}, next);
+    }
+  }
+  RowFixture f(SceneFromObj(obj), MeshOptions{});
+  std::vector<EmitterShape> shapes;
+  for (uint32_t j = 0; j < f.mesh.size(); ++j) shapes.push_back(MakeEmitterShape(f.mesh, j, 1));
+  ASSERT_EQ(shapes.size(), 64u);
+  const LightTree tree(shapes);
+  struct Receiver {
+    Vec3 x, n;
+  };
+  std::vector<Receiver> receivers;
+  for (int a = 0; a < 40; ++a) {
+    for (int b = 0; b < 10; ++b) {
+      receivers.push_back({{-5, -1 + 0.25 * a, 0.5 + 0.95 * b}, {1, 0, 0}});    // a wall
+      receivers.push_back({{-5 + 0.5 * a, -1 + 0.9 * b, 0}, {0, 0, 1}});        // the floor
+      receivers.push_back({{-4.9 + 0.5 * a, -0.9 + 0.9 * b, 10}, {0, 0, -1}});  // the ceiling
+    }
+  }
+  double worst = 0;
+  for (const Receiver& r : receivers) {
+    const LightTree::Cut cut = tree.CutAt(r.x, r.n);
+    double total = 0;
+    for (const EmitterShape& s : shapes) total += EmitterFormFactor(s, r.x, r.n);
+    if (!(total > 0)) continue;
+    for (uint32_t k = 0; k < shapes.size(); ++k) {
+      const double form_factor = EmitterFormFactor(shapes[k], r.x, r.n);
+      if (!(form_factor > 0)) continue;
+      const double p = tree.Probability(cut, r.x, r.n, k);
+      ASSERT_GT(p, 0) << k;
+      worst = std::max(worst, form_factor / p / total);
+    }
+  }
+  std::printf("  worst F_j / P(j) against sum F: %.3g\n", worst);
+  EXPECT_LT(worst, 2);
+}
+
 // A closed unit room whose ceiling emits, as 1 face or as 64 x 64 = 4,096 faces (walls and
 // floor 8 x 8 faces each; every face one patch). Every row casts the same rays in both: k
 // cosine rays and 16 s light samples, times the near-field factor of the wall patches that
