@@ -87,10 +87,12 @@ TEST_F(ServiceLoadTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
       }
       if (w >= 20 && w < 35) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    reader->Finish();
+    const grpc::Status finished = reader->Finish();
     if (w < 45 && state != v1::JOB_STATE_SUCCEEDED) {
       std::lock_guard lock(mu);
-      failures.push_back("watcher " + std::to_string(w) + ": ended " + v1::JobState_Name(state));
+      failures.push_back("watcher " + std::to_string(w) + ": ended " + v1::JobState_Name(state) +
+                         " after " + std::to_string(read) + " messages, stream status " +
+                         std::to_string(finished.error_code()) + " " + finished.error_message());
     }
   };
   std::vector<std::thread> watchers;
@@ -114,7 +116,9 @@ TEST_F(ServiceLoadTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
   }
   all_done_cv.notify_all();
   for (std::thread& t : watchers) t.join();
-  EXPECT_TRUE(failures.empty()) << failures.front();
+  std::string all_failures;
+  for (const std::string& failure : failures) all_failures += failure + "\n";
+  EXPECT_TRUE(failures.empty()) << all_failures;
   const int64_t rss_after = ResidentKiB(server_->pid());
   EXPECT_GT(rss_before, 0);
   EXPECT_LT(rss_after, 1 << 20) << "server RSS " << rss_after << " KiB (was " << rss_before << ")";
