@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "tests/integration/radfluxd_path.h"
@@ -17,15 +18,23 @@ ServerProcess::ServerProcess(const std::string& data_dir, const std::vector<std:
   std::vector<std::string> args = {RadfluxdPath(), "--listen", "127.0.0.1:0", "--data-dir",
                                    data_dir};
   args.insert(args.end(), extra.begin(), extra.end());
+  // Built before fork: the child of a threaded process only calls what is safe there.
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  // Warnings and errors only, unless the caller set SPDLOG_LEVEL: a failing test's output
+  // then ends with its assertions, not under thousands of info lines (CI keeps a part).
+  std::string quiet = "SPDLOG_LEVEL=warn";
+  std::vector<char*> envp;
+  for (char** e = environ; *e != nullptr; ++e) envp.push_back(*e);
+  if (std::getenv("SPDLOG_LEVEL") == nullptr) envp.push_back(quiet.data());
+  envp.push_back(nullptr);
   pid_ = fork();
   if (pid_ == 0) {
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
     close(out[1]);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
+    execve(argv[0], argv.data(), envp.data());
     _exit(127);
   }
   close(out[1]);
