@@ -168,16 +168,17 @@ class MonteCarloBuilder final : public RowBuilder {
     return stream.size() + light_rays;
   }
 
-  // Unknown u's area against the mean row's (row_rays.h): its near-field light points follow it.
-  double AreaShare(uint32_t u) const {
-    return RowAreaShare(u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
-                        context_.mean_row_area);
+  // Unknown u's opaque area (0 for one the context does not size).
+  double OpaqueArea(uint32_t u) const {
+    return u < context_.opaque_area.size() ? context_.opaque_area[u] : 0;
   }
+
+  // Unknown u's area against the mean row's (row_rays.h): its near-field light points follow it.
+  double AreaShare(uint32_t u) const { return RowAreaShare(OpaqueArea(u), context_.mean_row_area); }
 
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays, u < context_.opaque_area.size() ? context_.opaque_area[u] : 0,
-                       context_.mean_row_area);
+    return RowRayCount(options_.rays, OpaqueArea(u), context_.mean_row_area);
   }
 
   // The rays of `set` from one patch p, shifted by (ps, ds), and their origins on p.

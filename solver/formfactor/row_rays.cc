@@ -29,8 +29,8 @@ uint32_t RowRayCount(int k, double area, double mean_area) {
 }
 
 int RowNearFieldFactor(int factor, double share) {
-  if (factor <= 1) return std::max(factor, 1);
-  return static_cast<int>(std::clamp(std::ceil(factor * share), 1.0, static_cast<double>(factor)));
+  const double most = std::max(factor, 1);
+  return static_cast<int>(std::clamp(std::ceil(factor * share), 1.0, most));
 }
 
 bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area) {

@@ -55,6 +55,13 @@ std::string EmitterGrid(int g, double z, bool triangles, int& next, double fill 
   return obj;
 }
 
+// The unit square "receiver" (white, at z = 0, facing up) under EmitterGrid(g, z, ...).
+std::string ReceiverUnderGrid(int g, double z, bool triangles, int& next, double fill = 1) {
+  std::string obj =
+      ObjQuad("receiver", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
+  return obj + EmitterGrid(g, z, triangles, next, fill);
+}
+
 // Sum over the emitter columns of row `i`.
 double EmitterRowSum(const RowFixture& f, const CsrMatrix& m, uint32_t i) {
   const auto cols = m.RowCols(i);
@@ -86,10 +93,7 @@ TEST(LightSampling, ExpectedEmitterFormFactorIsTheClosedForm) {
   const double exact = testing::ParallelRectangles(1, 1, 1);
   for (auto [g, triangles] : {std::pair{1, false}, {20, false}, {20, true}}) {
     int next = 1;
-    std::string obj = ObjQuad("receiver", "white",
-                              {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-    obj += EmitterGrid(g, 1, triangles, next);
-    RowFixture f(SceneFromObj(obj), MeshOptions{});
+    RowFixture f(SceneFromObj(ReceiverUnderGrid(g, 1, triangles, next)), MeshOptions{});
     const SeedMean m = EmitterFormFactorOverSeeds(f, "receiver", 400);
     std::printf("  %d x %d %s: %.5f +- %.5f (exact %.5f)\n", g, g,
                 triangles ? "triangle pairs" : "rectangles", m.mean, m.standard_error, exact);
@@ -106,10 +110,7 @@ TEST(LightSampling, ExpectedEmitterFormFactorIsTheClosedForm) {
 TEST(LightSampling, ReceiverNearAnEmitterTakesMorePoints) {
   const double exact = testing::ParallelRectangles(1, 1, 0.05);
   int next = 1;
-  std::string obj =
-      ObjQuad("receiver", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-  obj += EmitterGrid(1, 0.05, false, next);
-  RowFixture f(SceneFromObj(obj), MeshOptions{});
+  RowFixture f(SceneFromObj(ReceiverUnderGrid(1, 0.05, false, next)), MeshOptions{});
   const int seeds = 100;
   const SeedMean m = EmitterFormFactorOverSeeds(f, "receiver", seeds);
   const double spread = m.standard_error * std::sqrt(double(seeds));
@@ -127,9 +128,7 @@ TEST(LightSampling, ReceiverNearAnEmitterTakesMorePoints) {
 TEST(LightSampling, SmallRowNearAnEmitterTakesPointsByItsArea) {
   const double exact = testing::ParallelRectangles(1, 1, 0.05);
   int next = 1;
-  std::string obj =
-      ObjQuad("receiver", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-  obj += EmitterGrid(1, 0.05, false, next);
+  std::string obj = ReceiverUnderGrid(1, 0.05, false, next);
   obj += ObjQuad("floor", "white", {{-5, -5, -20}, {5, -5, -20}, {5, 5, -20}, {-5, 5, -20}}, next);
   RowFixture f(SceneFromObj(obj), MeshOptions{});
   uint32_t receiver = 0;
@@ -178,9 +177,7 @@ TEST(LightSampling, GrazingStripBesideALampIsTheClosedForm) {
 // times a visible fraction) is biased here; the light samples must not be.
 TEST(LightSampling, HalfPlaneOccluderHalvesTheExpectedFormFactor) {
   int next = 1;
-  std::string obj =
-      ObjQuad("receiver", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-  obj += EmitterGrid(4, 1, false, next);
+  std::string obj = ReceiverUnderGrid(4, 1, false, next);
   obj += ObjQuad("wall", "white", {{0, -1, .5}, {1, -1, .5}, {1, 1, .5}, {0, 1, .5}}, next);
   RowFixture f(SceneFromObj(obj), MeshOptions{});
   const SeedMean m = EmitterFormFactorOverSeeds(f, "receiver", 400);
@@ -353,10 +350,7 @@ TEST(LightSampling, TiledEmittersEachGetTheirOwnFormFactor) {
   for (const double c : {1.0, 4.0}) {
     const double exact = testing::ParallelRectangles(1, 1, c) / 4;
     int next = 1;
-    std::string obj = ObjQuad("receiver", "white",
-                              {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-    obj += EmitterGrid(2, c, false, next);
-    RowFixture f(SceneFromObj(obj), MeshOptions{});
+    RowFixture f(SceneFromObj(ReceiverUnderGrid(2, c, false, next)), MeshOptions{});
     ASSERT_EQ(f.ObjectOf(0), "receiver");
     FormFactorOptions o;
     o.rays = 4;
@@ -407,10 +401,7 @@ TEST(LightSampling, SeparatePanelsEachGetTheirOwnFormFactor) {
   const int g = 5;
   const double fill = 0.8;
   int next = 1;
-  std::string obj =
-      ObjQuad("receiver", "white", {{-.5, -.5, 0}, {.5, -.5, 0}, {.5, .5, 0}, {-.5, .5, 0}}, next);
-  obj += EmitterGrid(g, 1, false, next, fill);
-  RowFixture f(SceneFromObj(obj), MeshOptions{});
+  RowFixture f(SceneFromObj(ReceiverUnderGrid(g, 1, false, next, fill)), MeshOptions{});
   ASSERT_EQ(f.ObjectOf(0), "receiver");
   ASSERT_EQ(f.mesh.size(), 1u + g * g);
   FormFactorOptions o;
