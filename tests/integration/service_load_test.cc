@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <fstream>
 #include <mutex>
@@ -61,7 +62,12 @@ TEST_F(ServiceLoadTest, TenJobsFiftyWatchersSlowAndStalledNeverHoldAJobBack) {
     request.set_job_id(jobs[static_cast<size_t>(w % 10)]);
     request.set_snapshot_every(1);
     request.set_snapshot_format(v1::SNAPSHOT_FORMAT_FLOAT32);
+    // Fifty connections opened at once to a server busy with ten jobs: one may fail its
+    // first attempt (CI saw "failed to connect to all addresses" once), so each watcher waits
+    // for its channel to connect, as a patient client does, and gives up after two minutes.
     grpc::ClientContext context;
+    context.set_wait_for_ready(true);
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(2));
     auto reader = stub->WatchJob(&context, request);
     v1::JobEvent event;
     uint64_t last = 0;
