@@ -26,10 +26,11 @@ class TextureCache {
                    : absl::StatusOr<TextureImage>(
                          absl::NotFoundError(absl::StrCat(name, ": ", bytes.status().message())));
     if (!image.ok()) {
-      log_.Add("textures_not_read",
-               absl::StrCat("{texture|textures} not read; the materials using {it|them} keep their ",
-                            format_.untextured),
-               std::string(image.status().message()));
+      log_.Add(
+          "textures_not_read",
+          absl::StrCat("{texture|textures} not read; the materials using {it|them} keep their ",
+                       format_.untextured),
+          std::string(image.status().message()));
       return nullptr;
     }
     it->second = *std::move(image);
@@ -48,9 +49,10 @@ class TextureCache {
     if (inserted) {
       it->second = *image;
       for (std::array<float, 4>& t : it->second.texels) {
-        const double alpha = (grey ? t[0] : t[3]) * textures.alpha_scale;
-        t[3] = static_cast<float>(textures.alpha_cutoff < 0 ? alpha
-                                                            : alpha >= textures.alpha_cutoff);
+        // A grey image's texels hold its decoded (linear) grey: the byte is the opacity.
+        const double alpha = (grey ? LinearToSrgb(t[0]) : t[3]) * textures.alpha_scale;
+        t[3] =
+            static_cast<float>(textures.alpha_cutoff < 0 ? alpha : alpha >= textures.alpha_cutoff);
       }
     }
     return &it->second;
@@ -106,8 +108,7 @@ void ApplyFaceTextures(const std::vector<MaterialTextures>& textures, const Face
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     Face& face = scene.faces[f];
     const MaterialTextures& slots = textures[face.material];
-    const std::string where =
-        face.source_line > 0 ? scene.FaceLocation(f) : scene.DescribeFace(f);
+    const std::string where = face.source_line > 0 ? scene.FaceLocation(f) : scene.DescribeFace(f);
     if (!slots.any()) {
       kept.push_back(std::move(face));
       continue;

@@ -100,14 +100,18 @@ double SrgbToLinear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
+double LinearToSrgb(double c) {
+  return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
+
 absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::string& name) {
   int width = 0, height = 0, channels = 0;
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(std::min<size_t>(bytes.size(), 1u << 30));
   if (stbi_info_from_memory(data, size, &width, &height, &channels) != 0 &&
       static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxTextureTexels) {
-    return absl::InvalidArgumentError(absl::StrCat(name, ": ", width, " x ", height,
-                                                   " texels, more than ", kMaxTextureTexels));
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, ": ", width, " x ", height, " texels, more than ", kMaxTextureTexels));
   }
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
       stbi_load_from_memory(data, size, &width, &height, &channels, 4), stbi_image_free);
@@ -139,13 +143,11 @@ std::array<double, 4> TextureMean(const TextureImage& image, const std::vector<T
     for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   }
   const auto texel = [&](double x, double y) {
-    const auto& t =
-        image
-            .texels[static_cast<size_t>(
-                        Wrap(static_cast<long long>(std::floor(y)), image.height, wrap.v)) *
-                        static_cast<size_t>(image.width) +
-                    static_cast<size_t>(
-                        Wrap(static_cast<long long>(std::floor(x)), image.width, wrap.u))];
+    const auto& t = image.texels[static_cast<size_t>(Wrap(static_cast<long long>(std::floor(y)),
+                                                          image.height, wrap.v)) *
+                                     static_cast<size_t>(image.width) +
+                                 static_cast<size_t>(Wrap(static_cast<long long>(std::floor(x)),
+                                                          image.width, wrap.u))];
     return std::array<double, 4>{t[0], t[1], t[2], t[3]};
   };
   const double area = Area(texels);

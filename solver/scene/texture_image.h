@@ -35,6 +35,9 @@ absl::StatusOr<TextureImage> DecodeTexture(const std::string& bytes, const std::
 
 // The linear value of the sRGB-encoded value `c` in [0, 1] (IEC 61966-2-1).
 double SrgbToLinear(double c);
+// Its inverse: the sRGB-encoded value of the linear value `c` in [0, 1]. A grey image used
+// as an alpha map is data, not colour: its texels' encoded value is the opacity.
+double LinearToSrgb(double c);
 
 // The texels covered by a footprint larger than this many are not visited one by one: the
 // mean of the whole image stands for them (a face over that many texels of a repeating

@@ -18,6 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using testing::GreyPng;
 using testing::Linear;
 using testing::Png;
 
@@ -124,6 +125,17 @@ TEST_F(TextureImportTest, AFaceThirtyPercentOpaqueIsKeptWithThatOpacity) {
                       "texture (map_d) let the transparent fraction through (first at " +
                           dir_ + "/s.obj:17)"),
             lines.end());
+}
+
+TEST_F(TextureImportTest, AGreyAlphaMapGivesItsBytesAsOpacityNotTheirDecodedColour) {
+  // map_d as a one-channel image (no alpha): its grey is the opacity, as stored. The sRGB
+  // curve that colours get would make 128 a 0.216 opacity, not 0.502.
+  Write("tex/mask.png", GreyPng(2, 1, {128, 64}));
+  absl::StatusOr<Scene> s = Load("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", "map_d tex/mask.png\n");
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_EQ(s->faces.size(), 2u);
+  EXPECT_NEAR(Wall(*s).opacity, (128 + 64) / 2 / 255.0, 1e-6);
+  EXPECT_NEAR(Wall(*s).reflectance[0], 0.8, 1e-12) << "Kd stays: no map_Kd";
 }
 
 TEST_F(TextureImportTest, AMissingTextureKeepsKdAndSaysWhichFile) {

@@ -22,6 +22,17 @@ inline std::string Png(int width, int height, const std::vector<unsigned char>& 
   return bytes;
 }
 
+// A PNG of `width` x `height` grey pixels (one channel, no alpha; rows from the top).
+inline std::string GreyPng(int width, int height, const std::vector<unsigned char>& grey) {
+  std::string bytes;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
+      },
+      &bytes, width, height, 1, grey.data(), width);
+  return bytes;
+}
+
 // The linear value of sRGB byte `v` as DecodeTexture stores it (a float).
 inline double Linear(unsigned char v) { return static_cast<float>(SrgbToLinear(v / 255.0)); }
 
