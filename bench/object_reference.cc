@@ -1,7 +1,8 @@
-// object_reference SCENE MAX_PATHS SEED [RELATIVE_ERROR [OBJECT,...]] > REF.csv: an independent
-// per-object reference for a scene's mean radiosity, by path tracing, for bench/real_scenes.py
-// (issue 21). With a comma-separated list of object names, only those objects' rows (the
-// classroom's five largest surfaces at 4M paths each: ~2 CPU-min, standard error 0.3-0.4%).
+// object_reference [--emit MATERIAL=R,G,B ...] SCENE MAX_PATHS SEED [RELATIVE_ERROR [OBJECT,...]]
+// > REF.csv: an independent per-object reference for a scene's mean radiosity, by path tracing,
+// for bench/real_scenes.py (issue 21); --emit makes a material an emitter, as radflux's does. With
+// a comma-separated list of object names, only those objects' rows (the classroom's five largest
+// surfaces at 4M paths each: ~2 CPU-min, standard error 0.3-0.4%).
 //
 // Nothing of the radiosity solver is used (bench/reference_paths.h says what is): per object,
 // its area mean of E exactly, plus the mean of rho(x) H(x) over points x uniform by area over
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "bench/reference_paths.h"
+#include "solver/scene/import_options.h"
 #include "solver/scene/load_scene.h"
 
 namespace radflux {
@@ -117,9 +119,9 @@ std::string ObjectRow(const ReferenceTracer& tracer, const std::string& name,
   return line;
 }
 
-int Run(const std::string& path, int max_paths, uint64_t seed, double relative,
-        const std::string& only) {
-  auto scene = LoadScene(path, ImportOptions{});
+int Run(const ImportOptions& import, const std::string& path, int max_paths, uint64_t seed,
+        double relative, const std::string& only) {
+  auto scene = LoadScene(path, import);
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.status().ToString().c_str()), 1;
   auto tracer = ReferenceTracer::Create(*scene);
   if (!tracer.ok()) return std::fprintf(stderr, "%s\n", tracer.status().ToString().c_str()), 1;
@@ -150,13 +152,21 @@ int Run(const std::string& path, int max_paths, uint64_t seed, double relative,
 }  // namespace radflux
 
 int main(int argc, char** argv) {
-  if (argc < 4 || argc > 6) {
-    std::fprintf(
-        stderr,
-        "usage: object_reference SCENE MAX_PATHS_PER_OBJECT SEED [RELATIVE_ERROR [OBJECT,...]] > "
-        "REF.csv\n");
+  radflux::ImportOptions import;
+  int first = 1;
+  for (; first + 1 < argc && std::string(argv[first]) == "--emit"; first += 2) {
+    auto rule = radflux::ParseEmitRule(argv[first + 1]);
+    if (!rule.ok()) return std::fprintf(stderr, "%s\n", rule.status().ToString().c_str()), 2;
+    import.emit.push_back(*std::move(rule));
+  }
+  const int positional = argc - first;
+  if (positional < 3 || positional > 5) {
+    std::fprintf(stderr,
+                 "usage: object_reference [--emit MATERIAL=R,G,B ...] SCENE MAX_PATHS_PER_OBJECT "
+                 "SEED [RELATIVE_ERROR [OBJECT,...]] > REF.csv\n");
     return 2;
   }
-  return radflux::Run(argv[1], std::atoi(argv[2]), std::strtoull(argv[3], nullptr, 10),
-                      argc >= 5 ? std::atof(argv[4]) : 1e-3, argc == 6 ? argv[5] : "");
+  char** arg = argv + first;
+  return radflux::Run(import, arg[0], std::atoi(arg[1]), std::strtoull(arg[2], nullptr, 10),
+                      positional >= 4 ? std::atof(arg[3]) : 1e-3, positional == 5 ? arg[4] : "");
 }

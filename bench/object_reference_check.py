@@ -12,6 +12,9 @@ Usage: bench/object_reference_check.py [--binary build/ci/bench/object_reference
 3. A lamp (E = pi, rho 0) of 0.4 x 0.4 facing up, 2 cm under a grey square of the same size
    facing down (rho 0.5), nothing else: the square's B is rho E F, F of C-11 (the shadow
    rays from it to the lamp 2 cm away must not meet the lamp as their own blocker).
+4. The same with the lamp half transparent (map_d: a grey texel of 128, opacity 128/255)
+   and lit by --emit lamp=1,1,1 (no Ke): only its opaque part emits, so the square's B is
+   3.'s times 128/255.
 Each is asserted within 4 of the reference's own standard errors (plus 0.05% for what the
 standard error of a stratified mean can miss); exit 1 and one line per failure otherwise.
 """
@@ -21,7 +24,9 @@ import math
 import os
 import subprocess
 import sys
+import struct
 import tempfile
+import zlib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WALLS = {"floor": [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
@@ -55,20 +60,32 @@ def parallel_squares(a, c):
                                      + 2 * x * r * math.atan(x / r) - 2 * x * math.atan(x))
 
 
-def lamp_under_square(directory):
-    """Writes the lamp 2 cm under a grey square (3. above); its path."""
+def grey_png(path, value):
+    """Writes a 1 x 1 8-bit greyscale PNG of `value`."""
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 0, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(bytes([0, value]))) + chunk(b"IEND", b""))
+
+
+def lamp_under_square(directory, lamp="Ke 1 1 1"):
+    """Writes the lamp 2 cm under a grey square (3. above), `lamp` its material's last line;
+    its path."""
     with open(os.path.join(directory, "gap.mtl"), "w") as f:
-        f.write("newmtl lamp\nKd 0 0 0\nKe 1 1 1\nnewmtl grey\nKd 0.5 0.5 0.5\n")
+        f.write(f"newmtl lamp\nKd 0 0 0\n{lamp}\nnewmtl grey\nKd 0.5 0.5 0.5\n")
     with open(os.path.join(directory, "gap.obj"), "w") as f:
         f.write("mtllib gap.mtl\no lamp\nusemtl lamp\nv 0 0 0\nv 0.4 0 0\nv 0.4 0.4 0\n"
-                "v 0 0.4 0\nf 1 2 3 4\no square\nusemtl grey\nv 0 0 0.02\nv 0 0.4 0.02\n"
-                "v 0.4 0.4 0.02\nv 0.4 0 0.02\nf 5 6 7 8\n")
+                "v 0 0.4 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\no square\n"
+                "usemtl grey\nv 0 0 0.02\nv 0 0.4 0.02\nv 0.4 0.4 0.02\nv 0.4 0 0.02\n"
+                "f 5 6 7 8\n")
     return os.path.join(directory, "gap.obj")
 
 
-def run(binary, path):
+def run(binary, path, flags=()):
     """Object -> (B, standard error) from object_reference at 65,536 paths an object."""
-    out = subprocess.run([binary, path, "65536", "1",
+    out = subprocess.run([binary, *flags, path, "65536", "1",
                           "0.0005"], check=True, capture_output=True, text=True).stdout
     return {r["object"]: ((float(r["r"]) + float(r["g"]) + float(r["b"])) / 3, float(r["stderr"]))
             for r in csv.DictReader(io.StringIO(out))}
@@ -98,8 +115,12 @@ def main():
         for name, (b, se) in zip(("south", "north", "west", "east"), sides):
             check(f"floor emits, {name} wall against the side walls' mean", b, mean, se, failures)
         b, se = run(binary, lamp_under_square(directory))["square"]
-        check("a square 2 cm above a lamp", b, 0.5 * math.pi * parallel_squares(0.4, 0.02), se,
-              failures)
+        gap = 0.5 * math.pi * parallel_squares(0.4, 0.02)
+        check("a square 2 cm above a lamp", b, gap, se, failures)
+        grey_png(os.path.join(directory, "half.png"), 128)
+        b, se = run(binary, lamp_under_square(directory, "map_d half.png"),
+                    ("--emit", "lamp=1,1,1"))["square"]
+        check("a square 2 cm above a half transparent lamp", b, gap * 128 / 255, se, failures)
     sys.exit(1 if failures else 0)
 
 

@@ -60,7 +60,7 @@ absl::StatusOr<std::unique_ptr<ReferenceTracer>> ReferenceTracer::Create(const S
   tracer->epsilon_ = 1e-6 * Length(hi - lo);
   std::vector<double> power(m.size());
   for (uint32_t p = 0; p < m.size(); ++p)
-    power[p] = m.patches[p].area * Mean(tracer->MaterialOf(p).emission);
+    power[p] = m.patches[p].opacity * m.patches[p].area * Mean(tracer->MaterialOf(p).emission);
   for (double w : power) tracer->emitted_power_ += w;
   tracer->emitter_cdf_ = NormalisedCdf(power);
   return tracer;
@@ -114,8 +114,10 @@ Rgb ReferenceTracer::DirectIrradiance(double share, const Vec3& x, const Vec3& n
     const double light = emitters_.Pdf(s.patch, x, n, total);
     const double weight = light / (light + ContinuationPdf(share, x, n, s.direction, y, s.patch));
     const double g = cx / s.pdf * std::numbers::inv_pi * weight / kLightSamples;
+    // Only the emitter's opaque part emits (a continuation meets it with that probability).
+    const double opacity = mesh_.patches[s.patch].opacity;
     const Rgb& e = MaterialOf(s.patch).emission;
-    for (int c = 0; c < kBands; ++c) h[c] += e[c] * g;
+    for (int c = 0; c < kBands; ++c) h[c] += e[c] * g * opacity;
   }
   return h;
 }

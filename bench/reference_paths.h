@@ -5,8 +5,10 @@
 //
 // Conventions are radflux's: faces are single-sided (a ray meeting a back side ends: it
 // absorbs), emitters emit from their front only, reflectance is Lambertian and clamped as
-// on import. Per path vertex: kLightSamples next-event samples (ReferenceEmitters: emitter
-// by unoccluded irradiance, direction uniform in its solid angle), a continuation direction
+// on import; a partly transparent face (Patch::opacity < 1) lets a ray through as the ray
+// casters do, and emits from its opaque part only. Per path vertex: kLightSamples
+// next-event samples (ReferenceEmitters: emitter by unoccluded irradiance, direction uniform
+// in its solid angle), a continuation direction
 // from a mixture of the cosine and of the `guide` (points on bright surfaces, in proportion
 // to their reflected power: the lamp housings that light RenderPark's classroom are a small,
 // bright target a cosine bounce rarely finds), emitted light met by the continuation and by
@@ -75,11 +77,11 @@ class ReferenceTracer {
   PatchMesh mesh_;
   std::unique_ptr<EmbreeRayCaster> caster_;
   ReferenceEmitters emitters_;
-  double epsilon_ = 0;              // ray offset, scene units
-  std::vector<double> guide_cdf_;   // running sum of the guide's weights, ends at 1
-  std::vector<double> guide_pick_;  // per patch: its probability of being the guide's pick
-  double emitted_power_ = 0;        // sum over emitters of area x mean E
-  std::vector<double> emitter_cdf_; // by power, ends at 1 (the particles' start)
+  double epsilon_ = 0;               // ray offset, scene units
+  std::vector<double> guide_cdf_;    // running sum of the guide's weights, ends at 1
+  std::vector<double> guide_pick_;   // per patch: its probability of being the guide's pick
+  double emitted_power_ = 0;         // sum over emitters of area x mean E
+  std::vector<double> emitter_cdf_;  // by power, ends at 1 (the particles' start)
 };
 
 }  // namespace radflux

@@ -1,36 +1,12 @@
 #include "client/import_flags.h"
 
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_split.h"
 #include "solver/scene/mgf_loader.h"
 
 namespace radflux::cli {
-namespace {
-
-absl::StatusOr<std::pair<std::string, Rgb>> ParseEmit(const std::string& value) {
-  const size_t equals = value.rfind('=');
-  const auto bad = [&] {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "--emit '", value, "': expected MATERIAL=R,G,B (emitted radiance L_e, three numbers >= 0)"));
-  };
-  if (equals == std::string::npos || equals == 0) return bad();
-  const std::vector<std::string> parts = absl::StrSplit(value.substr(equals + 1), ',');
-  if (parts.size() != 3) return bad();
-  Rgb radiance{};
-  for (int b = 0; b < kBands; ++b) {
-    if (!absl::SimpleAtod(parts[b], &radiance[b]) || !std::isfinite(radiance[b]) || radiance[b] < 0) {
-      return bad();
-    }
-  }
-  return std::make_pair(value.substr(0, equals), radiance);
-}
-
-}  // namespace
 
 void AddImportFlags(CLI::App& app, ImportFlags& f) {
   constexpr const char* kGroup = "Import";
@@ -70,7 +46,7 @@ absl::StatusOr<ImportOptions> ToImportOptions(const ImportFlags& f) {
   options.strict = f.strict;
   options.two_sided = f.two_sided;
   for (const std::string& value : f.emit) {
-    absl::StatusOr<std::pair<std::string, Rgb>> emit = ParseEmit(value);
+    absl::StatusOr<std::pair<std::string, Rgb>> emit = ParseEmitRule(value);
     if (!emit.ok()) return emit.status();
     options.emit.push_back(*std::move(emit));
   }

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "solver/core/bands.h"
 
 namespace radflux {
@@ -26,5 +27,9 @@ struct ImportOptions {
   // a torus n x n; areas come out low by less than (pi/n)^2 (mgf_primitives.h).
   int curve_segments = 16;
 };
+
+// One --emit rule, MATERIAL=R,G,B (three numbers >= 0; the name may itself hold '='):
+// the material's name and its radiance, or InvalidArgument quoting `value`.
+absl::StatusOr<std::pair<std::string, Rgb>> ParseEmitRule(const std::string& value);
 
 }  // namespace radflux
