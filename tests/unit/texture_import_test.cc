@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -167,6 +168,8 @@ TEST(TextureImage, SrgbDecodeMatchesTheStandardsEndsAndBreak) {
   EXPECT_DOUBLE_EQ(SrgbToLinear(1), 1);
   EXPECT_DOUBLE_EQ(SrgbToLinear(0.04045), 0.04045 / 12.92);
   EXPECT_NEAR(SrgbToLinear(0.5), 0.214041, 1e-6);
+  for (int v = 0; v < 256; ++v)
+    EXPECT_NEAR(LinearToSrgb(SrgbToLinear(v / 255.0)), v / 255.0, 1e-12);
   EXPECT_FALSE(DecodeTexture("not an image", "x.png").ok());
 }
 
@@ -198,6 +201,63 @@ TEST(TextureImage, ClippedFootprintsAgreeWithTheSeparableRectangleMean) {
   const std::array<double, 4> b =
       TextureMean(*image, {rectangle[0], rectangle[2], rectangle[3]}, true);
   for (int c = 0; c < 4; ++c) EXPECT_NEAR((a[c] + b[c]) / 2, fast[c], 1e-12) << c;
+}
+
+// The mean of `image`'s texels (repeating, OBJ's v up) at an n x n grid of points in uv's
+// bounding box that lie inside uv (even-odd): an independent reading of TextureMean, within
+// about the grid's step.
+std::array<double, 4> PointSampledMean(const TextureImage& image, const std::vector<TexCoord>& uv,
+                                       int n) {
+  double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+  for (const TexCoord& c : uv) {
+    for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  std::array<double, 4> sum{};
+  int inside = 0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const double u = lo[0] + (i + 0.5) / n * (hi[0] - lo[0]);
+      const double v = lo[1] + (j + 0.5) / n * (hi[1] - lo[1]);
+      bool in = false;
+      for (size_t k = 0, m = uv.size() - 1; k < uv.size(); m = k++) {
+        if ((uv[k][1] > v) != (uv[m][1] > v) &&
+            u < uv[m][0] + (v - uv[m][1]) / (uv[k][1] - uv[m][1]) * (uv[k][0] - uv[m][0])) {
+          in = !in;
+        }
+      }
+      if (!in) continue;
+      ++inside;
+      const auto wrap = [](double t, int size) {
+        const int k = static_cast<int>(std::floor(t * size)) % size;
+        return k < 0 ? k + size : k;
+      };
+      const std::array<float, 4>& t = image.texels[static_cast<size_t>(
+          wrap(1 - v, image.height) * image.width + wrap(u, image.width))];
+      for (int c = 0; c < 4; ++c) sum[c] += t[c];
+    }
+  }
+  for (double& v : sum) v /= inside;
+  return sum;
+}
+
+TEST(TextureImage, SlantedAndNonConvexFootprintsWeighEachTexelByTheAreaOverIt) {
+  // 32 x 32 texels of scattered values; footprints over a few hundred of them, across the
+  // image's edge (repeat): a slanted quad (convex: texels wholly inside weigh 1 unclipped),
+  // a thin sliver, and an L (not convex: every texel clipped).
+  std::vector<unsigned char> rgba(32 * 32 * 4);
+  for (size_t k = 0; k < rgba.size(); ++k)
+    rgba[k] = static_cast<unsigned char>((k * 97 + 13) % 251);
+  absl::StatusOr<TextureImage> image = DecodeTexture(Png(32, 32, rgba), "scattered.png");
+  ASSERT_TRUE(image.ok()) << image.status();
+  const std::vector<std::vector<TexCoord>> footprints = {
+      {{.10, .05}, {.62, .21}, {.55, .83}, {-.07, .58}},
+      {{.02, .31}, {.97, .36}, {.96, .40}},
+      {{.1, .1}, {.9, .1}, {.9, .3}, {.35, .3}, {.35, .9}, {.1, .9}}};
+  for (size_t f = 0; f < footprints.size(); ++f) {
+    const std::array<double, 4> exact = TextureMean(*image, footprints[f], true);
+    const std::array<double, 4> sampled = PointSampledMean(*image, footprints[f], 2000);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(exact[c], sampled[c], 2e-3) << "footprint " << f;
+  }
 }
 
 }  // namespace
