@@ -1,9 +1,14 @@
 #!/usr/bin/python3
-"""RenderPark scenes against an independent per-object reference (issue 21).
+"""RenderPark's scenes and Lost Empire against an independent per-object reference (issue 21).
 
 Usage: bench/real_scenes.py [--build build/ci] [--cache /tmp/radflux-real] [--paths N]
                             [--relative-error R] [--scenes classroom,corridor,office2]
                             [-- extra radflux solve flags]
+
+--scenes takes any of classroom, corridor, office2 (the default) and lost_empire (its torches
+lit by --emit Torch=20,15,8, as in bench/RESULTS.md; its objects are its 46 'g' groups, one
+per material: the file has a single 'o', so the script reads a copy in CACHE with each 'g'
+made an 'o', its MTL and textures linked, not copied).
 
 For each scene: the reference is bench/object_reference (path tracing, no radiosity machinery;
 at most N paths an object, default PATHS per scene, fewer once its standard error is R of its
@@ -31,15 +36,40 @@ import sys
 import tempfile
 import time
 
-SCENES = {"classroom": "salon/classroom.mgf", "corridor": "corridor.mgf",
-          "office2": "office2/office2.mgf"}
+# name -> (file under ../shared/scenes, import flags given to radflux and to the reference)
+SCENES = {"classroom": ("renderpark/salon/classroom.mgf", []),
+          "corridor": ("renderpark/corridor.mgf", []),
+          "office2": ("renderpark/office2/office2.mgf", []),
+          "lost_empire": ("lost_empire/lost_empire.obj", ["--emit", "Torch=20,15,8"])}
+DEFAULT_SCENES = "classroom,corridor,office2"
+GROUPS_AS_OBJECTS = {"lost_empire"}
 RPK_SECONDS = {"classroom": 9.8, "corridor": 0.56, "office2": 0.90}  # issue 21's rpkCpp figures
 # Most paths an object per reference seed, within ~10 min each on a loaded 2-core machine:
 # the classroom's 629 objects (most of them dim chair and table frames) get fewer.
-PATHS = {"classroom": 65536, "corridor": 1048576, "office2": 1048576}
+PATHS = {"classroom": 65536, "corridor": 1048576, "office2": 1048576, "lost_empire": 1048576}
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(ROOT, "..", "shared", "scenes", "renderpark")
+SHARED = os.path.join(ROOT, "..", "shared", "scenes")
 SHARP = 0.0025  # the reference's relative standard error below which an object is "sharp"
+
+
+def scene_file(cache, name):
+    """The file radflux and the reference read for scene `name` (see GROUPS_AS_OBJECTS)."""
+    shared = os.path.join(SHARED, SCENES[name][0])
+    if name not in GROUPS_AS_OBJECTS:
+        return shared
+    folder = os.path.join(cache, f"{name}_groups")
+    copy = os.path.join(folder, os.path.basename(shared))
+    if not os.path.exists(copy):
+        os.makedirs(folder, exist_ok=True)
+        source = os.path.dirname(os.path.abspath(shared))
+        for entry in os.listdir(source):
+            if entry != os.path.basename(shared) and not os.path.exists(os.path.join(folder, entry)):
+                os.symlink(os.path.join(source, entry), os.path.join(folder, entry))
+        with open(shared) as f, open(copy + ".tmp", "w") as out:
+            for line in f:
+                out.write("o " + line[2:] if line.startswith("g ") else line)
+        os.replace(copy + ".tmp", copy)
+    return copy
 
 
 def reference(build, cache, name, paths, relative, seed):
@@ -47,9 +77,8 @@ def reference(build, cache, name, paths, relative, seed):
     path = os.path.join(cache, f"{name}_ref_v3_seed{seed}_{paths}.csv")
     if not os.path.exists(path):
         with open(path + ".tmp", "w") as out:
-            subprocess.run([os.path.join(build, "bench", "object_reference"),
-                            os.path.join(SHARED, SCENES[name]), str(paths), str(seed),
-                            str(relative)],
+            subprocess.run([os.path.join(build, "bench", "object_reference"), *SCENES[name][1],
+                            scene_file(cache, name), str(paths), str(seed), str(relative)],
                            stdout=out, check=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
         os.replace(path + ".tmp", path)
     with open(path) as f:
@@ -67,7 +96,7 @@ def references(opt, name):
     return ref1, ref2, mean
 
 
-def radflux(build, name, flags, timeout=None):
+def radflux(build, cache, name, flags, timeout=None):
     """One radflux solve: dict with wall and cpu seconds, exit status, the report, and per
     object (B x area summed, area) from --patch-values; None when it ran out of time.
     Exit 3 (not converged) and 4 (energy balance off) still write the outputs."""
@@ -78,8 +107,8 @@ def radflux(build, name, flags, timeout=None):
         try:
             status = subprocess.run(
                 [os.path.join(build, "client", "radflux-local"), "solve",
-                 os.path.join(SHARED, SCENES[name]), "-q", "--report", report,
-                 "--patch-values", values] + flags, timeout=timeout,
+                 scene_file(cache, name), "-q", "--report", report,
+                 "--patch-values", values] + SCENES[name][1] + flags, timeout=timeout,
                 env=dict(os.environ, OMP_WAIT_POLICY="passive")).returncode
         except subprocess.TimeoutExpired:
             return None
@@ -131,13 +160,13 @@ def main():
     extra = args[args.index("--") + 1:] if "--" in args else []
     args = args[:args.index("--")] if "--" in args else args
     opt = {"--build": os.path.join(ROOT, "build", "ci"), "--cache": "/tmp/radflux-real",
-           "--paths": "", "--relative-error": "0.001", "--scenes": ",".join(SCENES)}
+           "--paths": "", "--relative-error": "0.001", "--scenes": DEFAULT_SCENES}
     for i in range(0, len(args), 2):
         opt[args[i]] = args[i + 1]
     os.makedirs(opt["--cache"], exist_ok=True)
     for name in opt["--scenes"].split(","):
         ref1, ref2, ref = references(opt, name)
-        run = radflux(opt["--build"], name, extra)
+        run = radflux(opt["--build"], opt["--cache"], name, extra)
         err, sharp = errors(ref, run)
         keys = list(err)
         noise = statistics.median(ref[k][2] / ref[k][1] for k in keys) * 100
@@ -148,8 +177,8 @@ def main():
         said = {0: "", 3: " NOT CONVERGED", 4: " ENERGY BALANCE OFF"}[run["status"]]
         e, s = stats(list(err.values())), stats(list(sharp.values()))
         sharp_text = (f"max {s[0]:.2f}% median {s[1]:.2f}%, {s[2]} above 1%" if sharp else "none")
-        print(f"{name}{said}: {run['wall']:.2f} s wall, {run['cpu']:.2f} CPU-s (rpkCpp "
-              f"{RPK_SECONDS[name]} s); phases: {phases}; {len(keys)} objects: error max "
+        peer = f"rpkCpp {RPK_SECONDS[name]} s" if name in RPK_SECONDS else "no peer figure"
+        print(f"{name}{said}: {run['wall']:.2f} s wall, {run['cpu']:.2f} CPU-s ({peer}); phases: {phases}; {len(keys)} objects: error max "
               f"{e[0]:.2f}% ({worst}) median {e[1]:.2f}%, {e[2]} above 1%; reference: median "
               f"standard error {noise:.3f}%, seeds differ by a median {pulls:.2f} of theirs "
               f"(0.67 if honest); the {len(sharp)} objects it knows within {SHARP:.2%}: {sharp_text}")

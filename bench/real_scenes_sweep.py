@@ -34,7 +34,7 @@ COLUMNS = ["scene", "setting", "status", "wall_s", "cpu_s", "peak_rss_mib", "ray
 
 def measure(opt, name, ref, label, flags):
     """One CSV row (dict) for `flags` on scene `name`."""
-    run = rs.radflux(opt["--build"], name, flags, timeout=float(opt["--timeout"]))
+    run = rs.radflux(opt["--build"], opt["--cache"], name, flags, timeout=float(opt["--timeout"]))
     if run is None:
         return {"scene": name, "setting": label, "status": "timeout"}
     err, sharp = rs.errors(ref, run)
@@ -51,6 +51,9 @@ def measure(opt, name, ref, label, flags):
 
 def plot(csv_path, png_path, name):
     """CPU seconds against the sharp objects' median error, the defaults marked."""
+    rpk = rs.RPK_SECONDS.get(name)
+    peer = (f"set arrow from {rpk}, graph 0 to {rpk}, graph 1 nohead dt 2\n"
+            f"set label 'rpkCpp (wall)' at {rpk}, graph 0.95 offset 0.5,0\n" if rpk else "")
     script = f"""set terminal pngcairo size 900,600 noenhanced
 set output '{png_path}'
 set datafile separator ','
@@ -59,9 +62,7 @@ set xlabel 'CPU seconds of radflux solve (user + sys)'
 set ylabel 'median |error| of object mean B, % (objects known within 0.25%)'
 set title '{name}: radflux settings against the per-object path-traced reference'
 set grid
-set arrow from {rs.RPK_SECONDS[name]}, graph 0 to {rs.RPK_SECONDS[name]}, graph 1 nohead dt 2
-set label 'rpkCpp (wall)' at {rs.RPK_SECONDS[name]}, graph 0.95 offset 0.5,0
-plot '< grep -v timeout {csv_path}' every ::1 using 5:15:2 with labels left offset 0.5,0 font ',8' notitle, \\
+{peer}plot '< grep -v timeout {csv_path}' every ::1 using 5:15:2 with labels left offset 0.5,0 font ',8' notitle, \\
      '' every ::1 using 5:15 with points pt 7 title 'settings', \\
      '< grep ",defaults," {csv_path}' using 5:15 with points pt 6 ps 3 lw 2 title 'defaults'
 """
@@ -71,7 +72,7 @@ plot '< grep -v timeout {csv_path}' every ::1 using 5:15:2 with labels left offs
 def main():
     args = sys.argv[1:]
     opt = {"--build": os.path.join(rs.ROOT, "build", "ci"), "--cache": "/tmp/radflux-real",
-           "--paths": "", "--relative-error": "0.001", "--scenes": ",".join(rs.SCENES),
+           "--paths": "", "--relative-error": "0.001", "--scenes": rs.DEFAULT_SCENES,
            "--out": os.path.join(rs.ROOT, "bench", "results", "real"), "--timeout": "600"}
     for i in range(0, len(args), 2):
         opt[args[i]] = args[i + 1]
