@@ -11,26 +11,26 @@
 
 namespace radflux::testing {
 
-// A PNG of `width` x `height` RGBA pixels (rows from the top).
-inline std::string Png(int width, int height, const std::vector<unsigned char>& rgba) {
+// A PNG of `width` x `height` pixels of `channels` bytes each (rows from the top).
+inline std::string EncodePng(int width, int height, int channels,
+                             const std::vector<unsigned char>& pixels) {
   std::string bytes;
   stbi_write_png_to_func(
       [](void* context, void* data, int size) {
         static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
       },
-      &bytes, width, height, 4, rgba.data(), 4 * width);
+      &bytes, width, height, channels, pixels.data(), channels * width);
   return bytes;
+}
+
+// A PNG of `width` x `height` RGBA pixels (rows from the top).
+inline std::string Png(int width, int height, const std::vector<unsigned char>& rgba) {
+  return EncodePng(width, height, 4, rgba);
 }
 
 // A PNG of `width` x `height` grey pixels (one channel, no alpha; rows from the top).
 inline std::string GreyPng(int width, int height, const std::vector<unsigned char>& grey) {
-  std::string bytes;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size);
-      },
-      &bytes, width, height, 1, grey.data(), width);
-  return bytes;
+  return EncodePng(width, height, 1, grey);
 }
 
 // The linear value of sRGB byte `v` as DecodeTexture stores it (a float).
