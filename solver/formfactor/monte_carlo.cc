@@ -1,7 +1,8 @@
 // monte_carlo: k_i cosine-weighted rays from stratified points on patch i (k on average,
 // in proportion to the patch's area: row_rays.h); each ray that hits the front of a patch j
-// that does not emit adds 1/k_i to F_ij. Emitter columns come from light sampling (their
-// direct light would be the noisiest term): a fixed budget of light samples per row,
+// that does not emit adds 1/k_i to F_ij (an emitter's row: of any patch j). Emitter columns
+// of the other rows come from light sampling (their direct light would be the noisiest
+// term): a fixed budget of light samples per row,
 // whatever the number of emitter patches, combined by multiple importance sampling with the
 // cosine rays that hit emitters which fill much of the hemisphere (light_sampling.h); the
 // other hits on emitters count for nothing, so nothing is counted twice. A group with
@@ -122,6 +123,13 @@ class MonteCarloBuilder final : public RowBuilder {
     // power in the energy balance: its cosine rays keep the bright reflectors' columns, so
     // that its sum stays one multinomial draw (light_sampling.h), not two independent parts.
     const bool plain = lit_.emitter[i] != 0;
+    // An emitter's row keeps the emitters' columns too: all of it is its cosine rays, and it
+    // casts no light samples. Its B is mostly its own E, so the light other emitters give it
+    // needs no light sampling; and where emitters face each other closely (the conference
+    // room's fixtures, emitting faces with rho = 0.98 lining a reflector) the light samples'
+    // near-field noise took rows to sums of 1.39, the row-sum cap removed 1.25% of the room's
+    // light and the fixtures' many bounces made their B swing with the seed.
+    const bool emitter_row = context_.emitter[i] != 0;
     // A group with direct-light cells: the emitter columns come from the cells, its own light
     // samples and cosine hits estimate the bright reflectors' alone.
     const bool from_cells = context_.CellsOf(i).size() > 1;
@@ -136,7 +144,7 @@ class MonteCarloBuilder final : public RowBuilder {
       if (hit == kNoPatch) continue;
       const uint32_t j = context_.UnknownOf(hit);
       if (j == i && !group) continue;
-      if (columns.emitter[j]) {
+      if (columns.emitter[j] && !emitter_row) {
         emitter_hits.push_back({origins[r].x, origins[r].n, j});
       } else if (from_cells && context_.emitter[j]) {
         continue;
@@ -149,9 +157,12 @@ class MonteCarloBuilder final : public RowBuilder {
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
-    uint64_t light_rays = lights.AddEmitterColumns(
-        i, options_.samples * (kLightSamplesPerS / per_point), per_point, options_.seed, row,
-        emitter_hits, static_cast<uint32_t>(stream.size()), AreaShare(i));
+    uint64_t light_rays =
+        emitter_row ? 0
+                    : lights.AddEmitterColumns(
+                          i, options_.samples * (kLightSamplesPerS / per_point), per_point,
+                          options_.seed, row, emitter_hits, static_cast<uint32_t>(stream.size()),
+                          AreaShare(i));
     if (from_cells) {
       light_rays +=
           lights_.AddGroupEmitterColumns(i, CellLightSamplesPerGroup(options_), options_.seed, row);

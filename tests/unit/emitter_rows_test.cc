@@ -70,9 +70,9 @@ TEST(EmitterRows, ParallelLampsAtCloseRangeMatchHowell) {
 // 0.02 in front of one wall: emitter patches beside other emitters, facing them and facing
 // solid geometry at close range. Every row sums to 1 in expectation: the mean over 16 seeds
 // of each surface's rows is within 4 standard errors of 1 and within 0.5%. And the lamps'
-// rows (walls and ceiling, where the other lamps fill 80% of the hemisphere) spread by a
-// standard deviation of 0.042 here, against 0.052 with the light samples alone (their
-// cosine rays' hits on lamps dropped): below 0.047.
+// rows (walls, ceiling and bar, where the other lamps fill 80% of the hemisphere) are their
+// cosine rays alone, every one a hit: each sums to 1 up to float rounding (with light
+// samples for the lamps' columns they spread by a standard deviation of 0.042).
 TEST(EmitterRows, ClosedBoxOfLampsRowsSumToOne) {
   int next = 1;
   std::string obj;
@@ -117,14 +117,12 @@ TEST(EmitterRows, ClosedBoxOfLampsRowsSumToOne) {
     const double standard_error = spread / std::sqrt(double(e.rows));
     std::printf("  %-8s %4d rows: mean sum %.4f +- %.4f, spread %.4f\n", name.c_str(),
                 e.rows / seeds, mean, standard_error, spread);
-    EXPECT_NEAR(mean, 1, 4 * standard_error) << name;
+    EXPECT_NEAR(mean, 1, 4 * standard_error + 1e-6) << name;
     EXPECT_NEAR(mean, 1, 0.005) << name;
+    if (name != "floor") {
+      EXPECT_LT(spread, 1e-6) << name;
+    }
   }
-  const Sums lamps{by_object["walls"].sum + by_object["ceiling"].sum,
-                   by_object["walls"].sum2 + by_object["ceiling"].sum2,
-                   by_object["walls"].rows + by_object["ceiling"].rows};
-  const double mean = lamps.sum / lamps.rows;
-  EXPECT_LT(std::sqrt(lamps.sum2 / lamps.rows - mean * mean), 0.047);
 }
 
 }  // namespace
