@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "solver/core/seconds_since.h"
+#include "solver/formfactor/cell_detail.h"
 #include "solver/formfactor/cell_direct.h"
 #include "solver/formfactor/reciprocal_columns.h"
 #include "solver/formfactor/row_context.h"
@@ -215,12 +216,70 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   return result;
 }
 
+namespace {
+
+// The first solve's iterations and history ahead of the continued solve's.
+void PrependSolve(const SolveResult& first, SolveResult& then) {
+  then.iterations += first.iterations;
+  then.residual_history.insert(then.residual_history.begin(), first.residual_history.begin(),
+                               first.residual_history.end());
+  then.requested = first.requested;
+  then.method = first.method;
+  std::vector<SolverMethod> used = first.methods_used;
+  for (SolverMethod m : then.methods_used) {
+    if (used.empty() || used.back() != m) used.push_back(m);
+  }
+  then.methods_used = std::move(used);
+  if (then.fallback_reason.empty()) then.fallback_reason = first.fallback_reason;
+}
+
+// A grouped job with direct-light cells: the cells' detail as the unknowns with rows see it
+// (GatherCellDetail, from the solved emitters' B), rho H added to the source, and the solve
+// continued from its B with the method that finished it: result.solve then solves
+// B = E + rho (H + F B). Returns H per unknown (empty without cells).
+absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options,
+                                                     JobResult& result) {
+  if (result.job->rows.cells == nullptr) return std::vector<Rgb>{};
+  const auto start = std::chrono::steady_clock::now();
+  PatchAttributes source = result.job->attributes;
+  const CellDirectLight light =
+      ComputeCellDirectLight(result.job->rows, result.solve.radiosity, options.form_factors);
+  CellDetail detail =
+      GatherCellDetail(result.job->rows, CellDeviation(light, source), options.form_factors);
+  for (uint32_t u = 0; u < source.size(); ++u) {
+    for (int b = 0; b < kBands; ++b) {
+      source.emission[u][b] += source.reflectance[u][b] * detail.irradiance[u][b];
+    }
+  }
+  result.detail_rays = detail.rays;
+  result.timings.direct += SecondsSince(start);
+
+  const auto solve_start = std::chrono::steady_clock::now();
+  SolverOptions solver_options = options.solver;
+  if (solver_options.threads == 0) solver_options.threads = options.form_factors.threads;
+  if (!result.solve.methods_used.empty()) solver_options.method = result.solve.methods_used.back();
+  const std::vector<Rgb> first = result.solve.radiosity;
+  solver_options.initial = &first;
+  RadiositySystem system = result.System();
+  system.patches = &source;
+  absl::StatusOr<SolveResult> solved = Solve(system, solver_options);
+  if (!solved.ok()) return solved.status();
+  PrependSolve(result.solve, *solved);
+  result.solve = *std::move(solved);
+  result.timings.solve += SecondsSince(solve_start);
+  return std::move(detail.irradiance);
+}
+
+}  // namespace
+
 absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) {
   const PatchClusters& clusters = result.job->clusters;
   if (clusters.empty()) return absl::OkStatus();
-  absl::StatusOr<EnergyBalance> balance =
-      StreamEnergyBalance(result.System(), result.solve.radiosity,
-                          result.Sampling(options.form_factors), result.row_stats.scaled_off);
+  absl::StatusOr<std::vector<Rgb>> detail = SolveWithCellDetail(options, result);
+  if (!detail.ok()) return detail.status();
+  absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
+      result.System(), result.solve.radiosity, result.Sampling(options.form_factors),
+      result.row_stats.scaled_off, *detail);
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
   result.unknown_radiosity = result.solve.radiosity;

@@ -119,6 +119,7 @@ struct JobResult {
   // direct-light cell's own direct light), and what the cells' pass did.
   std::vector<Rgb> unknown_radiosity;
   uint64_t direct_cells = 0, direct_kept = 0, direct_rays = 0, direct_lifted = 0;
+  uint64_t detail_rays = 0;  // the cells' detail's gather (cell_detail.h)
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
   // by one or more patches): the energy balance of the system that was solved, or why there
   // is none (hierarchical: light moves along links, there are no rows). The report uses it
@@ -142,8 +143,10 @@ struct JobCallbacks {
   SolveCallback solve;  // per-iteration progress and snapshots
 };
 
-// After the solve of a job whose faces were grouped: the balance of the solved (grouped)
-// system into result.solved_balance, the solved B into result.unknown_radiosity, then
+// After the solve of a job whose faces were grouped: with direct-light cells, the solve
+// continued with the cells' detail as the unknowns see it (cell_detail.h) as a source beside E;
+// the balance of the solved (grouped) system into result.solved_balance (the detail's net
+// power its cell_detail term), the solved B into result.unknown_radiosity, then
 // result.solve.radiosity pushed down to one value per patch: its group's B with its
 // direct-light cell's own direct light (PushDownWithCellDirect; the group's area-weighted
 // mean stays its B). Nothing to do when the faces were not grouped.

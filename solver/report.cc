@@ -76,13 +76,14 @@ nlohmann::json BalanceJson(const absl::StatusOr<EnergyBalance>& balance) {
   const EnergyBalance& e = *balance;
   Rgb imbalance{};
   for (int b = 0; b < kBands; ++b) {
-    imbalance[b] = e.emitted[b] - e.absorbed[b] - e.escaped[b] - e.scaled_off[b];
+    imbalance[b] = e.Imbalance(b);
   }
   nlohmann::json out = {
       {"emitted", BandsJson(e.emitted)},
       {"absorbed", BandsJson(e.absorbed)},
       {"escaped", BandsJson(e.escaped)},
       {"scaled_off", BandsJson(e.scaled_off)},
+      {"cell_detail", BandsJson(e.cell_detail)},
       {"relative_scaled_off", e.RelativeScaledOff()},
       {"imbalance", BandsJson(imbalance)},
       {"noise", BandsJson(e.noise)},
@@ -150,6 +151,7 @@ nlohmann::json UnknownsJson(const JobResult& result) {
           {"direct_cells_sampled", result.direct_cells},
           {"direct_cells_kept", result.direct_kept},
           {"direct_rays", result.direct_rays},
+          {"cell_detail_rays", result.detail_rays},
           {"direct_lifted_patches", result.direct_lifted}};
 }
 

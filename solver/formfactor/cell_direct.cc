@@ -13,7 +13,7 @@ namespace {
 // D_c per cell (zero for cells not sampled: `sampled` 0), from the columns the rows kept
 // (context.cell_columns) or else drawn again; counts the cells found kept into `kept` and
 // returns the shadow rays cast.
-uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& sampled,
+uint64_t SampleCellDirect(const RowContext& context, const std::vector<uint8_t>& sampled,
                          const std::vector<Rgb>& b, const FormFactorOptions& options,
                          std::vector<Rgb>& direct, uint64_t& kept) {
   const LightSampler lights(context);
@@ -50,6 +50,44 @@ uint64_t CellDirectLight(const RowContext& context, const std::vector<uint8_t>& 
 
 }  // namespace
 
+CellDirectLight ComputeCellDirectLight(const RowContext& context, const std::vector<Rgb>& b,
+                                       const FormFactorOptions& options) {
+  CellDirectLight light;
+  const PatchClusters& cells = *context.cells;
+  const uint32_t unknowns = context.Unknowns();
+  light.group.resize(cells.size());
+  for (uint32_t c = 0; c < cells.size(); ++c) {
+    light.group[c] = context.UnknownOf(cells.Members(c)[0]);
+  }
+  light.sampled.assign(cells.size(), 0);
+  for (uint32_t c = 0; c < cells.size(); ++c) {
+    const uint32_t g = light.group[c];
+    light.sampled[c] = context.CellsOf(g).size() > 1 && context.needs_row[g];
+    light.cells += light.sampled[c];
+  }
+  light.rays = SampleCellDirect(context, light.sampled, b, options, light.direct, light.kept);
+  light.mean.assign(unknowns, Rgb{});
+  for (uint32_t c = 0; c < cells.size(); ++c) {
+    for (int k = 0; k < kBands; ++k) light.mean[light.group[c]][k] += cells.area[c] * light.direct[c][k];
+  }
+  for (uint32_t g = 0; g < unknowns; ++g) {
+    for (int k = 0; k < kBands; ++k) light.mean[g][k] /= context.Area(g);
+  }
+  return light;
+}
+
+std::vector<Rgb> CellDeviation(const CellDirectLight& light, const PatchAttributes& attributes) {
+  std::vector<Rgb> deviation(light.direct.size(), Rgb{});
+  for (uint32_t c = 0; c < deviation.size(); ++c) {
+    if (!light.sampled[c]) continue;
+    const uint32_t g = light.group[c];
+    for (int k = 0; k < kBands; ++k) {
+      deviation[c][k] = attributes.reflectance[g][k] * (light.direct[c][k] - light.mean[g][k]);
+    }
+  }
+  return deviation;
+}
+
 CellDirectResult PushDownWithCellDirect(const RowContext& context,
                                         const PatchAttributes& attributes,
                                         const std::vector<Rgb>& b,
@@ -61,32 +99,20 @@ CellDirectResult PushDownWithCellDirect(const RowContext& context,
     return result;
   }
   const PatchClusters& cells = *context.cells;
-  const uint32_t unknowns = context.Unknowns();
-  std::vector<uint32_t> group(cells.size());
-  for (uint32_t c = 0; c < cells.size(); ++c) group[c] = context.UnknownOf(cells.Members(c)[0]);
-  std::vector<uint8_t> sampled(cells.size(), 0);
-  for (uint32_t c = 0; c < cells.size(); ++c) {
-    sampled[c] = context.CellsOf(group[c]).size() > 1 && context.needs_row[group[c]];
-    result.cells += sampled[c];
-  }
-  std::vector<Rgb> direct;
-  result.rays = CellDirectLight(context, sampled, b, options, direct, result.kept);
-  std::vector<Rgb> mean(unknowns, Rgb{});  // Dbar_g
-  for (uint32_t c = 0; c < cells.size(); ++c) {
-    for (int k = 0; k < kBands; ++k) mean[group[c]][k] += cells.area[c] * direct[c][k];
-  }
-  for (uint32_t g = 0; g < unknowns; ++g) {
-    for (int k = 0; k < kBands; ++k) mean[g][k] /= context.Area(g);
-  }
+  const CellDirectLight light = ComputeCellDirectLight(context, b, options);
+  result.cells = light.cells;
+  result.kept = light.kept;
+  result.rays = light.rays;
+  const std::vector<Rgb> deviation = CellDeviation(light, attributes);
   result.radiosity.resize(cells.of_patch.size());
   for (uint32_t p = 0; p < result.radiosity.size(); ++p) {
-    const uint32_t c = cells.of_patch[p], g = group[c];
+    const uint32_t c = cells.of_patch[p], g = light.group[c];
     Rgb& out = result.radiosity[p];
     out = b[g];
-    if (!sampled[c]) continue;
+    if (!light.sampled[c]) continue;
     bool lifted = false;
     for (int k = 0; k < kBands; ++k) {
-      out[k] += attributes.reflectance[g][k] * (direct[c][k] - mean[g][k]);
+      out[k] += deviation[c][k];
       lifted = lifted || out[k] < attributes.emission[g][k];
       out[k] = std::max(out[k], attributes.emission[g][k]);
     }

@@ -38,6 +38,22 @@ struct CellDirectResult {
   double seconds = 0;
 };
 
+// D_c of every cell and Dbar_g of every group, from `b` per unknown (the emitters' B): what
+// the push-down shows, drawn as PushDownWithCellDirect draws it (context.cells set).
+struct CellDirectLight {
+  std::vector<uint32_t> group;   // per cell, its unknown
+  std::vector<uint8_t> sampled;  // per cell, 1 where its group has more than one cell and a row
+  std::vector<Rgb> direct;       // D_c per cell (0 where not sampled)
+  std::vector<Rgb> mean;         // Dbar_g per unknown
+  uint64_t cells = 0, kept = 0, rays = 0;  // as CellDirectResult's
+};
+CellDirectLight ComputeCellDirectLight(const RowContext& context, const std::vector<Rgb>& b,
+                                       const FormFactorOptions& options);
+
+// Per cell, what its patches show above their group's B: rho_g (D_c - Dbar_g) (0 where not
+// sampled). Its area-weighted sum over a group's cells is 0.
+std::vector<Rgb> CellDeviation(const CellDirectLight& light, const PatchAttributes& attributes);
+
 // B per patch as above, from `b` per unknown of context (grouped: context.clusters and
 // context.cells set) and `attributes` per unknown; each group's cells share a budget of
 // CellLightSamplesPerGroup(options) light samples, seeded from options.seed: the cells'

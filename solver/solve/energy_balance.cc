@@ -98,7 +98,7 @@ double EnergyBalance::RelativeImbalance() const {
   for (int b = 0; b < kBands; ++b) {
     if (emitted[b] <= 0) continue;
     worst = std::max(worst,
-                     std::abs(emitted[b] - absorbed[b] - escaped[b] - scaled_off[b]) / emitted[b]);
+                     std::abs(Imbalance(b)) / emitted[b]);
   }
   return worst;
 }
@@ -125,7 +125,7 @@ bool EnergyBalance::Ok() const {
     const double allowed =
         std::min(kEnergyBalanceCeiling * emitted[b],
                  std::max(kEnergyBalanceFloor * emitted[b], kEnergyBalanceSigmas * noise[b]));
-    if (!(std::abs(emitted[b] - absorbed[b] - escaped[b] - scaled_off[b]) <= allowed)) return false;
+    if (!(std::abs(Imbalance(b)) <= allowed)) return false;
     if (!(scaled_off[b] <= allowed)) return false;
   }
   return true;
@@ -144,7 +144,7 @@ std::string EnergyBalance::Why() const {
       return "escaped is negative: rows or emitter columns carry more than the power that "
              "leaves a patch (overlapping or coincident faces counted twice, row sums above 1)";
     }
-    imbalance += emitted[b] - absorbed[b] - escaped[b] - scaled_off[b];
+    imbalance += Imbalance(b);
   }
   return imbalance > 0
              ? "absorbed + escaped fall short of emitted: light the rows lose (rows that are "
@@ -163,7 +163,8 @@ std::string EnergyBalance::OffMessage() const {
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
                                                   const RowSampling& sampling,
-                                                  std::span<const ScaledRow> scaled_off) {
+                                                  std::span<const ScaledRow> scaled_off,
+                                                  std::span<const Rgb> detail) {
   const PatchAttributes& p = *system.patches;
   EnergyBalance out;
   BalancePass pass{std::vector<Rgb>(p.size(), Rgb{}), std::vector<Rgb>(p.size(), Rgb{}),
@@ -179,6 +180,12 @@ absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
       });
   if (!read.ok()) return read;
   Rgb pairs_square{};
+  for (uint32_t j = 0; j < detail.size() && j < p.size(); ++j) {
+    for (int b = 0; b < kBands; ++b) {
+      pass.arriving[j][b] += p.area[j] * detail[j][b];
+      out.cell_detail[b] += p.area[j] * detail[j][b];
+    }
+  }
   for (uint32_t j = 0; j < p.size(); ++j) {
     for (int b = 0; b < kBands; ++b) {
       out.emitted[b] += p.area[j] * p.emission[j][b];

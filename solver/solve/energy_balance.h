@@ -41,6 +41,16 @@ struct EnergyBalance {
   // books read emitted = absorbed + escaped + scaled_off, and a balance is ok only when
   // scaled_off too is within the tolerance.
   Rgb scaled_off{};
+  // A grouped solve's second source (cell_detail.h): the power its cells' direct light, brighter
+  // or darker than their group's B, brings to the unknowns with rows beyond what the groups'
+  // B brings (sum_i A_i H_i, absorbed and reflected as any arriving power), W per band; 0
+  // without cells. Redistributed, not emitted: the books read emitted + cell_detail =
+  // absorbed + escaped + scaled_off.
+  Rgb cell_detail{};
+  // emitted + cell_detail - absorbed - escaped - scaled_off in band b.
+  double Imbalance(int b) const {
+    return emitted[b] + cell_detail[b] - absorbed[b] - escaped[b] - scaled_off[b];
+  }
   // Standard deviation of emitted - absorbed - escaped that the rows' Monte Carlo noise
   // alone gives (0 for rows that are not sampled), per band, W. At the solution the
   // imbalance is sum_ij A_i F_ij (rho_j B_i - rho_i B_j) = sum_ij A_i F_ij w_ij, zero for
@@ -56,7 +66,7 @@ struct EnergyBalance {
   //    D_j^2 less the part the emitters' rays explain (sum (A_e F_ej w)^2 (1 - F_ej) /
   //    (F_ej k)) estimates the light samples' variance.
   Rgb noise{};
-  // |emitted - absorbed - escaped - scaled_off| / emitted, max over emitting bands.
+  // |Imbalance| / emitted, max over emitting bands.
   double RelativeImbalance() const;
   // scaled_off / emitted, max over emitting bands.
   double RelativeScaledOff() const;
@@ -86,11 +96,13 @@ struct RowSampling {
 
 // The balance of `radiosity`, reading the rows once in order (streamed when the system's
 // rows are in a row store: then its read error); `scaled_off`: the rows the row-sum cap
-// scaled back (RowBlockStats::scaled_off), booked as EnergyBalance::scaled_off.
+// scaled back (RowBlockStats::scaled_off), booked as EnergyBalance::scaled_off; `detail`: H
+// per unknown when the solve had the cells' detail as a source (cell_detail.h), else empty.
 absl::StatusOr<EnergyBalance> StreamEnergyBalance(const RadiositySystem& system,
                                                   const std::vector<Rgb>& radiosity,
                                                   const RowSampling& sampling = {},
-                                                  std::span<const ScaledRow> scaled_off = {});
+                                                  std::span<const ScaledRow> scaled_off = {},
+                                                  std::span<const Rgb> detail = {});
 // The same for rows in memory (system.form_factors), which cannot fail.
 EnergyBalance ComputeEnergyBalance(const RadiositySystem& system, const std::vector<Rgb>& radiosity,
                                    const RowSampling& sampling = {},

@@ -1,7 +1,6 @@
-// Monte Carlo rows of emitting patches (lamps with Kd > 0 have rows too) whose emitter
-// columns come from light samples combined with the rows' cosine rays (light_sampling.h):
-// Howell's closed forms between two emitters at close range, and a closed box of emitters
-// whose every row sums to 1 in expectation, with less spread than the light samples alone.
+// Monte Carlo rows of emitting patches (lamps with Kd > 0 have rows too), their cosine rays
+// alone, emitter columns included (monte_carlo.cc): Howell's closed forms between two
+// emitters at close range, and a closed box of emitters whose every row sums to 1.
 #include <gtest/gtest.h>
 
 #include <cmath>
