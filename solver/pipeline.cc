@@ -290,7 +290,7 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
   result.direct_kept = pushed.kept;
   result.direct_rays = pushed.rays;
   result.direct_lifted = pushed.lifted;
-  result.timings.direct = pushed.seconds;
+  result.timings.direct += pushed.seconds;
   return absl::OkStatus();
 }
 

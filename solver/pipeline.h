@@ -102,7 +102,8 @@ uint64_t EstimateJobBytes(uint64_t patches, const JobOptions& options);
 
 struct JobTimings {
   double load = 0, mesh = 0, embree = 0, rows = 0, solve = 0;  // seconds per phase
-  double direct = 0;  // grouped: the cells' direct light after the solve (cell_direct.h)
+  double direct = 0;  // grouped: the cells' direct light and detail after the solve
+                      // (cell_direct.h, cell_detail.h)
 };
 
 struct JobResult {
