@@ -236,10 +236,13 @@ void PrependSolve(const SolveResult& first, SolveResult& then) {
 // A grouped job with direct-light cells: the cells' detail as the unknowns with rows see it
 // (GatherCellDetail, from the solved emitters' B), rho H added to the source, and the solve
 // continued from its B with the method that finished it: result.solve then solves
-// B = E + rho (H + F B). Returns H per unknown (empty without cells).
+// B = E + rho (H + F B). Returns H per unknown (empty without cells, or when the solve was
+// cancelled or did not converge: it is then left as it stopped, and says so).
 absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options,
                                                      JobResult& result) {
-  if (result.job->rows.cells == nullptr) return std::vector<Rgb>{};
+  if (result.job->rows.cells == nullptr || result.solve.cancelled || !result.solve.converged) {
+    return std::vector<Rgb>{};
+  }
   const auto start = std::chrono::steady_clock::now();
   PatchAttributes source = result.job->attributes;
   const CellDirectLight light =

@@ -649,5 +649,32 @@ TEST(FaceGrouping, KeptAndRedrawnCellColumnsPushDownTheSameRadiosity) {
   }
 }
 
+// A converged grouped solve goes on with its cells' detail as a source (cell_detail.h): it
+// casts the gather's rays, books its power, and the iterations of both solves are counted. One
+// stopped short of its tolerance is left as it stopped: no second solve (max_iterations is
+// not spent twice), no detail, and still not converged.
+TEST(FaceGrouping, OnlyAConvergedSolveGoesOnWithItsCellsDetail) {
+  const Scene scene = TessellatedBox();
+  JobOptions options;
+  options.mesh.target_patches = 300;
+  absl::StatusOr<JobResult> converged = RunJob(scene, options);
+  ASSERT_TRUE(converged.ok()) << converged.status();
+  EXPECT_TRUE(converged->solve.converged);
+  EXPECT_GT(converged->detail_rays, 0u);
+  ASSERT_TRUE(converged->solved_balance.has_value() && converged->solved_balance->ok());
+  EXPECT_NE((*converged->solved_balance)->cell_detail[0], 0.0);
+  EXPECT_EQ(converged->solve.residual_history.size(),
+            static_cast<size_t>(converged->solve.iterations));
+
+  options.solver.tolerance = 1e-12;
+  options.solver.max_iterations = 2;
+  absl::StatusOr<JobResult> stopped = RunJob(scene, options);
+  ASSERT_TRUE(stopped.ok()) << stopped.status();
+  EXPECT_FALSE(stopped->solve.converged);
+  EXPECT_EQ(stopped->solve.iterations, 2);
+  EXPECT_EQ(stopped->detail_rays, 0u);
+  EXPECT_EQ((*stopped->solved_balance)->cell_detail[0], 0.0);
+}
+
 }  // namespace
 }  // namespace radflux
