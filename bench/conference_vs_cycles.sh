@@ -30,6 +30,12 @@ cam=(--camera-pos 1550,400,-300 --camera-look-at 0,200,-200 --camera-up 0,1,0 --
 [ -f "$out/conf.obj" ] || python3 "$here/clean_real_scene.py" \
   "$root/../shared/scenes/conference/conference.obj" "$out/conf" --emit mesh16_SG --ke 20 --max-kd 0.98
 spp=${SPP:-2048}
+# Blender runs the references; its Python needs NumPy (neither is a radflux dependency).
+command -v blender > /dev/null && /usr/bin/python3 -c "import numpy" 2> /dev/null || {
+  echo "conference_vs_cycles.sh: needs Debian's blender and python3-numpy" \
+       "(apt-get install blender python3-numpy)" >&2
+  exit 1
+}
 [ -f "$out/conf_m.obj" ] || /usr/bin/python3 "$here/obj_scaled.py" "$out/conf.obj" "$out/conf_m.obj" 0.01
 refs=()
 for seed in 1 2; do
@@ -38,6 +44,7 @@ for seed in 1 2; do
     --python "$root/../shared/tools/cycles_reference.py" -- "$out/conf_m.obj" "${refs[-1]%.npy}" \
     --pos 15.5,4,-3 --look 0,2,-2 --up 0,1,0 --fov 60 --size 160x120 --samples "$spp" \
     --seed $seed --max-refl 0.98 --threads 2 > "$out/render_m_${spp}_seed$seed.log" 2>&1
+  [ -f "${refs[-1]}" ] || { echo "Cycles wrote no ${refs[-1]}: see $out/render_m_${spp}_seed$seed.log" >&2; exit 1; }
 done
 read -r -a extra <<< "${EXTRA:-}"
 for patches in default "$@"; do

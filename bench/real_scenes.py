@@ -19,7 +19,8 @@ area-weighted mean of (r+g+b)/3 over the object's full face area (the part conta
 leaves out, covered by another face, counted as dark, as it is in the reference).
 
 Prints one line per scene: wall and CPU time (user + sys of the solve), phases, and
-|radflux / reference - 1| over the judged objects (max, median, how many exceed 1%), then the
+|radflux / reference - 1| over the judged objects (max, median, how many exceed 1%, and its
+mean weighted by the objects' areas: "area-weighted" in bench/RESULTS.md), then the
 same over the objects the reference knows within 0.25% (standard error of the two seeds'
 mean: a 1% error is 4 of them). Judged: objects that reflect (the reference's standard
 error > 0) and are not dim (mean above 1% of the median object's); emitters that reflect are
@@ -176,10 +177,12 @@ def main():
         phases = " ".join(f"{k} {v:.3f}" for k, v in run["report"]["seconds"].items() if v >= 0.0005)
         said = {0: "", 3: " NOT CONVERGED", 4: " ENERGY BALANCE OFF"}[run["status"]]
         e, s = stats(list(err.values())), stats(list(sharp.values()))
+        area = sum(ref[k][0] for k in keys)
+        weighted = sum(ref[k][0] * abs(err[k]) for k in keys) / area * 100
         sharp_text = (f"max {s[0]:.2f}% median {s[1]:.2f}%, {s[2]} above 1%" if sharp else "none")
         peer = f"rpkCpp {RPK_SECONDS[name]} s" if name in RPK_SECONDS else "no peer figure"
         print(f"{name}{said}: {run['wall']:.2f} s wall, {run['cpu']:.2f} CPU-s ({peer}); phases: {phases}; {len(keys)} objects: error max "
-              f"{e[0]:.2f}% ({worst}) median {e[1]:.2f}%, {e[2]} above 1%; reference: median "
+              f"{e[0]:.2f}% ({worst}) median {e[1]:.2f}%, {e[2]} above 1%, area-weighted {weighted:.2f}%; reference: median "
               f"standard error {noise:.3f}%, seeds differ by a median {pulls:.2f} of theirs "
               f"(0.67 if honest); the {len(sharp)} objects it knows within {SHARP:.2%}: {sharp_text}")
 
