@@ -238,8 +238,7 @@ void PrependSolve(const SolveResult& first, SolveResult& then) {
 // continued from its B with the method that finished it: result.solve then solves
 // B = E + rho (H + F B). Returns H per unknown (empty without cells, or when the solve was
 // cancelled or did not converge: it is then left as it stopped, and says so).
-absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options,
-                                                     JobResult& result) {
+absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, JobResult& result) {
   if (result.job->rows.cells == nullptr || result.solve.cancelled || !result.solve.converged) {
     return std::vector<Rgb>{};
   }

@@ -14,8 +14,8 @@ namespace {
 // (context.cell_columns) or else drawn again; counts the cells found kept into `kept` and
 // returns the shadow rays cast.
 uint64_t SampleCellDirect(const RowContext& context, const std::vector<uint8_t>& sampled,
-                         const std::vector<Rgb>& b, const FormFactorOptions& options,
-                         std::vector<Rgb>& direct, uint64_t& kept) {
+                          const std::vector<Rgb>& b, const FormFactorOptions& options,
+                          std::vector<Rgb>& direct, uint64_t& kept) {
   const LightSampler lights(context);
   const int threads = options.threads > 0 ? options.threads : DefaultThreadCount();
   const int budget = CellLightSamplesPerGroup(options);
@@ -68,7 +68,8 @@ CellDirectLight ComputeCellDirectLight(const RowContext& context, const std::vec
   light.rays = SampleCellDirect(context, light.sampled, b, options, light.direct, light.kept);
   light.mean.assign(unknowns, Rgb{});
   for (uint32_t c = 0; c < cells.size(); ++c) {
-    for (int k = 0; k < kBands; ++k) light.mean[light.group[c]][k] += cells.area[c] * light.direct[c][k];
+    for (int k = 0; k < kBands; ++k)
+      light.mean[light.group[c]][k] += cells.area[c] * light.direct[c][k];
   }
   for (uint32_t g = 0; g < unknowns; ++g) {
     for (int k = 0; k < kBands; ++k) light.mean[g][k] /= context.Area(g);

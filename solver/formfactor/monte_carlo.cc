@@ -157,12 +157,11 @@ class MonteCarloBuilder final : public RowBuilder {
     // face a lamp, some do not): its light samples each take a point of their own, so the
     // budget is spread over the whole group instead of a few spots that mostly miss the lit ones.
     const int per_point = group ? 1 : kLightSamplesAtAPoint;
-    uint64_t light_rays =
-        emitter_row ? 0
-                    : lights.AddEmitterColumns(
-                          i, options_.samples * (kLightSamplesPerS / per_point), per_point,
-                          options_.seed, row, emitter_hits, static_cast<uint32_t>(stream.size()),
-                          AreaShare(i));
+    uint64_t light_rays = emitter_row ? 0
+                                      : lights.AddEmitterColumns(
+                                            i, options_.samples * (kLightSamplesPerS / per_point),
+                                            per_point, options_.seed, row, emitter_hits,
+                                            static_cast<uint32_t>(stream.size()), AreaShare(i));
     if (from_cells) {
       light_rays +=
           lights_.AddGroupEmitterColumns(i, CellLightSamplesPerGroup(options_), options_.seed, row);

@@ -97,8 +97,7 @@ double EnergyBalance::RelativeImbalance() const {
   double worst = 0;
   for (int b = 0; b < kBands; ++b) {
     if (emitted[b] <= 0) continue;
-    worst = std::max(worst,
-                     std::abs(Imbalance(b)) / emitted[b]);
+    worst = std::max(worst, std::abs(Imbalance(b)) / emitted[b]);
   }
   return worst;
 }

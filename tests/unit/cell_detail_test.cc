@@ -1,12 +1,13 @@
 // The cells' detail as the unknowns see it (cell_detail.h) against closed forms: a receiver
 // above a group of three cells, one below it, one beside it, one facing away.
+#include "solver/formfactor/cell_detail.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
 #include "howell_closed_forms.h"
-#include "solver/formfactor/cell_detail.h"
 #include "test_scenes.h"
 
 namespace radflux {
@@ -45,8 +46,8 @@ TEST(CellDetail, EachCellWeighsItsDeviationByTheFormFactorToIt) {
   options.rays = 65536;  // the receiver casts 32,768 (its area against the mean row's, 2)
   const CellDetail detail = GatherCellDetail(context, deviation, options);
 
-  const double below = testing::ParallelRectangles(1, 1, 1);         // 0.19982
-  const double beside = testing::PerpendicularRectangles(1, 1, 1);   // 0.20004
+  const double below = testing::ParallelRectangles(1, 1, 1);        // 0.19982
+  const double beside = testing::PerpendicularRectangles(1, 1, 1);  // 0.20004
   const Rgb receiver = detail.irradiance[0], group = detail.irradiance[1];
   for (int b = 0; b < kBands; ++b) {
     // The receiver sees "below" and "beside", each with its own form factor.
