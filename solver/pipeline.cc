@@ -21,6 +21,13 @@ absl::Status Require(bool ok, const std::string& what) {
   return ok ? absl::OkStatus() : absl::InvalidArgumentError(what);
 }
 
+// The job's solver options, on the rows' threads unless --threads says otherwise.
+SolverOptions JobSolverOptions(const JobOptions& options) {
+  SolverOptions solver = options.solver;
+  if (solver.threads == 0) solver.threads = options.form_factors.threads;
+  return solver;
+}
+
 // The rows of `result`'s job: into result.form_factors, or into a row store that spills
 // beyond options.spill.memory_limit.
 absl::Status BuildRows(const JobOptions& options, const JobCallbacks& callbacks,
@@ -206,9 +213,8 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   if (absl::Status s = BuildRows(options, callbacks, result); !s.ok()) return s;
 
   const auto start = std::chrono::steady_clock::now();
-  SolverOptions solver_options = options.solver;
-  if (solver_options.threads == 0) solver_options.threads = options.form_factors.threads;
-  absl::StatusOr<SolveResult> solved = Solve(result.System(), solver_options, callbacks.solve);
+  absl::StatusOr<SolveResult> solved =
+      Solve(result.System(), JobSolverOptions(options), callbacks.solve);
   if (!solved.ok()) return solved.status();
   result.solve = *std::move(solved);
   result.timings.solve = SecondsSince(start);
@@ -254,13 +260,14 @@ absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, 
     }
   }
   result.detail_rays = detail.rays;
+  result.direct_kept = light.kept;  // the push-down finds every cell kept after this pass
+  result.direct_rays = light.rays;
   result.timings.direct += SecondsSince(start);
 
   const auto solve_start = std::chrono::steady_clock::now();
-  SolverOptions solver_options = options.solver;
-  if (solver_options.threads == 0) solver_options.threads = options.form_factors.threads;
+  SolverOptions solver_options = JobSolverOptions(options);
   if (!result.solve.methods_used.empty()) solver_options.method = result.solve.methods_used.back();
-  const std::vector<Rgb> first = result.solve.radiosity;
+  const std::vector<Rgb> first = std::move(result.solve.radiosity);
   solver_options.initial = &first;
   RadiositySystem system = result.System();
   system.patches = &source;
@@ -289,8 +296,8 @@ absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) 
                                                    result.unknown_radiosity, options.form_factors);
   result.solve.radiosity = std::move(pushed.radiosity);
   result.direct_cells = pushed.cells;
-  result.direct_kept = pushed.kept;
-  result.direct_rays = pushed.rays;
+  if (detail->empty()) result.direct_kept = pushed.kept;
+  result.direct_rays += pushed.rays;
   result.direct_lifted = pushed.lifted;
   result.timings.direct += pushed.seconds;
   return absl::OkStatus();

@@ -2,9 +2,9 @@
 // group rows drew them (monte_carlo: LightSampler::AddGroupEmitterColumns), kept so that the
 // push-down after the solve reads them instead of casting the same seeded samples again.
 // A cell's columns are kept with the (seed, budget) they were drawn with; the push-down takes
-// them only for its own, and draws again the cells it does not find (rows built by remote
-// workers, or read back from disk): the samples are seeded, so either way it gets the same
-// numbers, bit for bit.
+// them only for its own, and draws again (and keeps) the cells it does not find (rows built by
+// remote workers, or read back from disk): the samples are seeded, so either way it gets the
+// same numbers, bit for bit.
 #pragma once
 
 #include <atomic>

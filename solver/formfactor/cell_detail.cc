@@ -1,5 +1,7 @@
 #include "solver/formfactor/cell_detail.h"
 
+#include <atomic>
+
 #include "solver/core/parallel.h"
 #include "solver/core/sampling.h"
 #include "solver/formfactor/row_rays.h"
@@ -19,24 +21,21 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
   const PatchClusters& cells = *context.cells;
   CellDetail detail;
   detail.irradiance.assign(unknowns, Rgb{});
-  const int threads = ThreadCount(options.threads);
-  std::vector<uint64_t> rays(static_cast<size_t>(std::max(threads, DefaultThreadCount())), 0);
+  std::atomic<uint64_t> rays{0};
   ParallelFor(unknowns, 16, options.threads, [&](int64_t begin, int64_t end) {
     thread_local std::vector<StreamRay> stream;
     for (int64_t u = begin; u < end; ++u) {
       const uint32_t i = static_cast<uint32_t>(u);
       if (!context.needs_row[i]) continue;
-      const double area = i < context.opaque_area.size() ? context.opaque_area[i] : 0;
-      const uint32_t k = RowRayCount(options.rays, area, context.mean_row_area);
+      const uint32_t k = RowRayCount(options.rays, context.OpaqueArea(i), context.mean_row_area);
       const uint32_t points = PatternSeed(options.seed, i, kPointStream);
       const uint32_t directions = PatternSeed(options.seed, i, kDirectionStream);
       const UnknownPointSampler sample_point(*context.mesh, context.clusters, i);
-      stream.assign(k, StreamRay{});
+      stream.resize(k);
       for (uint32_t r = 0; r < k; ++r) {
-        const SurfacePoint at = sample_point(MultiJitteredSample(r, k, points));
-        const Point2 d = MultiJitteredSample(PermuteIndex(r, k, directions), k, directions);
-        stream[r].SetOrigin(at.x + at.n * context.ray_epsilon);
-        stream[r].SetDirection(Frame::FromNormal(at.n).ToWorld(SampleCosineHemisphere(d)));
+        stream[r] =
+            context.CosineRay(sample_point(MultiJitteredSample(r, k, points)),
+                              MultiJitteredSample(PermuteIndex(r, k, directions), k, directions));
       }
       context.caster->IntersectStream(stream);
       Rgb& h = detail.irradiance[i];
@@ -47,10 +46,10 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
         const Rgb& delta = deviation[cells.of_patch[hit]];
         for (int b = 0; b < kBands; ++b) h[b] += weight * delta[b];
       }
-      rays[static_cast<size_t>(ThreadIndex())] += k;
+      rays += k;
     }
   });
-  for (uint64_t r : rays) detail.rays += r;
+  detail.rays = rays;
   return detail;
 }
 

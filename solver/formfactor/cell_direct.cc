@@ -11,8 +11,9 @@ namespace radflux {
 namespace {
 
 // D_c per cell (zero for cells not sampled: `sampled` 0), from the columns the rows kept
-// (context.cell_columns) or else drawn again; counts the cells found kept into `kept` and
-// returns the shadow rays cast.
+// (context.cell_columns) or else drawn again and kept there, so that a second pass over the
+// same cells (the cells' detail, then the push-down) draws none twice; counts the cells found
+// kept into `kept` and returns the shadow rays cast.
 uint64_t SampleCellDirect(const RowContext& context, const std::vector<uint8_t>& sampled,
                           const std::vector<Rgb>& b, const FormFactorOptions& options,
                           std::vector<Rgb>& direct, uint64_t& kept) {
@@ -35,6 +36,9 @@ uint64_t SampleCellDirect(const RowContext& context, const std::vector<uint8_t>&
         ++found[t];
       } else {
         rays[t] += lights.CellEmitterColumns(cell, budget, options.seed, drawn);
+        if (context.cell_columns != nullptr) {
+          context.cell_columns->Keep(cell, options.seed, budget, drawn);
+        }
         columns = &drawn;
       }
       Rgb& d = direct[c];
@@ -56,12 +60,9 @@ CellDirectLight ComputeCellDirectLight(const RowContext& context, const std::vec
   const PatchClusters& cells = *context.cells;
   const uint32_t unknowns = context.Unknowns();
   light.group.resize(cells.size());
+  light.sampled.resize(cells.size());
   for (uint32_t c = 0; c < cells.size(); ++c) {
-    light.group[c] = context.UnknownOf(cells.Members(c)[0]);
-  }
-  light.sampled.assign(cells.size(), 0);
-  for (uint32_t c = 0; c < cells.size(); ++c) {
-    const uint32_t g = light.group[c];
+    const uint32_t g = light.group[c] = context.UnknownOf(cells.Members(c)[0]);
     light.sampled[c] = context.CellsOf(g).size() > 1 && context.needs_row[g];
     light.cells += light.sampled[c];
   }

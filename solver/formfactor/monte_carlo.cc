@@ -178,17 +178,14 @@ class MonteCarloBuilder final : public RowBuilder {
     return stream.size() + light_rays;
   }
 
-  // Unknown u's opaque area (0 for one the context does not size).
-  double OpaqueArea(uint32_t u) const {
-    return u < context_.opaque_area.size() ? context_.opaque_area[u] : 0;
-  }
-
   // Unknown u's area against the mean row's (row_rays.h): its near-field light points follow it.
-  double AreaShare(uint32_t u) const { return RowAreaShare(OpaqueArea(u), context_.mean_row_area); }
+  double AreaShare(uint32_t u) const {
+    return RowAreaShare(context_.OpaqueArea(u), context_.mean_row_area);
+  }
 
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays, OpaqueArea(u), context_.mean_row_area);
+    return RowRayCount(options_.rays, context_.OpaqueArea(u), context_.mean_row_area);
   }
 
   // The rays of `set` from one patch p, shifted by (ps, ds), and their origins on p.
@@ -240,13 +237,8 @@ class MonteCarloBuilder final : public RowBuilder {
     for (size_t r = 0; r < set.positions.size(); ++r) {
       const SurfacePoint& at = origins[r] =
           sample_point(CranleyPattersonShift(set.positions[r], ps));
-      const Vec3 w = Frame::FromNormal(at.n).ToWorld(
-          SampleCosineHemisphere({WrapShift(double{set.direction_x[r]}, ds.x),
-                                  WrapShift(double{set.direction_y[r]}, ds.y)}));
-      StreamRay& ray = stream[r];
-      ray.SetOrigin(at.x + at.n * context_.ray_epsilon);
-      ray.SetDirection(w);
-      ray.ResetHit();
+      stream[r] = context_.CosineRay(at, {WrapShift(double{set.direction_x[r]}, ds.x),
+                                          WrapShift(double{set.direction_y[r]}, ds.y)});
     }
   }
 

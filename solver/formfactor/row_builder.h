@@ -13,6 +13,7 @@
 
 #include "absl/status/statusor.h"
 #include "solver/core/cancel.h"
+#include "solver/core/sampling.h"
 #include "solver/formfactor/form_factor_options.h"
 #include "solver/formfactor/row_accumulator.h"
 #include "solver/mesh/patch_clusters.h"
@@ -72,6 +73,16 @@ struct RowContext {
   std::span<const uint32_t> CellsOf(uint32_t u) const {
     if (cells == nullptr) return {};
     return {cell_order.data() + cell_first[u], cell_order.data() + cell_first[u + 1]};
+  }
+  // Unknown u's opaque area (0 for one the context does not size).
+  double OpaqueArea(uint32_t u) const { return u < opaque_area.size() ? opaque_area[u] : 0; }
+  // The cosine-weighted ray about `at`'s normal for u in [0, 1)^2 (SampleCosineHemisphere),
+  // from `at` lifted off its surface by ray_epsilon: a row's ray from one of its points.
+  StreamRay CosineRay(const SurfacePoint& at, Point2 u) const {
+    StreamRay ray;
+    ray.SetOrigin(at.x + at.n * ray_epsilon);
+    ray.SetDirection(Frame::FromNormal(at.n).ToWorld(SampleCosineHemisphere(u)));
+    return ray;
   }
   // Unknown u's area, scene units^2.
   double Area(uint32_t u) const { return clusters ? clusters->area[u] : mesh->patches[u].area; }

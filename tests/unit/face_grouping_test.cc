@@ -593,8 +593,8 @@ TEST(FaceGrouping, OnePatchCellsShareEachPointAmongFourSamples) {
 
 // The group rows keep their cells' emitter columns (cell_columns.h), so the push-down after the
 // solve casts no ray; where a cell's are missing (rows from remote workers or read back from
-// disk) or were drawn for another seed, it draws them again from the same seeds: every
-// patch's B is the same bit for bit either way, whichever cells were kept.
+// disk) or were drawn for another seed, it draws them again from the same seeds, and keeps
+// them: every patch's B is the same bit for bit either way, whichever cells were kept.
 TEST(FaceGrouping, KeptAndRedrawnCellColumnsPushDownTheSameRadiosity) {
   const Scene scene = PlateUnderSmallLamp();
   for (uint64_t seed = 1; seed <= 2; ++seed) {
@@ -637,12 +637,17 @@ TEST(FaceGrouping, KeptAndRedrawnCellColumnsPushDownTheSameRadiosity) {
     EXPECT_GT(halved.rays, 0u);
     EXPECT_LT(halved.rays, redrawn.rays);
     EXPECT_EQ(mismatched.rays, redrawn.rays);
+    // What a push-down drew it keeps: a second pass over the same cache casts no ray.
+    const CellDirectResult again = push(&half);
+    EXPECT_EQ(again.kept, again.cells);
+    EXPECT_EQ(again.rays, 0u);
     size_t differ = 0;
     for (uint32_t p = 0; p < job.mesh.size(); ++p) {
       for (int k = 0; k < kBands; ++k) {
         const double b = result->solve.radiosity[p][k];
         differ += kept.radiosity[p][k] != b || redrawn.radiosity[p][k] != b ||
-                  halved.radiosity[p][k] != b || mismatched.radiosity[p][k] != b;
+                  halved.radiosity[p][k] != b || mismatched.radiosity[p][k] != b ||
+                  again.radiosity[p][k] != b;
       }
     }
     EXPECT_EQ(differ, 0u) << "seed " << seed;
