@@ -16,7 +16,6 @@
 // 2 pi on every wall; lit by its floor only, sum A B = 2 pi.
 // Output rows: object,area,r,g,b,stderr,paths (area-weighted mean B per band, W/m^2 per band;
 // the standard error of (r+g+b)/3; the paths traced).
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,26 +45,6 @@ double RadicalInverse2(uint32_t i) {
   i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
   i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
   return i * 0x1p-32;
-}
-
-// Per patch, its reflected power as kGuideParticles particles find it (relative units).
-std::vector<double> GuideWeights(const ReferenceTracer& tracer, uint64_t seed) {
-  const size_t n = tracer.mesh().size();
-  std::vector<double> incident(n, 0.0);
-#pragma omp parallel
-  {
-    std::vector<double> mine(n, 0.0);
-    ReferenceRng rng(seed * 0x2545F4914F6CDD1Dull + static_cast<uint64_t>(omp_get_thread_num()));
-#pragma omp for schedule(static)
-    for (int i = 0; i < kGuideParticles; ++i) tracer.TraceParticle(rng, mine);
-#pragma omp critical
-    for (size_t p = 0; p < n; ++p) incident[p] += mine[p];
-  }
-  for (uint32_t p = 0; p < n; ++p) {
-    const Rgb& rho = tracer.MaterialOf(p).reflectance;
-    incident[p] *= (rho[0] + rho[1] + rho[2]) / 3;
-  }
-  return incident;
 }
 
 // One object's row: its patches, their area running sum; batches until the error is met.
@@ -125,7 +104,7 @@ int Run(const ImportOptions& import, const std::string& path, int max_paths, uin
   if (!scene.ok()) return std::fprintf(stderr, "%s\n", scene.status().ToString().c_str()), 1;
   auto tracer = ReferenceTracer::Create(*scene);
   if (!tracer.ok()) return std::fprintf(stderr, "%s\n", tracer.status().ToString().c_str()), 1;
-  (*tracer)->SetGuide(GuideWeights(**tracer, seed));
+  (*tracer)->SetGuide(ParticleGuide(**tracer, seed, kGuideParticles));
   const PatchMesh& mesh = (*tracer)->mesh();
   std::vector<std::vector<uint32_t>> by_object(scene->objects.size() + 1);
   for (uint32_t p = 0; p < mesh.size(); ++p)

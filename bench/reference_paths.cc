@@ -1,5 +1,7 @@
 #include "bench/reference_paths.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -200,6 +202,55 @@ void ReferenceTracer::TraceParticle(ReferenceRng& rng, std::vector<double>& inci
     p = hit.patch;
     if (Uniform(rng) >= Mean(MaterialOf(p).reflectance)) return;
   }
+}
+
+ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
+  Loss loss;
+  if (emitter_cdf_.empty()) return loss;
+  uint32_t p = static_cast<uint32_t>(Pick(emitter_cdf_, Uniform(rng)));
+  const Rgb& e = MaterialOf(p).emission;
+  Rgb weight{};
+  for (int c = 0; c < kBands; ++c) weight[c] = e[c] / Mean(e);
+  Vec3 x = PatchPointSampler(mesh_, p)({Uniform(rng), Uniform(rng)});
+  for (;;) {
+    const Vec3 n = mesh_.patches[p].normal;
+    const Vec3 w =
+        Frame::FromNormal(n).ToWorld(SampleCosineHemisphere({Uniform(rng), Uniform(rng)}));
+    const Hit hit = caster_->Intersect({x + n * epsilon_, w, 0, INFINITY});
+    if (hit.patch == kNoPatch || Dot(hit.normal, w) >= 0) {
+      const bool from_emitter = MaxComponent(MaterialOf(p).emission) > 0;
+      for (int c = 0; c < kBands; ++c) {
+        loss.lost[c] += weight[c];
+        if (from_emitter) loss.lost_leaving_emitters[c] += weight[c];
+      }
+      return loss;
+    }
+    x = x + n * epsilon_ + w * hit.t;
+    p = hit.patch;
+    for (int c = 0; c < kBands; ++c) weight[c] *= MaterialOf(p).reflectance[c];
+    const double survive = std::min(1.0, MaxComponent(weight));
+    if (!(survive > 0) || Uniform(rng) >= survive) return loss;
+    for (double& v : weight) v /= survive;
+  }
+}
+
+std::vector<double> ParticleGuide(const ReferenceTracer& tracer, uint64_t seed, int particles) {
+  const size_t n = tracer.mesh().size();
+  std::vector<double> incident(n, 0.0);
+#pragma omp parallel
+  {
+    std::vector<double> mine(n, 0.0);
+    ReferenceRng rng(seed * 0x2545F4914F6CDD1Dull + static_cast<uint64_t>(omp_get_thread_num()));
+#pragma omp for schedule(static)
+    for (int i = 0; i < particles; ++i) tracer.TraceParticle(rng, mine);
+#pragma omp critical
+    for (size_t p = 0; p < n; ++p) incident[p] += mine[p];
+  }
+  for (uint32_t p = 0; p < n; ++p) {
+    const Rgb& rho = tracer.MaterialOf(p).reflectance;
+    incident[p] *= (rho[0] + rho[1] + rho[2]) / 3;
+  }
+  return incident;
 }
 
 }  // namespace radflux

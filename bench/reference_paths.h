@@ -31,6 +31,11 @@ namespace radflux {
 
 using ReferenceRng = std::mt19937_64;
 
+class ReferenceTracer;
+// Per patch, its reflected power as `particles` particles from the emitters find it
+// (relative units), on all threads: the guide object_reference and reference_image set.
+std::vector<double> ParticleGuide(const ReferenceTracer& tracer, uint64_t seed, int particles);
+
 // A scene as the reference traces it: one patch per face (or a fan), Embree, the emitters.
 class ReferenceTracer {
  public:
@@ -51,6 +56,15 @@ class ReferenceTracer {
   // probability of its reflectance's mean): adds to `incident` (per patch) the power it
   // brings to each patch it meets, in units of the scene's total emitted power / particles.
   void TraceParticle(ReferenceRng& rng, std::vector<double>& incident) const;
+  // Where one particle's light ends that no front side takes in: per band, its share of the
+  // particle's power (start E_b / mean E over bands) lost on a back side or in the void, and
+  // of it, what was lost on a flight from an emitter's face. Reflected with the band's rho
+  // (Russian roulette on the largest band's weight). The means over many particles are shares
+  // of the emitted power.
+  struct Loss {
+    Rgb lost{}, lost_leaving_emitters{};
+  };
+  Loss TraceLoss(ReferenceRng& rng) const;
 
  private:
   ReferenceTracer(const Scene& scene, PatchMesh mesh);

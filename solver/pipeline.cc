@@ -8,6 +8,7 @@
 #include "solver/core/seconds_since.h"
 #include "solver/formfactor/cell_detail.h"
 #include "solver/formfactor/cell_direct.h"
+#include "solver/formfactor/exposed_area.h"
 #include "solver/formfactor/reciprocal_columns.h"
 #include "solver/formfactor/row_context.h"
 #include "solver/hierarchical/hierarchical_job.h"
@@ -152,19 +153,41 @@ absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareValidJob(Scene scene, Groupe
   return job;
 }
 
+// monte_carlo's rows and the solve's areas of the unknowns' exposed parts (exposed_area.h),
+// booked as meshing time; the same on every node that builds the job's rows.
+std::unique_ptr<PreparedJob> WithExposedAreas(const JobOptions& options,
+                                              std::unique_ptr<PreparedJob> job) {
+  const FormFactorOptions& f = options.form_factors;
+  if (f.method != FormFactorMethod::kMonteCarlo || !f.exposed_area || options.hierarchical.enabled)
+    return job;
+  const auto start = std::chrono::steady_clock::now();
+  job->rows.exposure = UnknownExposure(job->rows, f.threads);
+  for (size_t u = 0; u < job->rows.exposure.size(); ++u) {
+    job->attributes.area[u] *= job->rows.exposure[u];
+  }
+  job->mesh_seconds += SecondsSince(start);
+  return job;
+}
+
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, const JobOptions& options) {
   if (absl::Status s = ValidateJob(scene, options); !s.ok()) return s;
   absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(scene, JobMeshOptions(options));
   if (!mesh.ok()) return mesh.status();
-  return PrepareValidJob(std::move(scene), *std::move(mesh));
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
+      PrepareValidJob(std::move(scene), *std::move(mesh));
+  if (!job.ok()) return job.status();
+  return WithExposedAreas(options, *std::move(job));
 }
 
 absl::StatusOr<std::unique_ptr<PreparedJob>> PrepareJob(Scene scene, GroupedMesh mesh,
                                                         const JobOptions& options) {
   if (absl::Status s = ValidateJob(scene, options); !s.ok()) return s;
-  return PrepareValidJob(std::move(scene), std::move(mesh));
+  absl::StatusOr<std::unique_ptr<PreparedJob>> job =
+      PrepareValidJob(std::move(scene), std::move(mesh));
+  if (!job.ok()) return job.status();
+  return WithExposedAreas(options, *std::move(job));
 }
 
 uint64_t EstimateJobBytes(const Scene& scene, const JobOptions& options) {

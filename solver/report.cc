@@ -142,7 +142,18 @@ nlohmann::json UnknownsJson(const JobResult& result) {
       grouped += members;
     }
   }
+  // The unknowns partly enclosed in a solid (exposed_area.h) and their enclosed area's share.
+  size_t partly_enclosed = 0;
+  double enclosed = 0, total = 0;
+  for (uint32_t u = 0; u < job.rows.opaque_area.size(); ++u) {
+    total += job.rows.opaque_area[u];
+    if (job.rows.Exposure(u) >= 1) continue;
+    ++partly_enclosed;
+    enclosed += job.rows.opaque_area[u] * (1 - job.rows.Exposure(u));
+  }
   return {{"unknowns", job.Unknowns()},
+          {"partly_enclosed", partly_enclosed},
+          {"enclosed_area_share", total > 0 ? enclosed / total : 0.0},
           {"grouped", !c.empty()},
           {"groups", groups},
           {"grouped_patches", grouped},

@@ -39,7 +39,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
       }
       context.caster->IntersectStream(stream);
       Rgb& h = detail.irradiance[i];
-      const double weight = 1.0 / k;
+      const double weight = 1.0 / (k * context.Exposure(i));  // the exposed part's (exposed_area.h)
       for (const StreamRay& ray : stream) {
         const uint32_t hit = ray.FrontPatch();
         if (hit == kNoPatch) continue;

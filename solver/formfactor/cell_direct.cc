@@ -75,6 +75,12 @@ CellDirectLight ComputeCellDirectLight(const RowContext& context, const std::vec
   for (uint32_t g = 0; g < unknowns; ++g) {
     for (int k = 0; k < kBands; ++k) light.mean[g][k] /= context.Area(g);
   }
+  // Light samples from a group's enclosed part found nothing (exposed_area.h): the mean is
+  // its exposed part's, as the group's B is (its row was scaled so). A cell keeps its own
+  // light: an exposed cell's is right as it is, an enclosed one's is no one's to see.
+  for (uint32_t g = 0; g < unknowns; ++g) {
+    for (double& d : light.mean[g]) d /= context.Exposure(g);
+  }
   return light;
 }
 

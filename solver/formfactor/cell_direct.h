@@ -14,8 +14,10 @@
 // emitters. The group's mean direct light is thus the cells' estimate (CellLightSamplesPerGroup,
 // stratified over the cells), in the solve as well: the light the group reflects on carries
 // it. The area-weighted mean of B over the group's patches is B_g exactly, so the power the
-// solve balanced is the power the outputs show; only a patch whose B would fall below E_g is
-// lifted to E_g (it cannot reflect negative light), which the summary counts.
+// solve balanced is the power the outputs show (for a group partly enclosed in a solid, over
+// its exposed part: Dbar_g is then the exposed part's, exposed_area.h); only a patch whose B
+// would fall below E_g is lifted to E_g (it cannot reflect negative light), which the
+// summary counts.
 #pragma once
 
 #include <cstdint>

@@ -15,17 +15,19 @@ std::optional<FormFactorMethod> ParseMethod(std::string_view name);
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::kMonteCarlo;
-  int rays = 64;           // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
-  int hemicube_res = 32;   // r: hemicube top-face resolution (r x r), even
-  int samples = 4;         // s: analytic points per patch (also monte_carlo's emitter columns)
-  double cutoff = 1e-6;    // entries F_ij below this are dropped (their sum is reported),
-                           // except in emitter columns (direct light is never cut)
-  uint64_t seed = 1;       // job seed; each patch's samples are seeded from (seed, patch)
-  int threads = 0;         // 0 = all cores
-  int block_size = 64;     // rows per block: the unit of work, checkpoint and retry
+  int rays = 64;          // k: monte_carlo rays per patch (default: bench/RESULTS.md, issue 6)
+  int hemicube_res = 32;  // r: hemicube top-face resolution (r x r), even
+  int samples = 4;        // s: analytic points per patch (also monte_carlo's emitter columns)
+  double cutoff = 1e-6;   // entries F_ij below this are dropped (their sum is reported),
+                          // except in emitter columns (direct light is never cut)
+  uint64_t seed = 1;      // job seed; each patch's samples are seeded from (seed, patch)
+  int threads = 0;        // 0 = all cores
+  int block_size = 64;    // rows per block: the unit of work, checkpoint and retry
   // monte_carlo: once every row is built (in memory or spilled), average each pair of
   // cosine-ray rows by reciprocity (reciprocal_pairs.h).
   bool reciprocal_pairs = true;
+  // monte_carlo: rows and areas of the unknowns' parts not enclosed in a solid (exposed_area.h).
+  bool exposed_area = true;
 };
 
 // monte_carlo's light samples per s (--samples): a row casts 16 s shadow rays for its emitter

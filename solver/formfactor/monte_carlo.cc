@@ -174,6 +174,9 @@ class MonteCarloBuilder final : public RowBuilder {
     // expectation) and made B 1.1% low in a closed cube at k = 64 (3% at k = 16).
     // What that removes is kept (RowAccumulator::ScaledOff) for the energy balance, which
     // books it as a term of its own.
+    // Rays and light samples from the enclosed part of the unknown found nothing: the row
+    // is its exposed part's (exposed_area.h).
+    if (const double exposure = context_.Exposure(i); exposure < 1) row.Scale(1 / exposure);
     row.CapSum(context_.MaxRowSum(i));
     return stream.size() + light_rays;
   }

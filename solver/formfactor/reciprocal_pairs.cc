@@ -66,7 +66,9 @@ ReciprocalPairs::ReciprocalPairs(const RowContext& context, int rays,
   rays_.resize(n);
   density_.resize(n);
   takes_part_.assign(n, 0);
+  exposure_.resize(n);
   for (size_t u = 0; u < n; ++u) {
+    exposure_[u] = context.Exposure(static_cast<uint32_t>(u));
     rays_[u] = RowRayCount(rays, area_[u], context.mean_row_area);
     takes_part_[u] = u < cosine.size() && cosine[u] && area_[u] > 0;
     density_[u] = takes_part_[u] ? rays_[u] / area_[u] : 0;
@@ -97,7 +99,7 @@ void ReciprocalPairs::Gather(const RowsView& rows, RangeHits& hits) const {
     for (size_t e = std::lower_bound(cols.begin(), cols.end(), hits.first) - cols.begin();
          e < cols.size() && cols[e] < hits.last; ++e) {
       const uint32_t i = cols[e];
-      if (i != j && takes_part_[i]) hits.Put(i, j, static_cast<float>(rays_[j] * vals[e]));
+      if (i != j && takes_part_[i]) hits.Put(i, j, static_cast<float>(Hits(j, vals[e])));
     }
   }
 }
@@ -128,7 +130,7 @@ std::vector<RowBlock> ReciprocalPairs::AverageRows(int threads, const RowsView& 
         const auto cols = own.RowCols(i);
         const auto vals = own.RowValues(i);
         const std::span<const BackHit> back = hits.Of(i);
-        const double k_i = rays_[i], a_i = area_[i], d_i = density_[i];
+        const double a_i = area_[i], d_i = density_[i];
         averaged.clear();
         double own_sum = 0, averaged_sum = 0;
         size_t a = 0, h = 0;
@@ -142,7 +144,7 @@ std::vector<RowBlock> ReciprocalPairs::AverageRows(int threads, const RowsView& 
             continue;
           }
           const double back_value = back_col == j ? back[h++].second : 0.0;
-          const double v = (k_i * own_value + back_value) / (a_i * (d_i + density_[j]));
+          const double v = (Hits(i, own_value) + back_value) / (a_i * (d_i + density_[j]));
           own_sum += own_value;
           averaged_sum += v;
           averaged.emplace_back(block.col.size(), v);
@@ -227,7 +229,7 @@ absl::StatusOr<SpilledAveraging> ReciprocalPairs::Average(int threads, const Row
           const uint32_t i = cols[e];
           if (i == j || !takes_part_[i]) continue;
           while (i >= bounds[r + 1]) ++r;  // columns ascend
-          failed = buckets->Add(r, {i, j, static_cast<float>(rays_[j] * vals[e])});
+          failed = buckets->Add(r, {i, j, static_cast<float>(Hits(j, vals[e]))});
         }
       }
     });

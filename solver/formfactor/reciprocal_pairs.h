@@ -81,6 +81,11 @@ class ReciprocalPairs {
   std::vector<RowBlock> AverageRows(int threads, const RowsView& own, const RangeHits& hits) const;
 
   std::vector<double> area_, rays_, density_;  // per unknown: A, k, k / A (0: takes no part)
+  // Per unknown, RowContext::Exposure: a row built scaled by 1 / exposure is read back as
+  // its hits (Hits), the pair's two estimates of A_i F_ij of the whole area.
+  std::vector<double> exposure_;
+  // The cosine hits behind entry `value` of row i: k_i F_ij exposure_i.
+  double Hits(uint32_t i, double value) const { return rays_[i] * exposure_[i] * value; }
   std::vector<uint8_t> takes_part_;
 };
 

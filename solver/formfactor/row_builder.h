@@ -53,7 +53,10 @@ struct RowContext {
   std::vector<double> reflectance;  // rho, max over bands, per unknown (empty: 1 for all)
   std::vector<double> opaque_area;  // PatchAttributes::area per unknown, scene units^2
   double mean_row_area = 0;         // MeanRowArea over the unknowns with rows (row_rays.h)
-  double ray_epsilon = 0;           // ray origin offset along the normal, scene units
+  // Per unknown, the share of its area not enclosed in a solid (exposed_area.h; empty: all 1):
+  // monte_carlo scales its row by 1 / exposure, the solve weighs it by its exposed area.
+  std::vector<float> exposure;
+  double ray_epsilon = 0;  // ray origin offset along the normal, scene units
 
   // The number of unknowns: rows and columns.
   uint32_t Unknowns() const {
@@ -74,6 +77,7 @@ struct RowContext {
     if (cells == nullptr) return {};
     return {cell_order.data() + cell_first[u], cell_order.data() + cell_first[u + 1]};
   }
+  double Exposure(uint32_t u) const { return u < exposure.size() ? exposure[u] : 1.0; }
   // Unknown u's opaque area (0 for one the context does not size).
   double OpaqueArea(uint32_t u) const { return u < opaque_area.size() ? opaque_area[u] : 0; }
   // The cosine-weighted ray about `at`'s normal for u in [0, 1)^2 (SampleCosineHemisphere),

@@ -117,6 +117,7 @@ absl::StatusOr<ViewFactorReport> RunAdaptive(FaceSurfaces surfaces,
 absl::StatusOr<ViewFactorReport> RunPatches(Scene scene, const ViewFactorJobOptions& options) {
   JobOptions job_options = options.job;
   job_options.require_emitter = false;
+  job_options.form_factors.exposed_area = false;  // a surface's view factors are of all its area
   absl::StatusOr<std::unique_ptr<PreparedJob>> job = PrepareJob(std::move(scene), job_options);
   if (!job.ok()) return job.status();
   const PreparedJob& prepared = **job;

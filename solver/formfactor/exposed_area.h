@@ -1,0 +1,42 @@
+// Exposed area: the share of each unknown's area that is not shut inside a closed solid. A
+// surface can run into a solid that does not rest on it (a wall behind a panel that stands
+// off it, a chair's leg sunk into the floor, the back of a window recess that the glazing
+// closes): from a point in there every direction meets the back of the solid's faces, so
+// no light arrives and none leaves. A row's cosine rays from such points end on back sides
+// and its light samples are shadowed, so the row sums short of what its exposed part sees:
+// the unknown absorbs light it never gets. Scaling the row by 1 / exposure and the
+// unknown's area by exposure (RowContext::exposure, PatchAttributes::area) makes B the
+// radiosity of the exposed part, and A B the power it sends. The conference room lost 3% of
+// its light this way (17.7% of it ended on back sides or in the void, 14.6% by particle
+// tracing from the lamps).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solver/formfactor/row_builder.h"
+
+namespace radflux {
+
+// Probes at a point: a cosine ray; if it meets a back side, this many rays in all (the
+// first included) must, for the point to count as enclosed. A point that merely sees a
+// one-sided face from behind (a legitimate absorber) seldom has all of them do so.
+inline constexpr int kExposureProbes = 4;
+// Stratified points per unknown in a first look (an unknown none of whose points is enclosed
+// keeps exposure 1 at that cost), and in the count that follows when one is.
+inline constexpr int kExposureFirstPoints = 32;
+inline constexpr int kExposurePoints = 256;
+
+// Whether a ray's hit is a back side that closes a solid: a front hit, a miss and a hit on a
+// partly transparent patch (an alpha cut-out is a sheet, not a wall) are not.
+bool MeetsSolidBack(const StreamRay& ray, const PatchMesh& mesh);
+
+// Per unknown of `context`, the share of its area whose points are not enclosed, in (0, 1]:
+// kExposurePoints stratified points (seeded by the unknown's index alone, so a worker
+// computes the same) when any of kExposureFirstPoints is enclosed, else 1. An emitter's too:
+// what its enclosed part emits never leaves the solid, so its B and power are its exposed
+// part's. Unknowns without a row, and those enclosed whole (nothing reaches them, their row
+// is empty), keep 1. Empty when every unknown has 1.
+std::vector<float> UnknownExposure(const RowContext& context, int threads);
+
+}  // namespace radflux
