@@ -16,7 +16,10 @@ mean, default 0.001) with seeds 1 and 2, cached in CACHE as SCENE_ref_v3_seedS_N
 when missing: delete it when object_reference changes). radflux-local solve runs once with
 its defaults (plus any extra flags); the --patch-values CSV gives, per object, the
 area-weighted mean of (r+g+b)/3 over the object's full face area (the part contact meshing
-leaves out, covered by another face, counted as dark, as it is in the reference).
+leaves out, covered by another face, counted as dark, as it is in the reference). A patch
+partly enclosed in a solid (the report's mesh.unknowns.partly_enclosed) shows its exposed
+part's B over its whole area, where the reference has the enclosed part dark: such objects
+read high here (Lost Empire's Leaves and Detector_Rail, bench/RESULTS.md).
 
 Prints one line per scene: wall and CPU time (user + sys of the solve), phases, and
 |radflux / reference - 1| over the judged objects (max, median, how many exceed 1%, and its
