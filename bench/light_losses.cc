@@ -19,12 +19,8 @@
 
 int main(int argc, char** argv) {
   radflux::ImportOptions import;
-  int first = 1;
-  for (; first + 1 < argc && std::string(argv[first]) == "--emit"; first += 2) {
-    auto rule = radflux::ParseEmitRule(argv[first + 1]);
-    if (!rule.ok()) return std::fprintf(stderr, "%s\n", rule.status().ToString().c_str()), 2;
-    import.emit.push_back(*std::move(rule));
-  }
+  const int first = radflux::TakeEmitFlags(argc, argv, import);
+  if (first < 0) return 2;
   if (argc - first != 3) {
     std::fprintf(stderr, "usage: light_losses [--emit MATERIAL=R,G,B ...] SCENE PARTICLES SEED\n");
     return 2;

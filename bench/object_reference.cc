@@ -132,12 +132,8 @@ int Run(const ImportOptions& import, const std::string& path, int max_paths, uin
 
 int main(int argc, char** argv) {
   radflux::ImportOptions import;
-  int first = 1;
-  for (; first + 1 < argc && std::string(argv[first]) == "--emit"; first += 2) {
-    auto rule = radflux::ParseEmitRule(argv[first + 1]);
-    if (!rule.ok()) return std::fprintf(stderr, "%s\n", rule.status().ToString().c_str()), 2;
-    import.emit.push_back(*std::move(rule));
-  }
+  const int first = radflux::TakeEmitFlags(argc, argv, import);
+  if (first < 0) return 2;
   const int positional = argc - first;
   if (positional < 3 || positional > 5) {
     std::fprintf(stderr,

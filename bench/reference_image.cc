@@ -80,15 +80,13 @@ int main(int argc, char** argv) {
   camera.width = 160, camera.height = 120;
   bool placed = false;
   std::vector<const char*> positional;
-  for (int k = 1; k < argc; ++k) {
+  const int first = radflux::TakeEmitFlags(argc, argv, import);
+  if (first < 0) return 2;
+  for (int k = first; k < argc; ++k) {
     const std::string flag = argv[k];
     const bool has_value = k + 1 < argc;
     bool ok = true;
-    if (flag == "--emit" && has_value) {
-      auto rule = radflux::ParseEmitRule(argv[++k]);
-      if (!rule.ok()) return std::fprintf(stderr, "%s\n", rule.status().ToString().c_str()), 2;
-      import.emit.push_back(*std::move(rule));
-    } else if (flag == "--pos" && has_value) {
+    if (flag == "--pos" && has_value) {
       ok = radflux::ParseVec3(argv[++k], camera.position);
       placed = true;
     } else if (flag == "--look" && has_value) {

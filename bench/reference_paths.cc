@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "solver/core/sampling.h"
 #include "solver/mesh/subdivide.h"
@@ -232,6 +234,19 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
     if (!(survive > 0) || Uniform(rng) >= survive) return loss;
     for (double& v : weight) v /= survive;
   }
+}
+
+int TakeEmitFlags(int argc, char** argv, ImportOptions& import) {
+  int first = 1;
+  for (; first + 1 < argc && std::string(argv[first]) == "--emit"; first += 2) {
+    auto rule = ParseEmitRule(argv[first + 1]);
+    if (!rule.ok()) {
+      std::fprintf(stderr, "%s\n", rule.status().ToString().c_str());
+      return -1;
+    }
+    import.emit.push_back(*std::move(rule));
+  }
+  return first;
 }
 
 std::vector<double> ParticleGuide(const ReferenceTracer& tracer, uint64_t seed, int particles) {

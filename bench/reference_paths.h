@@ -25,6 +25,7 @@
 #include "solver/mesh/patch_mesh.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "solver/raytrace/ray_caster.h"
+#include "solver/scene/import_options.h"
 #include "solver/scene/scene.h"
 
 namespace radflux {
@@ -32,6 +33,10 @@ namespace radflux {
 using ReferenceRng = std::mt19937_64;
 
 class ReferenceTracer;
+// The bench tools' leading `--emit MATERIAL=R,G,B` flags (as radflux's) into import.emit:
+// the index of the first other argument, or -1 after saying on stderr which rule is bad.
+int TakeEmitFlags(int argc, char** argv, ImportOptions& import);
+
 // Per patch, its reflected power as `particles` particles from the emitters find it
 // (relative units), on all threads: the guide object_reference and reference_image set.
 std::vector<double> ParticleGuide(const ReferenceTracer& tracer, uint64_t seed, int particles);

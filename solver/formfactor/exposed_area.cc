@@ -1,5 +1,6 @@
 #include "solver/formfactor/exposed_area.h"
 
+#include <algorithm>
 #include <atomic>
 #include <span>
 
@@ -15,12 +16,19 @@ constexpr uint64_t kPointStream = 31;
 constexpr uint64_t kDirectionStream = 37;
 constexpr uint64_t kProbeStream = 41;
 
+// Whether a ray's hit is a back side that closes a solid: a front hit, a miss and a hit on a
+// partly transparent patch (an alpha cut-out is a sheet, not a wall) are not.
+bool MeetsSolidBack(const StreamRay& ray, const PatchMesh& mesh) {
+  return ray.geom != kNoPatch && ray.FrontPatch() == kNoPatch &&
+         mesh.patches[ray.prim].opacity >= 1;
+}
+
 // Per-thread scratch of EnclosedPoints, reused unknown to unknown.
 struct Scratch {
   std::vector<SurfacePoint> at;
   std::vector<StreamRay> stream, probes;
-  std::vector<uint32_t> owner;
-  std::vector<uint8_t> open;
+  std::vector<uint32_t> owner;  // per probe, the point it starts from
+  std::vector<uint8_t> closed;  // per point, whether every ray so far met a solid's back
 };
 
 // A stratified set of n points on [0, 1)^2, drawn once per process: each unknown moves it by
@@ -57,10 +65,12 @@ int EnclosedPoints(const RowContext& context, uint32_t u, int points, uint64_t p
     s.stream[r] = context.CosineRay(s.at[r], CranleyPattersonShift(directions[r], direction_shift));
   }
   context.caster->IntersectStream(s.stream);
+  s.closed.resize(n);
   s.probes.clear();
   s.owner.clear();
   for (size_t r = 0; r < n; ++r) {
-    if (!MeetsSolidBack(s.stream[r], *context.mesh)) continue;
+    s.closed[r] = MeetsSolidBack(s.stream[r], *context.mesh);
+    if (!s.closed[r]) continue;
     for (uint32_t q = 1; q < kExposureProbes; ++q) {
       const uint32_t index = static_cast<uint32_t>(r) * kExposureProbes + q;
       s.probes.push_back(context.CosineRay(s.at[r], {RandomFloat(2 * index, probe_pattern),
@@ -70,22 +80,13 @@ int EnclosedPoints(const RowContext& context, uint32_t u, int points, uint64_t p
   }
   if (s.probes.empty()) return 0;
   context.caster->IntersectStream(s.probes);
-  s.open.assign(n, 0);
   for (size_t q = 0; q < s.probes.size(); ++q) {
-    if (!MeetsSolidBack(s.probes[q], *context.mesh)) s.open[s.owner[q]] = 1;
+    if (!MeetsSolidBack(s.probes[q], *context.mesh)) s.closed[s.owner[q]] = 0;
   }
-  int enclosed = 0;
-  for (size_t r = 0; r < n; ++r)
-    enclosed += MeetsSolidBack(s.stream[r], *context.mesh) && !s.open[r];
-  return enclosed;
+  return static_cast<int>(std::count(s.closed.begin(), s.closed.end(), 1));
 }
 
 }  // namespace
-
-bool MeetsSolidBack(const StreamRay& ray, const PatchMesh& mesh) {
-  return ray.geom != kNoPatch && ray.FrontPatch() == kNoPatch &&
-         mesh.patches[ray.prim].opacity >= 1;
-}
 
 std::vector<float> UnknownExposure(const RowContext& context, int threads) {
   const uint32_t unknowns = context.Unknowns();

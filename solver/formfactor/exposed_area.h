@@ -19,18 +19,15 @@
 
 namespace radflux {
 
-// Probes at a point: a cosine ray; if it meets a back side, this many rays in all (the
-// first included) must, for the point to count as enclosed. A point that merely sees a
+// Probes at a point: a cosine ray; if it meets the back of an opaque patch, this many rays in
+// all (the first included) must, for the point to count as enclosed (a partly transparent
+// patch, an alpha cut-out, is a sheet, not a solid's wall). A point that merely sees a
 // one-sided face from behind (a legitimate absorber) seldom has all of them do so.
 inline constexpr int kExposureProbes = 4;
 // Stratified points per unknown in a first look (an unknown none of whose points is enclosed
 // keeps exposure 1 at that cost), and in the count that follows when one is.
 inline constexpr int kExposureFirstPoints = 16;
 inline constexpr int kExposurePoints = 256;
-
-// Whether a ray's hit is a back side that closes a solid: a front hit, a miss and a hit on a
-// partly transparent patch (an alpha cut-out is a sheet, not a wall) are not.
-bool MeetsSolidBack(const StreamRay& ray, const PatchMesh& mesh);
 
 // Per unknown of `context`, the share of its area whose points are not enclosed, in (0, 1]:
 // kExposurePoints stratified points (the unknown's shift of one shared set, seeded by its
