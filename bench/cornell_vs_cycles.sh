@@ -81,7 +81,7 @@ with open(flat + ".mtl", "w") as f:
     for k, name in enumerate(codes, start=1):
         f.write(f"newmtl code_{name}\nKd 0 0 0\nKe {k} {k} {k}\n")
 EOF
-"$bin" solve "$out/flat.obj" --render "$out/mask.pfm" "${camera[@]}" -q
+"$bin" solve "$out/flat.obj" --render "$out/mask.pfm" "${camera[@]}" -q --direct-light patch
 
 # radflux's pictures at the defaults (plus any flags given), one per seed, SS times larger,
 # and the comparison.

@@ -43,23 +43,30 @@ std::pair<int, int> ParseSize(const std::string& size) {
   return {w, h};
 }
 
-// The picture of --render: Gouraud-shaded B, or with --gather N the final gather.
+// The picture of --render: with --gather N the final gather; else the direct light per pixel
+// over the Gouraud-shaded indirect light where that is known and asked for; else Gouraud-shaded B.
 absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
                                     const ShadingMesh& shading, const RayCaster& caster,
-                                    const std::vector<Rgb>& radiosity, const Camera& camera,
+                                    const std::vector<Rgb>& radiosity,
+                                    const std::vector<Rgb>& indirect, const Camera& camera,
                                     int threads) {
+  GatherOptions options;
+  options.threads = threads;
   if (f.gather > 0) {
-    GatherOptions options;
     options.rays = f.gather;
-    options.threads = threads;
     return RenderFinalGather(mesh, shading, caster, ComputePatchAttributes(scene, mesh), radiosity,
                              camera, options);
   }
+  if (f.direct_light == "pixel" && !indirect.empty()) {
+    options.rays = f.pixel_samples;
+    return RenderDirectPerPixel(mesh, shading, caster, ComputePatchAttributes(scene, mesh),
+                                radiosity, indirect, camera, options);
+  }
   auto vertex_radiosity = VertexRadiosity(mesh, shading, radiosity);
   if (!vertex_radiosity.ok()) return vertex_radiosity.status();
-  RenderOptions options;
-  options.threads = threads;
-  return RenderRadiance(mesh, caster, *vertex_radiosity, camera, options);
+  RenderOptions gouraud;
+  gouraud.threads = threads;
+  return RenderRadiance(mesh, caster, *vertex_radiosity, camera, gouraud);
 }
 
 absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMesh& mesh,
@@ -71,15 +78,16 @@ absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMe
 // The picture, rendered in the solver's coordinates (single-precision rays near the origin).
 absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
                          const ShadingMesh& shading, const std::vector<Rgb>& radiosity,
-                         const ToneMapOptions& tone, int threads, OutputTimings* timings) {
+                         const std::vector<Rgb>& indirect, const ToneMapOptions& tone, int threads,
+                         OutputTimings* timings) {
   auto caster = EmbreeRayCaster::Create(solved_mesh);
   if (!caster.ok()) return caster.status();
   absl::StatusOr<Camera> camera =
       CameraFromFlags(f, solved_mesh, **caster, radiosity, scene.origin);
   if (!camera.ok()) return camera.status();
   const auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<Image> image =
-      RenderPicture(f, scene, solved_mesh, shading, **caster, radiosity, *camera, threads);
+  absl::StatusOr<Image> image = RenderPicture(f, scene, solved_mesh, shading, **caster, radiosity,
+                                              indirect, *camera, threads);
   if (!image.ok()) return image.status();
   if (timings != nullptr && f.gather > 0) {
     timings->gather =
@@ -119,7 +127,18 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
           ->capture_default_str(),
       app.add_option("--gather", f.gather,
                      "--render by final gather: N rays per pixel into the solution plus light "
-                     "sampled on the emitters (0 = Gouraud-shaded B)")
+                     "sampled on the emitters (0 = none: see --direct-light)")
+          ->capture_default_str(),
+      app.add_option("--direct-light", f.direct_light,
+                     "--render without --gather: pixel = the direct light sampled on the "
+                     "emitters at every pixel over the Gouraud-shaded indirect light; patch = "
+                     "Gouraud-shaded B (also what a service result or an adaptive or "
+                     "hierarchical solve draws)")
+          ->check(CLI::IsMember({"pixel", "patch"}))
+          ->capture_default_str(),
+      app.add_option("--pixel-samples", f.pixel_samples,
+                     "--direct-light pixel: points per pixel, one light sample each")
+          ->check(CLI::Range(1, 4096))
           ->capture_default_str(),
       app.add_option("--lightmap", f.lightmap,
                      "with --out FILE.glb: bake B into a SIZE x SIZE lightmap on a second UV set "
@@ -191,7 +210,8 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
 }
 
 absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
-                          const std::vector<Rgb>& radiosity, int threads, OutputTimings* timings) {
+                          const std::vector<Rgb>& radiosity, const std::vector<Rgb>& indirect,
+                          int threads, OutputTimings* timings) {
   // The mesh in the file's coordinates (a copy only for a recentred scene).
   std::optional<PatchMesh> translated;
   if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
@@ -219,8 +239,8 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
     if (!s.ok()) return s;
   }
   if (!f.render.empty()) {
-    if (absl::Status s =
-            WriteRender(f, scene, solved_mesh, *shading, radiosity, tone, threads, timings);
+    if (absl::Status s = WriteRender(f, scene, solved_mesh, *shading, radiosity, indirect, tone,
+                                     threads, timings);
         !s.ok()) {
       return s;
     }

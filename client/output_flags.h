@@ -24,11 +24,15 @@ struct OutputFlags {
   std::vector<double> camera_pos, camera_look_at, camera_up;
   double fov_deg = 39.3077;
   std::string size = "512x512";
-  double exposure = 0;             // stops
-  bool linear_png = false;         // PNG without the sRGB curve
-  double metres_per_unit = 0.001;  // for .glb (the Cornell box is in millimetres)
-  int gather = 0;                  // final-gather rays per pixel for --render (0: Gouraud)
-  int lightmap = 0;                // --out .glb with a SIZE x SIZE lightmap (0: vertex colours)
+  double exposure = 0;                 // stops
+  bool linear_png = false;             // PNG without the sRGB curve
+  double metres_per_unit = 0.001;      // for .glb (the Cornell box is in millimetres)
+  int gather = 0;                      // final-gather rays per pixel for --render (0: none)
+  std::string direct_light = "pixel";  // --render without --gather: "pixel" samples the direct
+                                       // light per pixel over the Gouraud-shaded indirect light,
+                                       // "patch" Gouraud-shades B
+  int pixel_samples = 4;  // points per pixel of --direct-light pixel, one light sample each
+  int lightmap = 0;       // --out .glb with a SIZE x SIZE lightmap (0: vertex colours)
 };
 
 // Adds the output flags to `app`, in its help group kOutputGroup.
@@ -44,9 +48,9 @@ absl::Status ValidateOutputFlags(const OutputFlags& flags);
 // The camera from the flags; without --camera-pos, the default view's rule places it
 // (solver/output/default_view.h: from inside for an enclosed scene, with `caster` probing
 // `mesh` lit by `radiosity` (B per patch), and choosing up unless --camera-up is given; with
-// --camera-pos, up is +y unless given); --camera-look-at wins over the rule's. The flags are in the file's coordinates; the
-// camera is in the mesh's, which are the file's minus `origin` (Scene::origin of a recentred
-// scene).
+// --camera-pos, up is +y unless given); --camera-look-at wins over the rule's. The flags are in the
+// file's coordinates; the camera is in the mesh's, which are the file's minus `origin`
+// (Scene::origin of a recentred scene).
 absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& flags, const PatchMesh& mesh,
                                        const RayCaster& caster, std::span<const Rgb> radiosity,
                                        const Vec3& origin = {});
@@ -58,9 +62,10 @@ struct OutputTimings {
 
 // Writes the mesh, picture and per-patch values that were asked for (not the report), in
 // the file's coordinates (scene.origin added back to the mesh's positions); fills `timings`
-// when given.
+// when given. `indirect` is B's part that did not come straight from an emitter, per patch
+// (JobResult::indirect); empty when not known, and the picture then Gouraud-shades B.
 absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
-                          const std::vector<Rgb>& radiosity, int threads,
-                          OutputTimings* timings = nullptr);
+                          const std::vector<Rgb>& radiosity, const std::vector<Rgb>& indirect,
+                          int threads, OutputTimings* timings = nullptr);
 
 }  // namespace radflux::cli

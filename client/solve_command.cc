@@ -146,7 +146,7 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
   const auto output_start = std::chrono::steady_clock::now();
   OutputTimings output_timings;
   if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
-                                    args.job.threads, &output_timings);
+                                    result->indirect, args.job.threads, &output_timings);
       !s.ok()) {
     return s;
   }

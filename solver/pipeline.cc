@@ -13,6 +13,7 @@
 #include "solver/formfactor/row_context.h"
 #include "solver/hierarchical/hierarchical_job.h"
 #include "solver/scene/validation.h"
+#include "solver/solve/indirect_light.h"
 #include "solver/sparse/file_block_spill.h"
 
 namespace radflux {
@@ -222,6 +223,21 @@ uint64_t EstimateJobBytes(uint64_t n, const JobOptions& options) {
   return rows + mesh_bytes + embree + solver + direct;
 }
 
+namespace {
+
+// result.indirect from the solved unknowns (ReflectedIndirect), pushed down to the patches.
+absl::Status FindIndirect(JobResult& result) {
+  const bool grouped = !result.job->clusters.empty();
+  absl::StatusOr<std::vector<Rgb>> indirect = ReflectedIndirect(
+      result.System(), grouped ? result.unknown_radiosity : result.solve.radiosity);
+  if (!indirect.ok()) return indirect.status();
+  result.indirect =
+      grouped ? PushDownToPatches(result.job->clusters, *indirect) : *std::move(indirect);
+  return absl::OkStatus();
+}
+
+}  // namespace
+
 absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
                                  const JobCallbacks& callbacks) {
   if (options.hierarchical.enabled) return RunHierarchicalJob(std::move(scene), options, callbacks);
@@ -242,6 +258,7 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   result.solve = *std::move(solved);
   result.timings.solve = SecondsSince(start);
   if (absl::Status s = PushDownGroupedSolve(options, result); !s.ok()) return s;
+  if (absl::Status s = FindIndirect(result); !s.ok()) return s;
   return result;
 }
 

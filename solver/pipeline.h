@@ -119,6 +119,10 @@ struct JobResult {
   // Grouped jobs: the solved B per unknown (solve.radiosity is then per patch, with each
   // direct-light cell's own direct light), and what the cells' pass did.
   std::vector<Rgb> unknown_radiosity;
+  // Per patch of job->mesh: the radiosity that did not come straight from an emitter
+  // (solve/indirect_light.h; a group's patches share their unknown's), for pictures that
+  // sample the direct light per pixel. Empty where not known (adaptive, hierarchical).
+  std::vector<Rgb> indirect;
   uint64_t direct_cells = 0, direct_kept = 0, direct_rays = 0, direct_lifted = 0;
   uint64_t detail_rays = 0;  // the cells' detail's gather (cell_detail.h)
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown

@@ -54,13 +54,20 @@ RowContext LightContext(const GatherLights& lights, const RayCaster& caster, dou
 // Everything the rows of one gather read (not copyable: sampler_ points into light_context_).
 class GatherScene {
  public:
+  // With `gathered`, `at_vertex` is R = B - E, met by the gather rays, and the lights shine
+  // with their E; otherwise it is I (solve/indirect_light.h) at the visible point itself, and
+  // the lights shine with their B (`patch_radiosity`), as the rows' emitter columns carry it.
   GatherScene(const PatchMesh& mesh, const RayCaster& caster, const PatchAttributes& attributes,
-              std::vector<Rgb> reflected_at_vertex, const Camera& camera)
+              const std::vector<Rgb>& patch_radiosity, std::vector<Rgb> at_vertex, bool gathered,
+              const Camera& camera)
       : mesh_(mesh),
         caster_(caster),
         attributes_(attributes),
-        reflected_at_vertex_(std::move(reflected_at_vertex)),
+        at_vertex_(std::move(at_vertex)),
+        gathered_(gathered),
         lights_(MakeGatherLights(mesh, attributes)),
+        light_radiance_(gathered ? lights_.emission
+                                 : LightRadiosity(lights_, mesh, patch_radiosity)),
         light_context_(LightContext(lights_, caster, RayEpsilonFor(mesh))),
         sampler_(light_context_),
         projection_(camera) {}
@@ -76,6 +83,7 @@ class GatherScene {
   // point casts no ray and adds nothing).
   struct Point {
     uint32_t patch = kNoPatch;
+    float u = 0, v = 0;  // where the primary ray met the patch (Embree's coordinates)
     size_t light_begin = 0, light_end = 0, gather_begin = 0, gather_end = 0;
   };
   // The row's light and gather rays, and the light samples' estimates.
@@ -97,9 +105,11 @@ class GatherScene {
   const PatchMesh& mesh_;
   const RayCaster& caster_;
   const PatchAttributes& attributes_;
-  std::vector<Rgb> reflected_at_vertex_;  // R = B - E, W/m^2 per band
+  std::vector<Rgb> at_vertex_;  // R = B - E, or I (see the constructor), W/m^2 per band
+  bool gathered_;
   GatherLights lights_;
-  RowContext light_context_;  // of lights_.mesh
+  std::vector<Rgb> light_radiance_;  // per light: what a light sample carries, W/m^2 per band
+  RowContext light_context_;         // of lights_.mesh
   LightSampler sampler_;
   PinholeProjection projection_;
 };
@@ -127,7 +137,7 @@ Rgb GatherScene::PointRadiance(const Point& point, const Secondary& secondary) c
   for (size_t i = point.light_begin; i < point.light_end; ++i) {
     if (secondary.light_rays[i].Occluded()) continue;
     const LightSampler::PendingSample& sample = secondary.pending[i];
-    const Rgb& e = lights_.emission[sample.emitter];
+    const Rgb& e = light_radiance_[sample.emitter];
     for (int b = 0; b < kBands; ++b) direct[b] += e[b] * sample.form_factor;
   }
   for (size_t i = point.gather_begin; i < point.gather_end; ++i) {
@@ -138,16 +148,26 @@ Rgb GatherScene::PointRadiance(const Point& point, const Secondary& secondary) c
     hit.patch = q;
     hit.u = g.u;
     hit.v = g.v;
-    const Rgb r = InterpolateAtHit(mesh_, reflected_at_vertex_, hit);
+    const Rgb r = InterpolateAtHit(mesh_, at_vertex_, hit);
     for (int b = 0; b < kBands; ++b) indirect[b] += std::max(0.0, r[b]);
   }
-  const double gathers = static_cast<double>(point.gather_end - point.gather_begin);
   const Rgb& rho = attributes_.reflectance[point.patch];
   const Rgb& e = attributes_.emission[point.patch];
   Rgb radiance;
+  if (gathered_) {
+    const double gathers = static_cast<double>(point.gather_end - point.gather_begin);
+    for (int b = 0; b < kBands; ++b) {
+      radiance[b] = (e[b] + rho[b] * (direct[b] + indirect[b] / gathers)) * std::numbers::inv_pi;
+    }
+    return radiance;
+  }
+  Hit hit;
+  hit.patch = point.patch;
+  hit.u = point.u;
+  hit.v = point.v;
+  const Rgb at_point = InterpolateAtHit(mesh_, at_vertex_, hit);
   for (int b = 0; b < kBands; ++b) {
-    const double h = direct[b] + indirect[b] / gathers;
-    radiance[b] = (e[b] + rho[b] * h) * std::numbers::inv_pi;
+    radiance[b] = (e[b] + std::max(0.0, at_point[b]) + rho[b] * direct[b]) * std::numbers::inv_pi;
   }
   return radiance;
 }
@@ -174,6 +194,8 @@ void GatherScene::StartPaths(int y, const PixelSamples& samples, uint64_t seed,
       x_on_p = x_on_p - patch.normal * Dot(x_on_p - mesh_.Vertex(p, 0), patch.normal);
       Point& point = points[at];
       point.patch = p;
+      point.u = r.u;
+      point.v = r.v;
       point.light_begin = secondary.light_rays.size();
       sampler_.SamplePoint(x_on_p, patch.normal, lights_.of_patch[p], seed, pixel,
                            static_cast<uint32_t>(j),
@@ -222,16 +244,38 @@ void GatherScene::Row(int y, const PixelSamples& samples, uint64_t seed, Image& 
 
 }  // namespace
 
-absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh& shading,
-                                        const RayCaster& caster, const PatchAttributes& attributes,
-                                        const std::vector<Rgb>& patch_radiosity,
-                                        const Camera& camera, const GatherOptions& options) {
+namespace {
+
+// The checks both pictures make on their inputs.
+absl::Status CheckSizes(const PatchMesh& mesh, const PatchAttributes& attributes,
+                        const std::vector<Rgb>& patch_radiosity, const Camera& camera) {
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
   if (patch_radiosity.size() != mesh.size() || attributes.size() != mesh.size()) {
     return absl::InvalidArgumentError(absl::StrCat("final gather: ", patch_radiosity.size(),
                                                    " radiosities and ", attributes.size(),
                                                    " attributes for ", mesh.size(), " patches"));
   }
+  return absl::OkStatus();
+}
+
+Image RenderScene(const GatherScene& scene, const Camera& camera, const PixelSamples& samples,
+                  const GatherOptions& options) {
+  Image image(camera.width, camera.height);
+  ParallelFor(camera.height, 1, options.threads, [&](int64_t begin, int64_t end) {
+    for (int64_t y = begin; y < end; ++y) {
+      scene.Row(static_cast<int>(y), samples, options.seed, image);
+    }
+  });
+  return image;
+}
+
+}  // namespace
+
+absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh& shading,
+                                        const RayCaster& caster, const PatchAttributes& attributes,
+                                        const std::vector<Rgb>& patch_radiosity,
+                                        const Camera& camera, const GatherOptions& options) {
+  if (absl::Status s = CheckSizes(mesh, attributes, patch_radiosity, camera); !s.ok()) return s;
   if (options.rays < 1 || options.rays > 4096) {
     return absl::InvalidArgumentError(
         absl::StrCat("final gather: --gather ", options.rays, " must be in [1, 4096]"));
@@ -244,15 +288,32 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh
   }
   absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, reflected);
   if (!at_vertex.ok()) return at_vertex.status();
-  const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), camera);
-  Image image(camera.width, camera.height);
-  const PixelSamples samples = SamplesPerPixel(options.rays);
-  ParallelFor(camera.height, 1, options.threads, [&](int64_t begin, int64_t end) {
-    for (int64_t y = begin; y < end; ++y) {
-      scene.Row(static_cast<int>(y), samples, options.seed, image);
-    }
-  });
-  return image;
+  const GatherScene scene(mesh, caster, attributes, patch_radiosity, *std::move(at_vertex), true,
+                          camera);
+  return RenderScene(scene, camera, SamplesPerPixel(options.rays), options);
+}
+
+absl::StatusOr<Image> RenderDirectPerPixel(const PatchMesh& mesh, const ShadingMesh& shading,
+                                           const RayCaster& caster,
+                                           const PatchAttributes& attributes,
+                                           const std::vector<Rgb>& patch_radiosity,
+                                           const std::vector<Rgb>& patch_indirect,
+                                           const Camera& camera, const GatherOptions& options) {
+  if (absl::Status s = CheckSizes(mesh, attributes, patch_radiosity, camera); !s.ok()) return s;
+  if (patch_indirect.size() != mesh.size()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("direct light per pixel: ", patch_indirect.size(), " indirect values for ",
+                     mesh.size(), " patches"));
+  }
+  if (options.rays < 1 || options.rays > 4096) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("direct light per pixel: ", options.rays, " samples must be in [1, 4096]"));
+  }
+  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, patch_indirect);
+  if (!at_vertex.ok()) return at_vertex.status();
+  const GatherScene scene(mesh, caster, attributes, patch_radiosity, *std::move(at_vertex), false,
+                          camera);
+  return RenderScene(scene, camera, PixelSamples{options.rays, 0}, options);
 }
 
 }  // namespace radflux

@@ -37,6 +37,15 @@ struct Gathered {
     shading = *BuildShadingMesh(mesh, FaceMaterials(scene));
     caster = *EmbreeRayCaster::Create(mesh);
   }
+  Image RenderDirect(const std::vector<Rgb>& b, const std::vector<Rgb>& indirect,
+                     const Camera& camera, int points) const {
+    GatherOptions options;
+    options.rays = points;
+    absl::StatusOr<Image> image =
+        RenderDirectPerPixel(mesh, shading, *caster, attributes, b, indirect, camera, options);
+    EXPECT_TRUE(image.ok()) << image.status();
+    return image.ok() ? *image : Image{};
+  }
   Image Render(const std::vector<Rgb>& b, const Camera& camera, int rays, int threads = 0) const {
     GatherOptions options;
     options.rays = rays;
@@ -118,8 +127,9 @@ double VeiledFurnaceMean(double opacity) {
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
       "usemtl white\nf 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n";
   if (opacity > 0) {
-    obj += "v .45 .45 .06\nv .45 .55 .06\nv .55 .55 .06\nv .55 .45 .06\n"
-           "usemtl veil\nf 9 10 11 12\n";
+    obj +=
+        "v .45 .45 .06\nv .45 .55 .06\nv .55 .55 .06\nv .55 .45 .06\n"
+        "usemtl veil\nf 9 10 11 12\n";
   }
   Scene scene =
       SceneFromObj(obj, "newmtl white\nKd 0.5 0.5 0.5\nKe 1 1 1\nnewmtl veil\nKd 0 0 0\n");
@@ -170,26 +180,29 @@ double SquareFormFactor(double px, double pz, double s, double c) {
   return g(x1, z1) - g(x0, z1) - g(x1, z0) + g(x0, z0);
 }
 
-// A 400 x 400 plate (rho 0.5) under a 10 x 10 emitter (rho 0, E = pi) 50 above its centre:
-// nothing reflects back to the plate, so its radiance is rho E F(x) / pi = 0.5 F(x) exactly,
-// whatever B the plate has. Compared with F averaged over each pixel's footprint (8 x 8
-// points): measured, the pixels (16 paths) lie within 1% of it (the spread of the warped
-// solid-angle samples and of the two quadratures), their mean ratio within 0.05%; allowed 2%
-// and 0.2%.
-TEST(FinalGather, PlateUnderSmallEmitterMatchesClosedForm) {
+// A 400 x 400 plate (rho 0.5) under a 10 x 10 emitter (rho 0, E = pi) 50 above its centre.
+std::string PlateUnderLamp() {
   int next = 1;
   std::string obj = ObjQuad("plate", "white",
                             {{-200, 0, -200}, {-200, 0, 200}, {200, 0, 200}, {200, 0, -200}}, next);
   obj += ObjQuad("lamp", "black", {{-5, 50, -5}, {5, 50, -5}, {5, 50, 5}, {-5, 50, 5}}, next);
-  const Gathered g(SceneFromObj(obj), 200);
-  std::vector<Rgb> b(g.mesh.size());
-  for (uint32_t p = 0; p < g.mesh.size(); ++p) b[p] = g.attributes.emission[p];
+  return obj;
+}
+
+Camera AbovePlate() {
   Camera camera;
   camera.position = {0, 150, -260};
   camera.look_at = {0, 0, 0};
   camera.width = camera.height = 24;
   camera.vertical_fov_degrees = 50;
-  const Image image = g.Render(b, camera, 16);
+  return camera;
+}
+
+// Expects each pixel of `image` on the plate to be `scale` rho F(x) (F from the point to the
+// lamp) averaged over the pixel's footprint (8 x 8 points), within `pixel_tolerance`, and
+// their mean ratio within `mean_tolerance`.
+void ExpectPlateFalloff(const Image& image, const Camera& camera, double scale,
+                        double pixel_tolerance, double mean_tolerance) {
   const PinholeProjection projection(camera);
   int compared = 0;
   double ratio_sum = 0;
@@ -209,18 +222,73 @@ TEST(FinalGather, PlateUnderSmallEmitterMatchesClosedForm) {
           on_plate = false;
           break;
         }
-        expected += 0.5 * SquareFormFactor(p.x, p.z, 5, 50) / 64;
+        expected += scale * 0.5 * SquareFormFactor(p.x, p.z, 5, 50) / 64;
       }
       if (!on_plate) continue;
       ++compared;
       ratio_sum += image.Pixel(x, y)[0] / expected;
       for (int band = 0; band < kBands; ++band) {
-        EXPECT_NEAR(image.Pixel(x, y)[band], expected, 0.02 * expected) << x << "," << y;
+        EXPECT_NEAR(image.Pixel(x, y)[band], expected, pixel_tolerance * expected) << x << "," << y;
       }
     }
   }
   EXPECT_GT(compared, 300);
-  EXPECT_NEAR(ratio_sum / compared, 1.0, 0.002);
+  EXPECT_NEAR(ratio_sum / compared, 1.0, mean_tolerance);
+}
+
+// Nothing reflects back to the plate, so its radiance is rho E F(x) / pi = 0.5 F(x) exactly,
+// whatever B the plate has. Measured, the pixels (16 paths) lie within 1% of it (the spread of
+// the warped solid-angle samples and of the two quadratures), their mean ratio within 0.05%;
+// allowed 2% and 0.2%.
+TEST(FinalGather, PlateUnderSmallEmitterMatchesClosedForm) {
+  const Gathered g(SceneFromObj(PlateUnderLamp()), 200);
+  std::vector<Rgb> b(g.mesh.size());
+  for (uint32_t p = 0; p < g.mesh.size(); ++p) b[p] = g.attributes.emission[p];
+  const Camera camera = AbovePlate();
+  ExpectPlateFalloff(g.Render(b, camera, 16), camera, 1.0, 0.02, 0.002);
+}
+
+// The direct light per pixel on a plate that is a single patch: its B is one flat value (here
+// the plate's mean, as a solve would give), yet the picture follows the falloff under the lamp
+// pixel by pixel (a Gouraud picture would show one value: 9x the edge's at the centre). The
+// lamp shines with its B (here 1.1 E, as if it reflected a tenth more), not its E: the pixels
+// are 1.1 x 0.5 F(x). Tolerances as the gather's, 16 points a pixel.
+TEST(DirectPerPixel, OnePatchPlateFollowsTheFalloffUnderTheLamp) {
+  const Gathered g(SceneFromObj(PlateUnderLamp()), 2);
+  ASSERT_EQ(g.mesh.size(), 2u);
+  std::vector<Rgb> b(g.mesh.size()), indirect(g.mesh.size(), Rgb{});
+  for (uint32_t p = 0; p < g.mesh.size(); ++p) {
+    const bool lamp = MaxComponent(g.attributes.emission[p]) > 0;
+    const double v = lamp ? 1.1 * std::numbers::pi : 0.5 * 0.001;
+    b[p] = {v, v, v};
+  }
+  const Camera camera = AbovePlate();
+  ExpectPlateFalloff(g.RenderDirect(b, indirect, camera, 16), camera, 1.1, 0.02, 0.002);
+}
+
+// The closed furnace (B = 2 pi, E = pi, rho 0.5 on every face): I = B - E - rho sum F B = 0,
+// and each point shows (E + rho H) / pi with H the light samples' sum F_j B_j = 2 pi: radiance
+// 2, the light samples the only noise (as the gather's furnace: 2% a pixel, 0.5% the mean).
+TEST(DirectPerPixel, ClosedFurnaceShowsB) {
+  const Gathered cube(FurnaceCube(), 96);
+  const std::vector<Rgb> indirect(cube.mesh.size(), Rgb{});
+  ExpectUniformRadiance(cube.RenderDirect(FurnaceB(cube.mesh), indirect, InsideUnitCube(), 16),
+                        0.02, 0.005);
+}
+
+// Sizes that disagree and point counts out of range are refused.
+TEST(DirectPerPixel, RejectsBadInput) {
+  const Gathered g(FurnaceCube(), 6);
+  GatherOptions options;
+  options.rays = 4;
+  const std::vector<Rgb> b(g.mesh.size());
+  EXPECT_FALSE(RenderDirectPerPixel(g.mesh, g.shading, *g.caster, g.attributes, b,
+                                    std::vector<Rgb>(1), InsideUnitCube(), options)
+                   .ok());
+  options.rays = 0;
+  EXPECT_FALSE(RenderDirectPerPixel(g.mesh, g.shading, *g.caster, g.attributes, b, b,
+                                    InsideUnitCube(), options)
+                   .ok());
 }
 
 // Each face of the cube, 16 patches, is one light of area 1 with the face's emission; an

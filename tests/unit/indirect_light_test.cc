@@ -1,0 +1,74 @@
+// ReflectedIndirect: B less the emission and the light that came straight from an emitter,
+// against hand-worked rows, in memory and spilled.
+#include "solver/solve/indirect_light.h"
+
+#include <gtest/gtest.h>
+
+#include "solver/sparse/row_store.h"
+
+namespace radflux {
+namespace {
+
+// Unknown 0 a lamp (E = 1, rho = 0: no row); 1 and 2 reflect half (rho = 0.5) and see the
+// lamp (F 0.3 and 0.1) and each other (F 0.2 and 0.4).
+struct ThreePatches {
+  CsrMatrix f;
+  PatchAttributes p;
+  ThreePatches() {
+    f.rows = f.cols = 3;
+    f.row_begin = {0, 0, 2, 4};
+    f.col = {0, 2, 0, 1};
+    f.value = {0.3f, 0.2f, 0.1f, 0.4f};
+    p.area = {1, 1, 1};
+    p.reflectance = {Rgb{0, 0, 0}, Rgb{0.5, 0.5, 0.5}, Rgb{0.5, 0.5, 0.5}};
+    p.emission = {Rgb{1, 1, 1}, Rgb{0, 0, 0}, Rgb{0, 0, 0}};
+  }
+};
+
+// I_1 = B_1 - rho F_10 B_0 = 0.4 - 0.15, I_2 = 0.3 - 0.05 (the lamp's B, 1.1, counts whole:
+// 0.4 - 0.165 and 0.3 - 0.055); the lamp, without a row, 0.
+TEST(ReflectedIndirect, SubtractsTheLightStraightFromTheEmitters) {
+  const ThreePatches s;
+  const RadiositySystem system{&s.f, &s.p, nullptr};
+  absl::StatusOr<std::vector<Rgb>> i =
+      ReflectedIndirect(system, {Rgb{1, 1, 1}, Rgb{0.4, 0.4, 0.4}, Rgb{0.3, 0.3, 0.3}});
+  ASSERT_TRUE(i.ok()) << i.status();
+  EXPECT_DOUBLE_EQ((*i)[0][1], 0.0);
+  EXPECT_NEAR((*i)[1][1], 0.25, 1e-7);
+  EXPECT_NEAR((*i)[2][1], 0.25, 1e-7);
+  i = ReflectedIndirect(system, {Rgb{1.1, 1.1, 1.1}, Rgb{0.4, 0.4, 0.4}, Rgb{0.3, 0.3, 0.3}});
+  ASSERT_TRUE(i.ok());
+  EXPECT_NEAR((*i)[1][0], 0.235, 1e-7);
+  EXPECT_NEAR((*i)[2][2], 0.245, 1e-7);
+}
+
+// A B below what the lamp alone gives is clamped at 0, never negative light.
+TEST(ReflectedIndirect, NeverNegative) {
+  const ThreePatches s;
+  const RadiositySystem system{&s.f, &s.p, nullptr};
+  absl::StatusOr<std::vector<Rgb>> i =
+      ReflectedIndirect(system, {Rgb{1, 1, 1}, Rgb{0.1, 0.1, 0.1}, Rgb{0.3, 0.3, 0.3}});
+  ASSERT_TRUE(i.ok());
+  EXPECT_EQ((*i)[1][0], 0.0);
+}
+
+// The same rows read from a RowStore give the same values; a B of the wrong size is refused.
+TEST(ReflectedIndirect, ReadsStoredRowsAndRejectsBadSizes) {
+  const ThreePatches s;
+  RowStore store(3, 1 << 20, nullptr);
+  RowBlock block;
+  block.row_begin = s.f.row_begin;
+  block.col = s.f.col;
+  block.value = s.f.value;
+  ASSERT_TRUE(store.Append(std::move(block)).ok());
+  ASSERT_TRUE(store.Finish().ok());
+  const RadiositySystem stored{nullptr, &s.p, &store};
+  absl::StatusOr<std::vector<Rgb>> i =
+      ReflectedIndirect(stored, {Rgb{1, 1, 1}, Rgb{0.4, 0.4, 0.4}, Rgb{0.3, 0.3, 0.3}});
+  ASSERT_TRUE(i.ok()) << i.status();
+  EXPECT_NEAR((*i)[2][0], 0.25, 1e-7);
+  EXPECT_FALSE(ReflectedIndirect(stored, {Rgb{1, 1, 1}}).ok());
+}
+
+}  // namespace
+}  // namespace radflux
