@@ -48,7 +48,7 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
   v1::ResultChunk chunk;
   StreamedResult r;
   uint64_t vertex_count = 0, patch_count = 0, factor_bytes = 0, sky_bytes = 0;
-  std::vector<double> xyz, b;
+  std::vector<double> xyz, b, indirect;
   while (reader->Read(&chunk)) {
     if (chunk.has_header()) {
       r.job = chunk.header().job();
@@ -73,6 +73,7 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
       r.vertices.insert(r.vertices.end(), p.vertices().begin(), p.vertices().end());
       r.faces.insert(r.faces.end(), p.source_face().begin(), p.source_face().end());
       b.insert(b.end(), p.radiosity().begin(), p.radiosity().end());
+      indirect.insert(indirect.end(), p.indirect().begin(), p.indirect().end());
     }
     if (chunk.part_case() == v1::ResultChunk::kReportJson) r.report = chunk.report_json();
   }
@@ -88,9 +89,15 @@ absl::StatusOr<StreamedResult> FetchResult(Client& client, const std::string& jo
   }
   for (size_t i = 0; i < vertex_count; ++i)
     r.positions.push_back({xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  if (!indirect.empty() && indirect.size() != kBands * patch_count) {
+    return absl::DataLossError("result stream's indirect values do not match its patches");
+  }
   r.radiosity.resize(patch_count);
   for (size_t p = 0; p < patch_count; ++p)
     for (int k = 0; k < kBands; ++k) r.radiosity[p][k] = b[kBands * p + k];
+  r.indirect.resize(indirect.empty() ? 0 : patch_count);
+  for (size_t p = 0; p < r.indirect.size(); ++p)
+    for (int k = 0; k < kBands; ++k) r.indirect[p][k] = indirect[kBands * p + k];
   return r;
 }
 

@@ -33,6 +33,7 @@ struct StreamedResult {
   std::vector<Vec3> positions;
   std::vector<uint32_t> vertices, faces;
   std::vector<Rgb> radiosity;  // W/m^2 per band, per patch
+  std::vector<Rgb> indirect;   // B's part not straight from an emitter (empty when not sent)
   std::string report;
   uint64_t patch_count = 0;  // from the header (also when the mesh and B were not asked for)
   // A view-factor job's files (empty when report_only): what `radflux viewfactors` writes

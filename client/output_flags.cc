@@ -132,8 +132,8 @@ void AddOutputFlags(CLI::App& app, OutputFlags& f) {
       app.add_option("--direct-light", f.direct_light,
                      "--render without --gather: pixel = the direct light sampled on the "
                      "emitters at every pixel over the Gouraud-shaded indirect light; patch = "
-                     "Gouraud-shaded B (also what a service result or an adaptive or "
-                     "hierarchical solve draws)")
+                     "Gouraud-shaded B (also what watch's snapshots, an adaptive or "
+                     "hierarchical solve and a result from an older server draw)")
           ->check(CLI::IsMember({"pixel", "patch"}))
           ->capture_default_str(),
       app.add_option("--pixel-samples", f.pixel_samples,

@@ -110,7 +110,7 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
                   client.flags());
     }
     if (absl::Status s = WriteOutputs(args.output, geometry->scene, geometry->mesh,
-                                      result->radiosity, {}, args.threads);
+                                      result->radiosity, result->indirect, args.threads);
         !s.ok()) {
       return Fail(s, client.flags());
     }

@@ -223,9 +223,6 @@ uint64_t EstimateJobBytes(uint64_t n, const JobOptions& options) {
   return rows + mesh_bytes + embree + solver + direct;
 }
 
-namespace {
-
-// result.indirect from the solved unknowns (ReflectedIndirect), pushed down to the patches.
 absl::Status FindIndirect(JobResult& result) {
   const bool grouped = !result.job->clusters.empty();
   absl::StatusOr<std::vector<Rgb>> indirect = ReflectedIndirect(
@@ -235,8 +232,6 @@ absl::Status FindIndirect(JobResult& result) {
       grouped ? PushDownToPatches(result.job->clusters, *indirect) : *std::move(indirect);
   return absl::OkStatus();
 }
-
-}  // namespace
 
 absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
                                  const JobCallbacks& callbacks) {

@@ -157,6 +157,11 @@ struct JobCallbacks {
 // mean stays its B). Nothing to do when the faces were not grouped.
 absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result);
 
+// result.indirect (JobResult) from the solved unknowns of a job with rows (solve/indirect_light.h),
+// pushed down to the patches of a grouped job: after PushDownGroupedSolve. The row store's
+// read error when spilled rows cannot be read.
+absl::Status FindIndirect(JobResult& result);
+
 // Runs all phases in-process on options.form_factors.threads threads.
 absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
                                  const JobCallbacks& callbacks = {});

@@ -331,11 +331,13 @@ absl::StatusOr<EncodedResult> RunStoredJob(const v1::Job& job, const RunContext&
   result.timings.rows = rows->seconds;
   result.timings.solve = SecondsSince(solve_start);
   if (absl::Status s = PushDownGroupedSolve(*options, result); !s.ok()) return s;
+  if (absl::Status s = FindIndirect(result); !s.ok()) return s;
   const auto encode_start = Clock::now();
   nlohmann::json report_json = MakeJobReport(result, *options, (*loaded)->name);
   report_json["workers"] = WorkersJson(farm_report);
   const std::string report = report_json.dump(2);
-  absl::StatusOr<EncodedResult> encoded = encoder.get().Finish(result.solve, report);
+  absl::StatusOr<EncodedResult> encoded =
+      encoder.get().Finish(result.solve, result.indirect, report);
   if (encoded.ok() && !result.solve.converged) {
     encoded->converged = false;
     encoded->message =

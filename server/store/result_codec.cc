@@ -4,14 +4,17 @@
 #include <bit>
 #include <cstring>
 
+#include "absl/strings/str_cat.h"
 #include "google/protobuf/io/coded_stream.h"
 
 namespace radflux {
 
 namespace {
 
-// MakeResultChunks; without B when `radiosity` is null.
+// MakeResultChunks; without B (and I) when `radiosity` is null, without I when `indirect` is
+// null or empty.
 std::vector<v1::ResultChunk> MakeChunks(const PatchMesh& mesh, const std::vector<Rgb>* radiosity,
+                                        const std::vector<Rgb>* indirect,
                                         const std::string& report_json) {
   std::vector<v1::ResultChunk> chunks(1);
   v1::ResultHeader* header = chunks[0].mutable_header();
@@ -36,6 +39,8 @@ std::vector<v1::ResultChunk> MakeChunks(const PatchMesh& mesh, const std::vector
       p->add_source_face(mesh.patches[i].face);
       if (radiosity == nullptr) continue;
       for (double b : (*radiosity)[i]) p->add_radiosity(b);
+      if (indirect == nullptr || indirect->empty()) continue;
+      for (double b : (*indirect)[i]) p->add_indirect(b);
     }
   }
   chunks.emplace_back().set_report_json(report_json);
@@ -45,8 +50,9 @@ std::vector<v1::ResultChunk> MakeChunks(const PatchMesh& mesh, const std::vector
 }  // namespace
 
 std::vector<v1::ResultChunk> MakeResultChunks(const PatchMesh& mesh, const SolveResult& solve,
+                                              const std::vector<Rgb>& indirect,
                                               const std::string& report_json) {
-  return MakeChunks(mesh, &solve.radiosity, report_json);
+  return MakeChunks(mesh, &solve.radiosity, &indirect, report_json);
 }
 
 std::string EncodeResultChunks(const std::vector<v1::ResultChunk>& chunks) {
@@ -71,10 +77,12 @@ void AppendVarint(std::string& out, uint64_t value) {
   out.append(reinterpret_cast<const char*>(varint), static_cast<size_t>(end - varint));
 }
 
-// Wire tags (field number << 3 | 2, length-delimited) of ResultChunk.patches and
-// PatchChunk.radiosity; radiosity is PatchChunk's last field, so protobuf writes it last.
+// Wire tags (field number << 3 | 2, length-delimited) of ResultChunk.patches,
+// PatchChunk.radiosity and PatchChunk.indirect; these two are PatchChunk's last fields, so
+// protobuf writes them last, in this order.
 constexpr char kPatchesTag = (3 << 3) | 2;
 constexpr char kRadiosityTag = (4 << 3) | 2;
+constexpr char kIndirectTag = (5 << 3) | 2;
 
 // Appends the length prefix of EncodeResultChunks.
 void AppendSize(std::string& out, uint64_t size) {
@@ -85,7 +93,7 @@ void AppendSize(std::string& out, uint64_t size) {
 
 ResultEncoder::ResultEncoder(const PatchMesh& mesh) : patch_count_(mesh.size()) {
   // The chunks without B: the header and vertex chunks whole, the patch chunks' other fields.
-  const std::vector<v1::ResultChunk> chunks = MakeChunks(mesh, nullptr, "");
+  const std::vector<v1::ResultChunk> chunks = MakeChunks(mesh, nullptr, nullptr, "");
   std::string bytes;
   for (const v1::ResultChunk& chunk : chunks) {
     if (chunk.part_case() == v1::ResultChunk::kReportJson) break;
@@ -98,7 +106,8 @@ ResultEncoder::ResultEncoder(const PatchMesh& mesh) : patch_count_(mesh.size()) 
     const v1::PatchChunk& p = chunk.patches();
     const uint64_t b_bytes = sizeof(double) * kBands * static_cast<uint64_t>(p.source_face_size());
     const std::string fields = p.SerializeAsString();  // first_patch, vertices, source_face
-    const uint64_t inner = fields.size() + 1 + CodedOutputStream::VarintSize64(b_bytes) + b_bytes;
+    const uint64_t field = 1 + CodedOutputStream::VarintSize64(b_bytes) + b_bytes;  // B or I
+    const uint64_t inner = fields.size() + 2 * field;
     AppendSize(bytes, 1 + CodedOutputStream::VarintSize64(inner) + inner);
     bytes.push_back(kPatchesTag);
     AppendVarint(bytes, inner);
@@ -107,21 +116,31 @@ ResultEncoder::ResultEncoder(const PatchMesh& mesh) : patch_count_(mesh.size()) 
     AppendVarint(bytes, b_bytes);
     before_b_.push_back(std::move(bytes));
     bytes.clear();
+    std::string& before_i = before_i_.emplace_back();
+    before_i.push_back(kIndirectTag);
+    AppendVarint(before_i, b_bytes);
   }
   before_b_.push_back(std::move(bytes));  // after the last patch chunk's B: nothing
   status_ = blob_.Append(before_b_.front());
 }
 
 absl::StatusOr<EncodedResult> ResultEncoder::Finish(const SolveResult& solve,
+                                                    const std::vector<Rgb>& indirect,
                                                     const std::string& report_json) && {
   static_assert(sizeof(Rgb) == kBands * sizeof(double), "B is copied as packed doubles");
   static_assert(std::endian::native == std::endian::little, "packed doubles are little-endian");
   if (!status_.ok()) return status_;
+  if (solve.radiosity.size() != patch_count_ || indirect.size() != patch_count_) {
+    return absl::InvalidArgumentError(absl::StrCat("result: ", solve.radiosity.size(), " B and ",
+                                                   indirect.size(), " indirect values for ",
+                                                   patch_count_, " patches"));
+  }
   v1::ResultChunk report;
   report.set_report_json(report_json);
   const std::string encoded_report = report.SerializeAsString();
-  size_t total = sizeof(uint64_t) + encoded_report.size() + sizeof(Rgb) * patch_count_;
+  size_t total = sizeof(uint64_t) + encoded_report.size() + 2 * sizeof(Rgb) * patch_count_;
   for (const std::string& part : before_b_) total += part.size();
+  for (const std::string& part : before_i_) total += part.size();
   EncodedResult result;
   std::string& out = result.bytes;
   out.reserve(total);
@@ -131,6 +150,8 @@ absl::StatusOr<EncodedResult> ResultEncoder::Finish(const SolveResult& solve,
     const size_t count = std::min(patch_count_ - first, kResultChunkItems);
     // Packed doubles are little-endian fixed64, as x86-64 stores them.
     out.append(reinterpret_cast<const char*>(solve.radiosity.data() + first), sizeof(Rgb) * count);
+    out += before_i_[k];
+    out.append(reinterpret_cast<const char*>(indirect.data() + first), sizeof(Rgb) * count);
   }
   out += before_b_.back();
   AppendSize(out, encoded_report.size());

@@ -10,8 +10,8 @@ namespace radflux {
 namespace {
 
 // A mesh of `patches` quads over `patches` + 3 vertices (not a surface: only the encoding
-// reads it), and B of every patch, from a fixed seed.
-void MakeMesh(size_t patches, PatchMesh* mesh, SolveResult* solve) {
+// reads it), and B and its indirect part of every patch, from a fixed seed.
+void MakeMesh(size_t patches, PatchMesh* mesh, SolveResult* solve, std::vector<Rgb>* indirect) {
   std::mt19937_64 random(patches);
   std::uniform_real_distribution<double> value(-1e3, 1e3);
   for (size_t i = 0; i < patches + 3; ++i)
@@ -23,6 +23,7 @@ void MakeMesh(size_t patches, PatchMesh* mesh, SolveResult* solve) {
     patch.face = static_cast<uint32_t>(i / 7);
     mesh->patches.push_back(patch);
     solve->radiosity.push_back({value(random), value(random), value(random)});
+    indirect->push_back({value(random), value(random), value(random)});
   }
 }
 
@@ -31,11 +32,12 @@ TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
        {size_t{0}, size_t{1}, size_t{1000}, kResultChunkItems, 2 * kResultChunkItems + 5}) {
     PatchMesh mesh;
     SolveResult solve;
-    MakeMesh(patches, &mesh, &solve);
+    std::vector<Rgb> indirect;
+    MakeMesh(patches, &mesh, &solve, &indirect);
     const std::string report = R"({"solve": {"iterations": 7}})";
-    const std::string whole = EncodeResultChunks(MakeResultChunks(mesh, solve, report));
+    const std::string whole = EncodeResultChunks(MakeResultChunks(mesh, solve, indirect, report));
     ResultEncoder encoder(mesh);
-    absl::StatusOr<EncodedResult> encoded = std::move(encoder).Finish(solve, report);
+    absl::StatusOr<EncodedResult> encoded = std::move(encoder).Finish(solve, indirect, report);
     ASSERT_TRUE(encoded.ok()) << encoded.status();
     EXPECT_EQ(encoded->bytes, whole) << patches << " patches";
     // Its blob file (two zstd frames) reads back as those bytes.
@@ -48,6 +50,14 @@ TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
     absl::StatusOr<std::vector<v1::ResultChunk>> decoded = DecodeResultChunks(whole);
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     EXPECT_EQ(decoded->back().report_json(), report);
+    size_t indirect_values = 0;
+    for (const v1::ResultChunk& chunk : *decoded) {
+      if (!chunk.has_patches()) continue;
+      for (int k = 0; k < chunk.patches().indirect_size(); ++k, ++indirect_values) {
+        ASSERT_EQ(chunk.patches().indirect(k), indirect[indirect_values / 3][indirect_values % 3]);
+      }
+    }
+    EXPECT_EQ(indirect_values, 3 * patches);
     // Header and report alone: the first and the last chunk, the same messages.
     absl::StatusOr<std::vector<v1::ResultChunk>> brief =
         DecodeResultChunks(whole, /*header_and_report_only=*/true);
@@ -57,6 +67,16 @@ TEST(ResultEncoderTest, FinishEqualsEncodingTheWholeResult) {
     EXPECT_EQ(brief->front().header().patch_count(), patches);
     EXPECT_EQ(brief->back().report_json(), report);
   }
+}
+
+// B and I must each have a value per patch.
+TEST(ResultEncoderTest, FinishRefusesValuesThatDoNotMatchThePatches) {
+  PatchMesh mesh;
+  SolveResult solve;
+  std::vector<Rgb> indirect;
+  MakeMesh(10, &mesh, &solve, &indirect);
+  indirect.pop_back();
+  EXPECT_FALSE(ResultEncoder(mesh).Finish(solve, indirect, "{}").ok());
 }
 
 }  // namespace

@@ -3,8 +3,7 @@
 # rendered PNGs. radfluxd on a loopback port it picks itself; the client re-loads the job's
 # scene (GetScene) and re-meshes it. Checks:
 #  - the PNG, PLY, GLB, PFM and patch-values CSV of `result`, and those `submit --watch` writes
-#    in one process, equal those of `solve` with the same options byte for byte (`solve` with
-#    --direct-light patch: the service streams B alone, so its pictures Gouraud-shade B);
+#    in one process, equal those of `solve` with the same options byte for byte;
 #  - the report JSONs agree on patches, non-zeros, rays, iterations, residual and energy
 #    balance (timings differ);
 #  - `watch --snapshots DIR` leaves at least one PNG in DIR, and every PNG decodes (chunk
@@ -16,7 +15,6 @@ start_radfluxd "$RADFLUXD" /tmp/radflux_result_XXXXXX
 
 OPTS=(--patches 500 --rays 96 --seed 3 --solver southwell --tolerance 1e-5)
 CAMERA=(--size 96x72 --camera-pos 278,273,-800 --camera-look-at 278,273,0 --fov-deg 40)
-GOURAUD=(--direct-light patch)
 "$RADFLUX" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" >"$DIR/submit.out" 2>/dev/null
 JOB=$(tail -n 1 "$DIR/submit.out")
 # Watch from the start with snapshots; then the outputs of the finished job.
@@ -26,9 +24,8 @@ JOB=$(tail -n 1 "$DIR/submit.out")
 "$RADFLUX" result "$JOB" --server "$ADDR" --render "$DIR/r.pfm" --out "$DIR/r.glb" \
   "${CAMERA[@]}" >/dev/null
 "$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.png" --out "$DIR/s.ply" \
-  --patch-values "$DIR/s.csv" --report "$DIR/s.json" "${CAMERA[@]}" "${GOURAUD[@]}"
-"$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}" \
-  "${GOURAUD[@]}"
+  --patch-values "$DIR/s.csv" --report "$DIR/s.json" "${CAMERA[@]}"
+"$RADFLUX" solve "$SCENE" "${OPTS[@]}" -q --render "$DIR/s.pfm" --out "$DIR/s.glb" "${CAMERA[@]}"
 # One process: submit, watch, then the same outputs as `result` writes.
 "$RADFLUX" submit "$SCENE" "${OPTS[@]}" --server "$ADDR" --watch --render "$DIR/w.png" \
   --out "$DIR/w.ply" --patch-values "$DIR/w.csv" --report "$DIR/w.json" "${CAMERA[@]}" \
