@@ -1,6 +1,7 @@
 #include "client/job_fetch.h"
 
 #include "absl/strings/str_cat.h"
+#include "solver/formfactor/form_factor_options.h"
 #include "solver/grouped_mesh.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
@@ -13,6 +14,10 @@ absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
   v1::GetJobRequest request;
   request.set_job_id(job_id);
   return FromGrpcStatus(client.stub().GetJob(client.Context().get(), request, job));
+}
+
+uint64_t JobSeed(const v1::Job& job) {
+  return job.options().has_seed() ? job.options().seed() : FormFactorOptions{}.seed;
 }
 
 absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {

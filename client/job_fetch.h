@@ -24,6 +24,9 @@ struct JobGeometry {
 // The job `job_id` (GetJob).
 absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job);
 
+// The seed `job` was solved with (its options', or the default when they leave it out).
+uint64_t JobSeed(const v1::Job& job);
+
 // The scene of `job` re-loaded and re-meshed with its options.
 absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job);
 

@@ -34,7 +34,9 @@ absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& g
   char name[64];
   std::snprintf(name, sizeof(name), "snapshot_%06d.png", snapshot.iteration());
   flags.render = (fs::path(dir) / name).string();
-  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, {}, args.threads);
+  // Without the indirect part a snapshot is Gouraud-shaded: nothing is sampled, the seed unused.
+  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, {}, /*seed=*/1,
+                      args.threads);
 }
 
 // True when a watch stream that failed with `code` before its job's final event may be

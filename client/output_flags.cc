@@ -49,9 +49,10 @@ absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, co
                                     const ShadingMesh& shading, const RayCaster& caster,
                                     const std::vector<Rgb>& radiosity,
                                     const std::vector<Rgb>& indirect, const Camera& camera,
-                                    int threads) {
+                                    uint64_t seed, int threads) {
   GatherOptions options;
   options.threads = threads;
+  options.seed = seed;
   if (f.gather > 0) {
     options.rays = f.gather;
     return RenderFinalGather(mesh, shading, caster, ComputePatchAttributes(scene, mesh), radiosity,
@@ -78,8 +79,8 @@ absl::Status WriteValues(const OutputFlags& f, const Scene& scene, const PatchMe
 // The picture, rendered in the solver's coordinates (single-precision rays near the origin).
 absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
                          const ShadingMesh& shading, const std::vector<Rgb>& radiosity,
-                         const std::vector<Rgb>& indirect, const ToneMapOptions& tone, int threads,
-                         OutputTimings* timings) {
+                         const std::vector<Rgb>& indirect, const ToneMapOptions& tone,
+                         uint64_t seed, int threads, OutputTimings* timings) {
   auto caster = EmbreeRayCaster::Create(solved_mesh);
   if (!caster.ok()) return caster.status();
   absl::StatusOr<Camera> camera =
@@ -87,7 +88,7 @@ absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMe
   if (!camera.ok()) return camera.status();
   const auto start = std::chrono::steady_clock::now();
   absl::StatusOr<Image> image = RenderPicture(f, scene, solved_mesh, shading, **caster, radiosity,
-                                              indirect, *camera, threads);
+                                              indirect, *camera, seed, threads);
   if (!image.ok()) return image.status();
   if (timings != nullptr && f.gather > 0) {
     timings->gather =
@@ -211,7 +212,7 @@ absl::StatusOr<Camera> CameraFromFlags(const OutputFlags& f, const PatchMesh& me
 
 absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchMesh& solved_mesh,
                           const std::vector<Rgb>& radiosity, const std::vector<Rgb>& indirect,
-                          int threads, OutputTimings* timings) {
+                          uint64_t seed, int threads, OutputTimings* timings) {
   // The mesh in the file's coordinates (a copy only for a recentred scene).
   std::optional<PatchMesh> translated;
   if (!(scene.origin == Vec3{})) translated = TranslatedMesh(solved_mesh, scene.origin);
@@ -240,7 +241,7 @@ absl::Status WriteOutputs(const OutputFlags& f, const Scene& scene, const PatchM
   }
   if (!f.render.empty()) {
     if (absl::Status s = WriteRender(f, scene, solved_mesh, *shading, radiosity, indirect, tone,
-                                     threads, timings);
+                                     seed, threads, timings);
         !s.ok()) {
       return s;
     }

@@ -63,9 +63,10 @@ struct OutputTimings {
 // Writes the mesh, picture and per-patch values that were asked for (not the report), in
 // the file's coordinates (scene.origin added back to the mesh's positions); fills `timings`
 // when given. `indirect` is B's part that did not come straight from an emitter, per patch
-// (JobResult::indirect); empty when not known, and the picture then Gouraud-shades B.
+// (JobResult::indirect); empty when not known, and the picture then Gouraud-shades B. A
+// sampled picture (--gather, --direct-light pixel) seeds its pixels from `seed`, the job's.
 absl::Status WriteOutputs(const OutputFlags& flags, const Scene& scene, const PatchMesh& mesh,
                           const std::vector<Rgb>& radiosity, const std::vector<Rgb>& indirect,
-                          int threads, OutputTimings* timings = nullptr);
+                          uint64_t seed, int threads, OutputTimings* timings = nullptr);
 
 }  // namespace radflux::cli

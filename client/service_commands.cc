@@ -109,8 +109,9 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
                                       "(client and server of different radflux versions?)"),
                   client.flags());
     }
-    if (absl::Status s = WriteOutputs(args.output, geometry->scene, geometry->mesh,
-                                      result->radiosity, result->indirect, args.threads);
+    if (absl::Status s =
+            WriteOutputs(args.output, geometry->scene, geometry->mesh, result->radiosity,
+                         result->indirect, JobSeed(result->job), args.threads);
         !s.ok()) {
       return Fail(s, client.flags());
     }

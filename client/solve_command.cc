@@ -145,8 +145,9 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
 
   const auto output_start = std::chrono::steady_clock::now();
   OutputTimings output_timings;
-  if (absl::Status s = WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity,
-                                    result->indirect, args.job.threads, &output_timings);
+  if (absl::Status s =
+          WriteOutputs(args.output, job.scene, job.mesh, result->solve.radiosity, result->indirect,
+                       args.job.seed, args.job.threads, &output_timings);
       !s.ok()) {
     return s;
   }

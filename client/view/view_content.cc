@@ -93,7 +93,7 @@ absl::StatusOr<std::string> GlbBytes(const Scene& scene, const PatchMesh& mesh,
   const std::string glb = path + ".glb";
   OutputFlags flags;
   flags.out = glb;
-  absl::Status s = WriteOutputs(flags, scene, mesh, b, {}, 1);
+  absl::Status s = WriteOutputs(flags, scene, mesh, b, {}, /*seed=*/1, 1);
   std::stringstream bytes;
   bytes << std::ifstream(glb, std::ios::binary).rdbuf();
   std::filesystem::remove(path);
