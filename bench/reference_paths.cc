@@ -225,6 +225,7 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
         loss.lost[c] += weight[c];
         if (from_emitter) loss.lost_leaving_emitters[c] += weight[c];
       }
+      loss.from_patch = p;
       return loss;
     }
     x = x + n * epsilon_ + w * hit.t;
