@@ -25,6 +25,7 @@ import sys
 import numpy as np
 
 from cornell_vs_cycles import read_pfm
+from pictures_vs_reference import write_png
 
 
 def block_means(image, block):
@@ -55,12 +56,9 @@ def summary(name, e, tol):
 
 def write_pngs(prefix, radflux, ref):
     """The two pictures, one exposure (see the docstring)."""
-    from PIL import Image
     white = np.percentile(ref, 95)
     for name, image in (("radflux", radflux), ("reference", ref)):
-        x = np.clip(image / white, 0, 1)
-        srgb = np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
-        Image.fromarray(np.round(srgb * 255).astype(np.uint8)).save(f"{prefix}_{name}.png")
+        write_png(f"{prefix}_{name}.png", image, white)
     print(f"wrote {prefix}_radflux.png and {prefix}_reference.png (white = {white:.4g})")
 
 
