@@ -58,7 +58,7 @@ absl::StatusOr<Image> RenderPicture(const OutputFlags& f, const Scene& scene, co
     return RenderFinalGather(mesh, shading, caster, ComputePatchAttributes(scene, mesh), radiosity,
                              camera, options);
   }
-  if (f.direct_light == "pixel" && !indirect.empty()) {
+  if (DrawsDirectPerPixel(f) && !indirect.empty()) {
     options.rays = f.pixel_samples;
     return RenderDirectPerPixel(mesh, shading, caster, ComputePatchAttributes(scene, mesh),
                                 radiosity, indirect, camera, options);
@@ -99,6 +99,10 @@ absl::Status WriteRender(const OutputFlags& f, const Scene& scene, const PatchMe
 }
 
 }  // namespace
+
+bool DrawsDirectPerPixel(const OutputFlags& f) {
+  return !f.render.empty() && f.gather == 0 && f.direct_light == "pixel";
+}
 
 void AddOutputFlags(CLI::App& app, OutputFlags& f) {
   const std::vector<CLI::Option*> added = {

@@ -42,6 +42,10 @@ inline constexpr const char* kOutputGroup = "Outputs";
 // The output flags given on `app`'s command line, by their long name (empty: none).
 std::vector<std::string> GivenOutputFlags(const CLI::App& app);
 
+// Whether the picture asked for samples the direct light per pixel over the indirect part
+// (JobResult::indirect): --render without --gather, --direct-light pixel.
+bool DrawsDirectPerPixel(const OutputFlags& flags);
+
 // Checks file extensions and camera values before any work starts.
 absl::Status ValidateOutputFlags(const OutputFlags& flags);
 

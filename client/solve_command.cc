@@ -100,6 +100,7 @@ absl::Status RunSolve(const SolveArgs& args, const SolveObserverFactory& view,
   if (observer) options->solver.snapshot_every = 1;
   options->spill.memory_limit = args.memory_limit;
   options->spill.directory = args.spill_dir;
+  options->find_indirect = DrawsDirectPerPixel(args.output);
   if (absl::Status s = ValidateJobOptions(*options); !s.ok()) return s;
   if (absl::Status s = ValidateOutputFlags(args.output); !s.ok()) return s;
   const auto start = std::chrono::steady_clock::now();

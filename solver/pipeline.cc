@@ -253,7 +253,9 @@ absl::StatusOr<JobResult> RunJob(Scene scene, const JobOptions& options,
   result.solve = *std::move(solved);
   result.timings.solve = SecondsSince(start);
   if (absl::Status s = PushDownGroupedSolve(options, result); !s.ok()) return s;
-  if (absl::Status s = FindIndirect(result); !s.ok()) return s;
+  if (options.find_indirect) {
+    if (absl::Status s = FindIndirect(result); !s.ok()) return s;
+  }
   return result;
 }
 

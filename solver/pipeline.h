@@ -43,6 +43,9 @@ struct JobOptions {
   AdaptiveOptions adaptive;          // passes > 0: RunJob meshes adaptively (issue 7)
   RowSpillOptions spill;             // memory_limit > 0: rows live in JobResult::row_store
   bool require_emitter = true;       // false: view factors, geometry only (no light needed)
+  bool find_indirect = true;  // RunJob fills JobResult::indirect (one more pass over the rows:
+                              // 7% of a spilled 200,000-patch Cornell job); a caller that draws
+                              // no picture with the direct light per pixel may say false
 };
 
 // Checks option values (ranges, hemicube resolution even, ...); INVALID_ARGUMENT names
@@ -121,7 +124,8 @@ struct JobResult {
   std::vector<Rgb> unknown_radiosity;
   // Per patch of job->mesh: the radiosity that did not come straight from an emitter
   // (solve/indirect_light.h; a group's patches share their unknown's), for pictures that
-  // sample the direct light per pixel. Empty where not known (adaptive, hierarchical).
+  // sample the direct light per pixel. Empty where not known (adaptive, hierarchical) or not
+  // asked for (JobOptions::find_indirect).
   std::vector<Rgb> indirect;
   uint64_t direct_cells = 0, direct_kept = 0, direct_rays = 0, direct_lifted = 0;
   uint64_t detail_rays = 0;  // the cells' detail's gather (cell_detail.h)

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "solver/pipeline.h"
 #include "solver/sparse/row_store.h"
+#include "tests/unit/test_scenes.h"
 
 namespace radflux {
 namespace {
@@ -68,6 +70,37 @@ TEST(ReflectedIndirect, ReadsStoredRowsAndRejectsBadSizes) {
   ASSERT_TRUE(i.ok()) << i.status();
   EXPECT_NEAR((*i)[2][0], 0.25, 1e-7);
   EXPECT_FALSE(ReflectedIndirect(stored, {Rgb{1, 1, 1}}).ok());
+}
+
+// A closed unit cube lit by its ceiling (rho 0.5 everywhere): RunJob's I per patch is, at
+// convergence, rho times the irradiance from the patches that do not emit, read off the very
+// rows (sum over non-emitters j of F_ij B_j; the solve stops at 1e-9, the rows are floats:
+// within 1e-5 of B); and nothing when the caller says it draws no such picture.
+TEST(ReflectedIndirect, RunJobFillsItPerPatchWhenAsked) {
+  JobOptions options;
+  options.mesh.target_patches = 150;
+  options.solver.tolerance = 1e-9;
+  const Scene scene =
+      testing::InwardUnitCube({"white", "white", "white", "lamp", "white", "white"});
+  absl::StatusOr<JobResult> result = RunJob(scene, options, {});
+  ASSERT_TRUE(result.ok()) << result.status();
+  const PatchAttributes& p = result->job->attributes;
+  const std::vector<Rgb>& b = result->solve.radiosity;
+  ASSERT_EQ(result->indirect.size(), result->job->mesh.size());
+  for (uint32_t i = 0; i < p.size(); ++i) {
+    double from_others = 0;
+    const auto cols = result->form_factors.RowCols(i);
+    const auto values = result->form_factors.RowValues(i);
+    for (size_t k = 0; k < cols.size(); ++k) {
+      if (MaxComponent(p.emission[cols[k]]) == 0) from_others += values[k] * b[cols[k]][0];
+    }
+    EXPECT_NEAR(result->indirect[i][0], p.reflectance[i][0] * from_others, 1e-5 * b[i][0]) << i;
+    EXPECT_LT(result->indirect[i][0], b[i][0] - p.emission[i][0] + 1e-12) << i;
+  }
+  options.find_indirect = false;
+  result = RunJob(scene, options, {});
+  ASSERT_TRUE(result.ok());
+  EXPECT_TRUE(result->indirect.empty());
 }
 
 }  // namespace
