@@ -29,7 +29,17 @@ cmp -s "$tmp/c.pfm" "$tmp/g0.pfm" || fail "--gather 0 changes the picture"
 "$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/g4.pfm" --size 32x16 --gather 4 \
   --report "$tmp/g4.json" || fail "gather 4 solve"
 grep -q '"gather"' "$tmp/g4.json" || fail "report lacks the gather's seconds"
-cmp -s "$tmp/c.pfm" "$tmp/g4.pfm" && fail "--gather 4 gives the Gouraud picture"
+cmp -s "$tmp/c.pfm" "$tmp/g4.pfm" && fail "--gather 4 gives the default picture"
+# --direct-light patch is the Gouraud picture of B, not the default's; --seed seeds the default.
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/dp.pfm" --size 32x16 \
+  --direct-light patch || fail "direct-light patch solve"
+cmp -s "$tmp/c.pfm" "$tmp/dp.pfm" && fail "--direct-light patch gives the default picture"
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/c1.pfm" --size 32x16 ||
+  fail "second default solve"
+cmp -s "$tmp/c.pfm" "$tmp/c1.pfm" || fail "the default picture differs run to run"
+"$radflux" solve "$cornell" --patches 300 --quiet --render "$tmp/s2.pfm" --size 32x16 --seed 2 ||
+  fail "seed 2 solve"
+cmp -s "$tmp/c.pfm" "$tmp/s2.pfm" && fail "--seed 2 gives seed 1's picture"
 # --lightmap SIZE: a GLB with a second UV set and an emissive lightmap texture.
 "$radflux" solve "$cornell" --patches 300 --quiet --out "$tmp/lm.glb" --lightmap 128 || fail "lightmap"
 [ "$(head -c 4 "$tmp/lm.glb")" = glTF ] || fail "lightmap GLB magic"
@@ -99,6 +109,10 @@ expect_error "bad rays" "rays" solve "$cornell" --rays -3
 expect_error "odd hemicube" "hemicube-res" solve "$cornell" --form-factors hemicube --hemicube-res 7
 expect_error "render extension" "render" solve "$cornell" --render "$tmp/x.bmp"
 expect_error "gather range" "--gather" solve "$cornell" --render "$tmp/x.png" --gather -1
+expect_error "direct-light value" "direct-light" solve "$cornell" --render "$tmp/x.png" \
+  --direct-light vertex
+expect_error "pixel-samples range" "pixel-samples" solve "$cornell" --render "$tmp/x.png" \
+  --pixel-samples 0
 expect_error "lightmap without glb" "--lightmap" solve "$cornell" --out "$tmp/x.ply" --lightmap 64
 expect_error "unknown solver" "solver" solve "$cornell" --solver magic
 printf 'o a\nusemtl nothing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad.obj"
