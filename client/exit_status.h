@@ -24,7 +24,8 @@ inline constexpr int kExitRowSumOver = kExitEnergyImbalance;
 
 // Prints the one line saying a solve stopped short (`radflux VERB: not converged: ...`
 // with the residual reached) and returns kExitNotConverged.
-inline int ReportNotConverged(const char* verb, int iterations, double residual, double tolerance) {
+inline int ReportNotConverged(const char* verb, int iterations, double residual,
+                              double tolerance) {
   std::fprintf(stderr,
                "radflux %s: not converged: residual %.3g after %d iterations, tolerance %.3g "
                "(outputs written)\n",
@@ -61,9 +62,9 @@ int SucceededJobExitCode(const JobOrEvent& job) {
 // the job's result is there as for any SUCCEEDED job); returns `code`.
 inline int ReportJobShortfall(const char* verb, const std::string& job_id,
                               const std::string& message, int code) {
-  std::fprintf(
-      stderr, "radflux %s: job %s %s\n", verb, job_id.c_str(),
-      message.empty() ? "fell short of its tolerance or its energy balance" : message.c_str());
+  std::fprintf(stderr, "radflux %s: job %s %s\n", verb, job_id.c_str(),
+               message.empty() ? "fell short of its tolerance or its energy balance"
+                               : message.c_str());
   return code;
 }
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "solver/scene/import_log.h"
 #include "solver/scene/import_options.h"
+#include "solver/scene/import_log.h"
 
 namespace radflux::cli {
 

@@ -6,8 +6,7 @@ void AddJobFlags(CLI::App& app, JobFlags& f) {
   auto* patches = app.add_option(
       "--patches", f.patches,
       "target number of unknowns: patches, or groups of small faces when the scene has more "
-      "faces (default " +
-          std::to_string(kDefaultPatches) + ")");
+      "faces (default " + std::to_string(kDefaultPatches) + ")");
   app.add_option("--max-edge", f.max_edge, "or: longest patch edge, scene units")
       ->excludes(patches);
   app.add_option("--form-factors", f.form_factors, "form-factor method")

@@ -12,31 +12,22 @@ namespace {
 
 std::string PhaseWords(const v1::JobEvent& event) {
   switch (event.state()) {
-    case v1::JOB_STATE_QUEUED:
-      return "queued";
+    case v1::JOB_STATE_QUEUED: return "queued";
     case v1::JOB_STATE_SUCCEEDED:
       if (event.has_converged() && !event.converged()) return "stopped short of its tolerance";
       if (event.has_energy_balance_ok() && !event.energy_balance_ok())
         return "succeeded, energy balance off";
       return "succeeded";
-    case v1::JOB_STATE_FAILED:
-      return "failed";
-    case v1::JOB_STATE_CANCELLED:
-      return "cancelled";
-    default:
-      break;
+    case v1::JOB_STATE_FAILED: return "failed";
+    case v1::JOB_STATE_CANCELLED: return "cancelled";
+    default: break;
   }
   switch (event.phase()) {
-    case v1::PHASE_PREPARE:
-      return "preparing the scene";
-    case v1::PHASE_ROWS:
-      return "computing form factors";
-    case v1::PHASE_SOLVE:
-      return "solving";
-    case v1::PHASE_DONE:
-      return "writing the result";
-    default:
-      return "running";
+    case v1::PHASE_PREPARE: return "preparing the scene";
+    case v1::PHASE_ROWS: return "computing form factors";
+    case v1::PHASE_SOLVE: return "solving";
+    case v1::PHASE_DONE: return "writing the result";
+    default: return "running";
   }
 }
 
@@ -77,8 +68,7 @@ ProgressWords JobProgress::Update(const v1::JobEvent& event,
     w.fraction = static_cast<double>(p.rows_done()) / static_cast<double>(p.rows_total());
     w.eta_seconds = p.eta_seconds();
     w.detail = absl::StrCat("rows ", p.rows_done(), "/", p.rows_total());
-    if (p.rays_per_second() > 0)
-      absl::StrAppend(&w.detail, ", ", Rate(p.rays_per_second()), " rays/s");
+    if (p.rays_per_second() > 0) absl::StrAppend(&w.detail, ", ", Rate(p.rays_per_second()), " rays/s");
   } else if (event.phase() == v1::PHASE_SOLVE && p.iteration() > 0) {
     if (first_residual_ <= 0 && p.residual() > 0) {
       first_residual_ = p.residual();
@@ -86,8 +76,7 @@ ProgressWords JobProgress::Update(const v1::JobEvent& event,
     }
     w.fraction = SolveFraction(p.residual());
     const double elapsed = std::chrono::duration<double>(now - first_time_).count();
-    if (w.fraction > 0.02 && w.fraction < 1)
-      w.eta_seconds = elapsed * (1 - w.fraction) / w.fraction;
+    if (w.fraction > 0.02 && w.fraction < 1) w.eta_seconds = elapsed * (1 - w.fraction) / w.fraction;
     w.detail = absl::StrFormat("iteration %d, residual %.2e", p.iteration(), p.residual());
     if (tolerance_ > 0) absl::StrAppend(&w.detail, absl::StrFormat(" (goal %.0e)", tolerance_));
   }

@@ -12,10 +12,10 @@ namespace radflux::cli {
 
 // One event in words.
 struct ProgressWords {
-  std::string phase;       // "computing form factors", "solving", "succeeded", ...
-  double fraction = -1;    // of the current phase in [0, 1]; -1 when unknown
-  double eta_seconds = 0;  // of the current phase; 0 when unknown
-  std::string detail;      // "rows 6912/7989, 1.2M rays/s, ETA 3 s"
+  std::string phase;      // "computing form factors", "solving", "succeeded", ...
+  double fraction = -1;   // of the current phase in [0, 1]; -1 when unknown
+  double eta_seconds = 0; // of the current phase; 0 when unknown
+  std::string detail;     // "rows 6912/7989, 1.2M rays/s, ETA 3 s"
 };
 
 // Follows one job's events. The solve's fraction is the progress of log(residual) from the

@@ -41,10 +41,10 @@ struct WatchOutcome {
 absl::StatusOr<WatchOutcome> FollowJob(Client& client, const v1::WatchJobRequest& request,
                                        const WatchHandlers& handlers, int reconnect_seconds);
 
-// Shows a job's progress on stderr (a bar on a terminal, plain lines else) until it ends, writing
-// each snapshot as a PNG into snapshots_dir (if set; then `geometry` is the job's); snapshots are
-// asked every `snapshot_every` iterations (without a directory they are only counted). When the
-// stream drops after its first event (a server restart), it is reopened after the last event seen,
+// Shows a job's progress on stderr (a bar on a terminal, plain lines else) until it ends, writing each snapshot as a PNG into
+// snapshots_dir (if set; then `geometry` is the job's); snapshots are asked every
+// `snapshot_every` iterations (without a directory they are only counted). When the stream
+// drops after its first event (a server restart), it is reopened after the last event seen,
 // for up to `reconnect_seconds` of waiting each time. Returns 0 when the job SUCCEEDED,
 // kExitNotConverged when it SUCCEEDED short of its tolerance, kExitEnergyImbalance when its
 // energy balance is off (one line says so).

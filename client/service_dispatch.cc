@@ -12,8 +12,8 @@
 namespace radflux::cli {
 namespace {
 
-constexpr std::array<std::string_view, 6> kServiceVerbs = {"submit", "watch", "result",
-                                                           "cancel", "list",  "view"};
+constexpr std::array<std::string_view, 6> kServiceVerbs = {"submit", "watch", "result", "cancel",
+                                                           "list",   "view"};
 constexpr std::array<std::string_view, 5> kConnectionOptions = {"--server", "--token", "--tls-ca",
                                                                 "--tls-cert", "--tls-key"};
 
@@ -52,7 +52,7 @@ bool IsSolveWithView(int argc, char** argv) {
 
 const char* SiblingFor(int argc, char** argv) {
   return IsServiceVerb(FindVerb(argc, argv)) || IsSolveWithView(argc, argv) ? "radflux-service"
-                                                                            : "radflux-local";
+                                                                             : "radflux-local";
 }
 
 void ExecSibling(const char* name, char** argv) {

@@ -22,8 +22,9 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   radflux::cli::AddServiceCommands(app, exit_code);
   // `radflux solve --view` comes here: the solve in-process, its page served as `view`'s.
-  radflux::cli::AddSolveCommand(
-      app, exit_code, [](int port) { return std::make_unique<radflux::cli::SolveView>(port); });
+  radflux::cli::AddSolveCommand(app, exit_code, [](int port) {
+    return std::make_unique<radflux::cli::SolveView>(port);
+  });
   const int code = radflux::cli::RunApp(app, argc, argv, exit_code);
   // Everything the verb writes is written and closed by now; what is left is gRPC's
   // teardown of its threads and channel (~3-6 ms of a round trip, with sleeps of 1 and 2 ms

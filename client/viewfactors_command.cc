@@ -35,15 +35,13 @@ std::string MemoryLine(const SurfaceRowsStats& s) {
   const double triangle = static_cast<double>(s.triangle) / (1 << 20);
   const double budget = static_cast<double>(s.budget) / (1 << 20);
   if (s.triangle > s.budget) {
-    return absl::StrFormat(
-        "rows one by one, each pair twice (the pair triangle's %.0f MiB is "
-        "over the %.0f MiB budget, --memory-limit)",
-        triangle, budget);
+    return absl::StrFormat("rows one by one, each pair twice (the pair triangle's %.0f MiB is "
+                           "over the %.0f MiB budget, --memory-limit)",
+                           triangle, budget);
   }
-  return absl::StrFormat(
-      "each pair once (reciprocity: the pair triangle's %.0f MiB within the "
-      "%.0f MiB budget)",
-      triangle, budget);
+  return absl::StrFormat("each pair once (reciprocity: the pair triangle's %.0f MiB within the "
+                         "%.0f MiB budget)",
+                         triangle, budget);
 }
 
 void PrintReport(const ViewFactorReport& r) {
@@ -51,8 +49,7 @@ void PrintReport(const ViewFactorReport& r) {
     const SurfaceRowsStats& s = *r.adaptive;
     std::fprintf(stderr,
                  "viewfactors: adaptive pairs: %llu culled (back to back), %llu one-point, %llu "
-                 "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu "
-                 "possible blockers, %llu "
+                 "2 x 2 points, %llu adaptive, %llu exact point-to-surface integrals; %llu possible blockers, %llu "
                  "pairs traced with %llu segments; %s; cull %.2f s, rows %.2f s\n",
                  static_cast<unsigned long long>(s.pairs.culled),
                  static_cast<unsigned long long>(s.pairs.one_point),
@@ -61,7 +58,8 @@ void PrintReport(const ViewFactorReport& r) {
                  static_cast<unsigned long long>(s.pairs.evaluations),
                  static_cast<unsigned long long>(s.blockers),
                  static_cast<unsigned long long>(s.traced_pairs),
-                 static_cast<unsigned long long>(s.segments), MemoryLine(s).c_str(), s.cull_seconds,
+                 static_cast<unsigned long long>(s.segments),
+                 MemoryLine(s).c_str(), s.cull_seconds,
                  s.rows_seconds);
   }
   std::fprintf(stderr,
