@@ -1,7 +1,6 @@
 #include "client/job_fetch.h"
 
 #include "absl/strings/str_cat.h"
-#include "solver/formfactor/form_factor_options.h"
 #include "solver/grouped_mesh.h"
 #include "solver/scene/validation.h"
 #include "wire/proto_convert.h"
@@ -14,10 +13,6 @@ absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job) {
   v1::GetJobRequest request;
   request.set_job_id(job_id);
   return FromGrpcStatus(client.stub().GetJob(client.Context().get(), request, job));
-}
-
-uint64_t JobSeed(const v1::Job& job) {
-  return job.options().has_seed() ? job.options().seed() : FormFactorOptions{}.seed;
 }
 
 absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
@@ -40,6 +35,7 @@ absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job) {
   absl::StatusOr<GroupedMesh> mesh = SubdivideAndGroup(geometry.scene, JobMeshOptions(*options));
   if (!mesh.ok()) return mesh.status();
   geometry.mesh = std::move(mesh->mesh);
+  geometry.seed = options->form_factors.seed;
   return geometry;
 }
 

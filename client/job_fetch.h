@@ -3,6 +3,7 @@
 // `view`.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,13 +20,11 @@ namespace radflux::cli {
 struct JobGeometry {
   Scene scene;
   PatchMesh mesh;
+  uint64_t seed = 1;  // the job's seed, which seeds its sampled pictures as `solve`'s
 };
 
 // The job `job_id` (GetJob).
 absl::Status FetchJob(Client& client, const std::string& job_id, v1::Job* job);
-
-// The seed `job` was solved with (its options', or the default when they leave it out).
-uint64_t JobSeed(const v1::Job& job);
 
 // The scene of `job` re-loaded and re-meshed with its options.
 absl::StatusOr<JobGeometry> FetchGeometry(Client& client, const v1::Job& job);

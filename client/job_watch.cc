@@ -34,8 +34,8 @@ absl::Status WriteSnapshotPng(const v1::Snapshot& snapshot, const JobGeometry& g
   char name[64];
   std::snprintf(name, sizeof(name), "snapshot_%06d.png", snapshot.iteration());
   flags.render = (fs::path(dir) / name).string();
-  // Without the indirect part a snapshot is Gouraud-shaded: nothing is sampled, the seed unused.
-  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, {}, /*seed=*/1,
+  // Without the indirect part (known once solved) a snapshot is Gouraud-shaded.
+  return WriteOutputs(flags, geometry.scene, geometry.mesh, radiosity, {}, geometry.seed,
                       args.threads);
 }
 
@@ -50,8 +50,8 @@ bool StreamMayResume(grpc::StatusCode code) {
 // One WatchJob stream from after progress->last_sequence until the job's final event (the
 // stream is then cancelled: the result can be asked for at once, without waiting for the
 // stream's end) or until the stream ends; returns its status.
-grpc::Status WatchStream(Client& client, v1::WatchJobRequest request, const WatchHandlers& handlers,
-                         WatchOutcome* progress) {
+grpc::Status WatchStream(Client& client, v1::WatchJobRequest request,
+                         const WatchHandlers& handlers, WatchOutcome* progress) {
   request.set_after_sequence(progress->last_sequence);
   auto context = client.Context();
   auto reader = client.stub().WatchJob(context.get(), request);
@@ -124,8 +124,8 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
     const ProgressWords w = words.Update(event, std::chrono::steady_clock::now());
     // A person's terminal gets the phase; a log gets the event number too (events resume
     // after it when the stream drops).
-    const std::string label =
-        display.terminal() ? w.phase : absl::StrCat("[", event.sequence(), "] ", w.phase);
+    const std::string label = display.terminal() ? w.phase
+                                                 : absl::StrCat("[", event.sequence(), "] ", w.phase);
     display.Show(label, w.fraction, w.detail,
                  event.state() != v1::JOB_STATE_RUNNING || event.phase() != v1::PHASE_ROWS);
     if (IsTerminal(event.state())) display.Finish();
@@ -138,7 +138,8 @@ int WatchJob(Client& client, const std::string& job_id, const std::string& snaps
     };
   }
   handlers.note = [&](const std::string& line) { display.Line(line); };
-  absl::StatusOr<WatchOutcome> outcome = FollowJob(client, request, handlers, reconnect_seconds);
+  absl::StatusOr<WatchOutcome> outcome =
+      FollowJob(client, request, handlers, reconnect_seconds);
   display.Finish();
   if (!outcome.ok()) return Fail(outcome.status(), client.flags());
   if (request.snapshot_every() > 0) std::cerr << outcome->snapshots << " snapshots received\n";

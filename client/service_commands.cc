@@ -11,8 +11,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "client/exit_status.h"
-#include "client/import_flags.h"
 #include "client/job_flags.h"
+#include "client/import_flags.h"
 #include "client/job_watch.h"
 #include "client/output_flags.h"
 #include "client/scene_upload.h"
@@ -26,8 +26,8 @@
 #include "wire/grpc_credentials.h"
 #include "wire/proto_convert.h"
 #include "wire/scene_stream.h"
-#include "wire/stored_scene.h"
 #include "wire/view_factor_convert.h"
+#include "wire/stored_scene.h"
 
 namespace radflux::cli {
 namespace {
@@ -109,9 +109,9 @@ int GetResult(Client& client, const std::string& job_id, const OutputArgs& args,
                                       "(client and server of different radflux versions?)"),
                   client.flags());
     }
-    if (absl::Status s =
-            WriteOutputs(args.output, geometry->scene, geometry->mesh, result->radiosity,
-                         result->indirect, JobSeed(result->job), args.threads);
+    if (absl::Status s = WriteOutputs(args.output, geometry->scene, geometry->mesh,
+                                      result->radiosity, result->indirect,
+                                      geometry->seed, args.threads);
         !s.ok()) {
       return Fail(s, client.flags());
     }
@@ -148,8 +148,8 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
   const JobGeometry* g = geometry ? &*geometry : nullptr;
   const int watched =
       WatchJob(client, job_id, snapshots_dir, g, args, snapshot_every, reconnect_seconds);
-  const bool succeeded =
-      watched == 0 || watched == kExitNotConverged || watched == kExitEnergyImbalance;
+  const bool succeeded = watched == 0 || watched == kExitNotConverged ||
+                         watched == kExitEnergyImbalance;
   if (!succeeded || !wants_result) return watched;
   return GetResult(client, job_id, args, g, /*say_shortfall=*/watched == 0);
 }
@@ -158,9 +158,9 @@ int WatchAndWriteResult(Client& client, const std::string& job_id, const std::st
 // `radflux viewfactors` checks them where the model is not needed (the server checks the
 // rest: it reads the model).
 absl::StatusOr<v1::SolveOptions> ViewFactorRequest(const std::vector<std::string>& given,
-                                                   const std::string& model, const JobFlags& job,
-                                                   const ImportFlags& import_flags,
-                                                   const ViewFactorFlags& vf) {
+                                                  const std::string& model, const JobFlags& job,
+                                                  const ImportFlags& import_flags,
+                                                  const ViewFactorFlags& vf) {
   const ViewFactorIntegration requested = RequestedIntegration(vf);
   if (absl::Status s = CheckViewFactorFlags(given, model, requested, requested); !s.ok()) return s;
   absl::StatusOr<JobOptions> options = ToJobOptions(job);
@@ -195,18 +195,16 @@ absl::Status CheckSubmitKind(const CLI::App& submit, bool viewfactors, bool watc
     return absl::InvalidArgumentError(vf_given.front() + " needs --viewfactors");
   }
   if (viewfactors && !outputs.empty()) {
-    return absl::InvalidArgumentError(
-        outputs.front() + " is for radiosity jobs; a view-factor job writes -o and --svf");
+    return absl::InvalidArgumentError(outputs.front() +
+                                      " is for radiosity jobs; a view-factor job writes -o and --svf");
   }
   const std::vector<std::string>& files = viewfactors ? vf_given : outputs;
   for (const std::string& flag : files) {
     if (flag != "-o" && flag != "--output" && flag != "--svf" && viewfactors) continue;
     if (watch) break;
-    return absl::InvalidArgumentError(
-        absl::StrCat(flag,
-                     " needs --watch: outputs are written when the watched job succeeds (without "
-                     "--watch, run `radflux result JOB ",
-                     flag, " ...` once it has)"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        flag, " needs --watch: outputs are written when the watched job succeeds (without "
+              "--watch, run `radflux result JOB ", flag, " ...` once it has)"));
   }
   return absl::OkStatus();
 }
@@ -262,8 +260,8 @@ int SubmitViewFactors(const ConnectionFlags& c, const std::string& model,
             << request.scene_sha256().substr(0, 12) << ")\n";
   int exit_code = 0;
   if (watch) {
-    const int watched =
-        WatchJob(client, submitted.job_id(), "", nullptr, OutputArgs{}, 0, reconnect_seconds);
+    const int watched = WatchJob(client, submitted.job_id(), "", nullptr, OutputArgs{}, 0,
+                                 reconnect_seconds);
     const bool succeeded = watched == 0 || watched == kExitRowSumOver;
     exit_code = !succeeded ? watched
                            : GetViewFactorResult(client, submitted.job_id(),
@@ -407,8 +405,7 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
                                     "radiosity outputs (--out, --render, --patch-values)")));
     }
     exit_code = GetViewFactorResult(
-        client, *result_id,
-        ViewFactorFiles{vf_files->output, vf_files->svf, result_args->output.report});
+        client, *result_id, ViewFactorFiles{vf_files->output, vf_files->svf, result_args->output.report});
   });
 
   auto* cancel = app.add_subcommand("cancel", "cancel a queued or running job");
@@ -426,9 +423,8 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
   });
 
   auto* view = app.add_subcommand(
-      "view",
-      "a live 3D view in the browser of a job (JOB), a saved result (RESULT.glb) or "
-      "the server's jobs (no argument), served on 127.0.0.1");
+      "view", "a live 3D view in the browser of a job (JOB), a saved result (RESULT.glb) or "
+              "the server's jobs (no argument), served on 127.0.0.1");
   auto view_args = std::make_shared<ViewArgs>();
   view->add_option("target", view_args->target, "job id or .glb file (default: the job list)");
   view->add_option("--port", view_args->port, "port on 127.0.0.1 (default: a free one)")
@@ -455,7 +451,8 @@ void AddServiceCommands(CLI::App& app, int& exit_code) {
                 << (verdict == kExitNotConverged      ? " NOT_CONVERGED"
                     : verdict == kExitEnergyImbalance ? " ENERGY_BALANCE_OFF"
                                                       : "")
-                << "  " << v1::Phase_Name(job.phase()) << "  patches " << job.patches() << "  "
+                << "  "
+                << v1::Phase_Name(job.phase()) << "  patches " << job.patches() << "  "
                 << job.message() << "  owner " << job.owner() << "\n";
     }
   });

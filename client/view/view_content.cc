@@ -52,21 +52,17 @@ nlohmann::json ViewInfo(const std::string& job_id, const v1::SolveOptions& optio
 void PublishEvent(const v1::JobEvent& event, JobProgress& words, ViewState* state) {
   const ProgressWords w = words.Update(event, std::chrono::steady_clock::now());
   const v1::Progress& p = event.progress();
-  state->Publish({{"state", v1::JobState_Name(event.state())},
-                  {"phase", w.phase},
-                  {"fraction", w.fraction},
-                  {"eta_seconds", w.eta_seconds},
-                  {"detail", w.detail},
-                  {"iteration", p.iteration()},
-                  {"residual", p.residual()}},
+  state->Publish({{"state", v1::JobState_Name(event.state())}, {"phase", w.phase},
+                  {"fraction", w.fraction}, {"eta_seconds", w.eta_seconds}, {"detail", w.detail},
+                  {"iteration", p.iteration()}, {"residual", p.residual()}},
                  p.iteration(), p.residual());
 }
 
 absl::StatusOr<ViewSnapshot> ToViewSnapshot(const v1::Snapshot& snapshot, size_t patches) {
   if (snapshot.patch_count() != patches || snapshot.bands_size() != kBands ||
       snapshot.format() != v1::SNAPSHOT_FORMAT_FLOAT16) {
-    return absl::DataLossError(
-        absl::StrCat("snapshot of ", snapshot.patch_count(), " patches for a mesh of ", patches));
+    return absl::DataLossError(absl::StrCat("snapshot of ", snapshot.patch_count(),
+                                            " patches for a mesh of ", patches));
   }
   absl::StatusOr<std::vector<float>> values = SnapshotValues(snapshot);
   if (!values.ok()) return values.status();

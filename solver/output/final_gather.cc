@@ -246,14 +246,19 @@ void GatherScene::Row(int y, const PixelSamples& samples, uint64_t seed, Image& 
 
 namespace {
 
-// The checks both pictures make on their inputs.
-absl::Status CheckSizes(const PatchMesh& mesh, const PatchAttributes& attributes,
-                        const std::vector<Rgb>& patch_radiosity, const Camera& camera) {
+// The checks both pictures make on their inputs: `what` names the picture and its count,
+// `count` (rays or points per pixel) must be in [1, 4096].
+absl::Status CheckInputs(const PatchMesh& mesh, const PatchAttributes& attributes,
+                         const std::vector<Rgb>& patch_radiosity, const Camera& camera, int count,
+                         const char* what) {
   if (absl::Status s = ValidateCamera(camera); !s.ok()) return s;
   if (patch_radiosity.size() != mesh.size() || attributes.size() != mesh.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("final gather: ", patch_radiosity.size(),
+    return absl::InvalidArgumentError(absl::StrCat(what, ": ", patch_radiosity.size(),
                                                    " radiosities and ", attributes.size(),
                                                    " attributes for ", mesh.size(), " patches"));
+  }
+  if (count < 1 || count > 4096) {
+    return absl::InvalidArgumentError(absl::StrCat(what, " ", count, " must be in [1, 4096]"));
   }
   return absl::OkStatus();
 }
@@ -275,10 +280,10 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh
                                         const RayCaster& caster, const PatchAttributes& attributes,
                                         const std::vector<Rgb>& patch_radiosity,
                                         const Camera& camera, const GatherOptions& options) {
-  if (absl::Status s = CheckSizes(mesh, attributes, patch_radiosity, camera); !s.ok()) return s;
-  if (options.rays < 1 || options.rays > 4096) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("final gather: --gather ", options.rays, " must be in [1, 4096]"));
+  if (absl::Status s = CheckInputs(mesh, attributes, patch_radiosity, camera, options.rays,
+                                   "final gather: --gather");
+      !s.ok()) {
+    return s;
   }
   std::vector<Rgb> reflected(mesh.size());
   for (size_t p = 0; p < mesh.size(); ++p) {
@@ -299,15 +304,15 @@ absl::StatusOr<Image> RenderDirectPerPixel(const PatchMesh& mesh, const ShadingM
                                            const std::vector<Rgb>& patch_radiosity,
                                            const std::vector<Rgb>& patch_indirect,
                                            const Camera& camera, const GatherOptions& options) {
-  if (absl::Status s = CheckSizes(mesh, attributes, patch_radiosity, camera); !s.ok()) return s;
+  if (absl::Status s = CheckInputs(mesh, attributes, patch_radiosity, camera, options.rays,
+                                   "direct light per pixel: --pixel-samples");
+      !s.ok()) {
+    return s;
+  }
   if (patch_indirect.size() != mesh.size()) {
     return absl::InvalidArgumentError(
         absl::StrCat("direct light per pixel: ", patch_indirect.size(), " indirect values for ",
                      mesh.size(), " patches"));
-  }
-  if (options.rays < 1 || options.rays > 4096) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("direct light per pixel: ", options.rays, " samples must be in [1, 4096]"));
   }
   absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, patch_indirect);
   if (!at_vertex.ok()) return at_vertex.status();
