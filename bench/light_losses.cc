@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
     for (long i = 0; i < particles; ++i) {
       const radflux::ReferenceTracer::Loss one = (*tracer)->TraceLoss(rng);
       for (int c = 0; c < radflux::kBands; ++c) {
+        mine.emitted[c] += one.emitted[c];
         mine.lost[c] += one.lost[c];
         mine.lost_leaving_emitters[c] += one.lost_leaving_emitters[c];
       }
@@ -60,14 +61,15 @@ int main(int argc, char** argv) {
   radflux::ReferenceTracer::Loss total;
   for (const auto& t : per_thread) {
     for (int c = 0; c < radflux::kBands; ++c) {
+      total.emitted[c] += t.emitted[c];
       total.lost[c] += t.lost[c];
       total.lost_leaving_emitters[c] += t.lost_leaving_emitters[c];
     }
   }
   std::printf("band,lost,lost_leaving_emitters\n");
   for (int c = 0; c < radflux::kBands; ++c) {
-    std::printf("%d,%.5f,%.5f\n", c, total.lost[c] / particles,
-                total.lost_leaving_emitters[c] / particles);
+    std::printf("%d,%.5f,%.5f\n", c, total.lost[c] / total.emitted[c],
+                total.lost_leaving_emitters[c] / total.emitted[c]);
   }
   std::printf("material,lost\n");
   for (size_t m = 0; m < scene->materials.size(); ++m) {

@@ -213,6 +213,7 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
   const Rgb& e = MaterialOf(p).emission;
   Rgb weight{};
   for (int c = 0; c < kBands; ++c) weight[c] = e[c] / Mean(e);
+  loss.emitted = weight;
   Vec3 x = PatchPointSampler(mesh_, p)({Uniform(rng), Uniform(rng)});
   for (;;) {
     const Vec3 n = mesh_.patches[p].normal;

@@ -67,6 +67,7 @@ class ReferenceTracer {
   // with the band's rho (Russian roulette on the largest band's weight). The means over many
   // particles are shares of the emitted power.
   struct Loss {
+    Rgb emitted{};  // the particle's starting weight per band (its band's share of the power)
     Rgb lost{}, lost_leaving_emitters{};
     uint32_t from_patch = kNoPatch;  // one particle's: the patch its lost flight left
   };

@@ -5,20 +5,23 @@
 
 #include "solver/core/seconds_since.h"
 #include "solver/formfactor/direct_lit.h"
+#include "solver/formfactor/near_field_steps.h"
 
 namespace radflux {
 
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
   const auto begin = std::chrono::steady_clock::now();
   GroupedMesh out;
+  absl::StatusOr<std::vector<std::pair<int, int>>> near_field = NearFieldSteps(scene);
+  if (!near_field.ok()) return near_field.status();
   if (!GroupsFaces(scene, options)) {
-    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options, *near_field);
     if (!mesh.ok()) return mesh.status();
     out.mesh = *std::move(mesh);
     out.seconds = SecondsSince(begin);
     return out;
   }
-  absl::StatusOr<PatchMesh> mesh = SubdivideForGrouping(scene, options);
+  absl::StatusOr<PatchMesh> mesh = SubdivideForGrouping(scene, options, *near_field);
   if (!mesh.ok()) return mesh.status();
   out.mesh = *std::move(mesh);
   const auto start = std::chrono::steady_clock::now();

@@ -22,7 +22,8 @@ struct GroupedMesh {
   double seconds = 0;                       // SubdivideAndGroup's whole time, caster included
 };
 
-// The scene's patches and unknowns: with GroupsFaces, split (SubdivideForGrouping), probed
+// The scene's patches and unknowns, quads near emitters cut into strips across their light
+// (formfactor/near_field_steps.h): with GroupsFaces, split (SubdivideForGrouping), probed
 // (ProbeDirectLight) and grouped (GroupPatches) to about options.target_patches unknowns (the
 // same for every caller: the probe's seed is fixed); otherwise SubdivideScene's mesh, one
 // unknown per patch.

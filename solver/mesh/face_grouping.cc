@@ -193,13 +193,14 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   return NumberByFirstPatch(mesh, group_of, groups);
 }
 
-absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options) {
+absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options,
+                                               std::span<const std::pair<int, int>> least_steps) {
   const double target_area = TotalFaceArea(scene) / static_cast<double>(options.target_patches);
   MeshOptions split;
   split.max_edge = kSplitEdge * std::sqrt(target_area);
   split.follow_contacts = options.follow_contacts;
   split.min_contact_area = target_area;  // faces of a patch or more (face_grouping.h)
-  return SubdivideScene(scene, split);
+  return SubdivideScene(scene, split, least_steps);
 }
 
 }  // namespace radflux

@@ -3,12 +3,14 @@
 // give walls a few huge patches and fine-tessellated furniture most of the unknowns. Instead,
 // with a* = (total face area) / N:
 //  - faces are split to an edge length of kSplitEdge * sqrt(a*) (large faces become patches
-//    of about a*; emitters keep subdivide.h's cap), and every emitting patch is an unknown
-//    of its own (light sampling needs emitters as single polygons), as is every hidden patch
-//    (in a slot under an emitter: its light is not its neighbours'); faces of area a* or more
-//    are cut along their contacts and lose the area under solids and covers hung against
-//    them (contact_footprints.h; with follow_contacts): a wall's patch that straddled a
-//    board's outline averaged the dark behind it into the lit strip beside it;
+//    of about a*; emitters keep subdivide.h's cap), quads close to an emitter against their
+//    size further into strips across its light (formfactor/near_field_steps.h: a housing's inside
+//    along its tube), and every emitting patch is an unknown of its own (light sampling needs
+//    emitters as single polygons), as is every hidden patch (in a slot under an emitter: its light
+//    is not its neighbours'); faces of area a* or more are cut along their contacts and lose the
+//    area under solids and covers hung against them (contact_footprints.h; with follow_contacts): a
+//    wall's patch that straddled a board's outline averaged the dark behind it into the lit strip
+//    beside it;
 //  - every patch is probed for the emitters' direct light (direct_lit.h: a light sample per
 //    patch through its own Embree scene, kept for the job's rows): a patch whose reflected
 //    direct light makes it a light source (kBright: a lamp housing's inside) is an unknown of
@@ -37,9 +39,9 @@
 // group of size ~a*, as for one patch of that size; rays from a group that hit the same group
 // count for it too (F_CC, Galerkin's diagonal, non-zero only for a non-flat group: a lamp
 // housing's inside, which reflects much of its light onto itself; every solver and the energy
-// balance take a diagonal). What grouping still loses is resolution within the group: a tube
-// 2 cm under its housing's inside sees the average of its group (with the housing's dimmer
-// parts), not the inside alone.
+// balance take a diagonal). What grouping still loses is resolution within the group (a tube
+// 2 cm under its housing's inside would see the average of its group, with the housing's
+// dimmer parts): hence the near-field strips above, each lit strip an unknown or a cell.
 // A group's flat B would average very uneven direct light (a wall beside a lamp), so each
 // group is also split into direct-light cells, a finer cut of the same trees with
 // kDirectCellsPerUnknown times the groups' budget: each cell gets its own direct light after
@@ -47,6 +49,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -78,7 +82,10 @@ enum class DirectLight : uint8_t {
 // The patches of a scene that GroupsFaces: its faces split as above (edges of kSplitEdge
 // sqrt(a*), faces of a* or more cut along their contacts), before the probe and the grouping
 // (solver/grouped_mesh.h's SubdivideAndGroup does both).
-absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options);
+// `least_steps` as SubdivideScene's.
+absl::StatusOr<PatchMesh> SubdivideForGrouping(
+    const Scene& scene, const MeshOptions& options,
+    std::span<const std::pair<int, int>> least_steps = {});
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
 // per emitting, hidden or kBright patch and per (object, material, two-sidedness, side,

@@ -33,6 +33,7 @@ struct FaceExtent {
   double reach = 0;  // the farthest vertex from the first (bounds the bisection)
   bool quad = false;
   bool emitter = false;
+  int least_u = 1, least_v = 1;  // the near field's steps (near_field_steps.h), or 1
 };
 
 FaceExtent MeasureExtent(const std::vector<Vec3>& p, bool emitter) {
@@ -69,7 +70,7 @@ double FaceEdgeLength(const FaceExtent& e, double h) {
 // Subdivision counts of one face at edge length h: (nu, nv) for a quad, (n, n) otherwise.
 std::pair<int, int> FaceSteps(const FaceExtent& e, double h) {
   const double edge = FaceEdgeLength(e, h);
-  return {Steps(e.u, edge), Steps(e.v, edge)};
+  return {std::max(e.least_u, Steps(e.u, edge)), std::max(e.least_v, Steps(e.v, edge))};
 }
 
 int64_t FacePatchCount(const FaceExtent& e, double h) {
@@ -279,7 +280,8 @@ double TotalFaceArea(const Scene& scene) {
   return total;
 }
 
-absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options) {
+absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options,
+                                         std::span<const std::pair<int, int>> least_steps) {
   if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
     return absl::InvalidArgumentError("patch count and max edge length must be >= 0");
   }
@@ -289,6 +291,13 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
   for (const Face& face : scene.faces) {
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
+  }
+  if (!least_steps.empty() && least_steps.size() != scene.faces.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("least steps for ", least_steps.size(),
+                                                   " faces of a scene of ", scene.faces.size()));
+  }
+  for (size_t f = 0; f < least_steps.size(); ++f) {
+    if (extents[f].quad) std::tie(extents[f].least_u, extents[f].least_v) = least_steps[f];
   }
   // With at least as many faces as the target, every face is one patch; the contacts of the
   // faces of a patch's share of the area or more are still followed (a ceiling 2 cm above a

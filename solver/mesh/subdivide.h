@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <utility>
 
 #include "absl/status/statusor.h"
 #include "solver/mesh/patch_mesh.h"
@@ -38,7 +40,11 @@ double TotalFaceArea(const Scene& scene);
 // with a max_edge and the contacts of its large faces only (a wall's part behind a board must
 // not share an unknown with its lit part; finding every small face's contacts costs far more
 // than meshing).
-absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options);
+// With `least_steps` (one (nu, nv) per face, or empty), a quad face is split into at least
+// that many steps each way (formfactor/near_field_steps.h: strips across a lamp's near field),
+// counted in target_patches.
+absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options,
+                                         std::span<const std::pair<int, int>> least_steps = {});
 
 struct MeshStats {
   size_t patches = 0;

@@ -1,0 +1,192 @@
+#include "solver/formfactor/near_field_steps.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "solver/core/parallel.h"
+#include "solver/formfactor/polygon_form_factor.h"
+#include "solver/mesh/subdivide.h"
+#include "solver/raytrace/embree_ray_caster.h"
+
+namespace radflux {
+namespace {
+
+constexpr int kIntervals = 32;  // samples along a line: kIntervals + 1
+constexpr std::array<double, 3> kLines = {1.0 / 6, 0.5, 5.0 / 6};
+using Line = std::array<double, kIntervals + 1>;
+
+struct Box {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void Add(const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+};
+
+double Gap(const Box& a, const Box& b) {
+  const Vec3 d{std::max({0.0, a.lo.x - b.hi.x, b.lo.x - a.hi.x}),
+               std::max({0.0, a.lo.y - b.hi.y, b.lo.y - a.hi.y}),
+               std::max({0.0, a.lo.z - b.hi.z, b.lo.z - a.hi.z})};
+  return Length(d);
+}
+
+struct Emitter {
+  std::vector<Vec3> polygon;
+  Vec3 normal;  // the side it emits from
+  Box box;
+  Vec3 centroid;
+};
+
+// A blocker must lie this far (as a share of the segment) from both ends of the segment
+// from a point to an emitter: the face itself and the emitter (and its back-face twin) are none.
+constexpr double kSegmentMargin = 1e-4;
+
+// Whether some vertex of `polygon` lies strictly in front of the plane through `origin`.
+bool AnyInFront(const std::vector<Vec3>& polygon, const Vec3& origin, const Vec3& normal) {
+  return std::any_of(polygon.begin(), polygon.end(),
+                     [&](const Vec3& p) { return Dot(p - origin, normal) > 0; });
+}
+
+// The n equal steps along `line`, each showing its mean, that best trade their miss (the mean
+// absolute deviation from the values, as a share of their mean) against their number, at
+// `step_cost` a step: a peak across a housing's width takes steps, the falloff over the last
+// few cm of a long tube (which only a fine grid along all of it would resolve) does not.
+int StepsFor(const Line& line, double step_cost) {
+  double mean = 0;
+  for (double g : line) mean += g / line.size();
+  int best = 1;
+  double best_cost = INFINITY;
+  for (int n = 1; n <= kMaxNearFieldSteps; ++n) {
+    double deviation = 0;
+    for (int k = 0; k < n; ++k) {
+      const int first = (k * kIntervals + n - 1) / n, last = ((k + 1) * kIntervals) / n;
+      double step_mean = 0;
+      for (int i = first; i <= last; ++i) step_mean += line[i] / (last - first + 1);
+      for (int i = first; i <= last; ++i) deviation += std::abs(line[i] - step_mean);
+    }
+    const double cost = deviation / (mean * line.size()) + step_cost * n;
+    if (cost < best_cost) best = n, best_cost = cost;
+  }
+  return best;
+}
+
+std::vector<Emitter> SortedEmitters(const Scene& scene) {
+  std::vector<Emitter> emitters;
+  std::vector<Vec3> polygon;
+  for (const Face& face : scene.faces) {
+    if (!scene.materials[face.material].IsEmitter()) continue;
+    FacePolygonInto(scene, face, polygon);
+    Emitter e{polygon, Normalize(PolygonNewellNormal(polygon)), {}, {}};
+    for (const Vec3& p : polygon) {
+      e.box.Add(p);
+      e.centroid += p / static_cast<double>(polygon.size());
+    }
+    emitters.push_back(std::move(e));
+  }
+  std::sort(emitters.begin(), emitters.end(),
+            [](const Emitter& a, const Emitter& b) { return a.box.lo.x < b.box.lo.x; });
+  return emitters;
+}
+
+// The steps of scene face f by the rule of the header, among `emitters` (sorted by their
+// boxes' lowest x, none wider in x than `widest`); each emitter's light at a point counts only
+// when `caster` (on the scene's faces, or null: no blocker) finds nothing between the point
+// and the emitter's centroid (a ceiling 2 cm above a housing sees nothing of the tube inside).
+std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<Emitter>& emitters,
+                                double widest, const RayCaster* caster) {
+  const Face& face = scene.faces[f];
+  if (face.vertices.size() != 4 || scene.materials[face.material].IsEmitter()) return {1, 1};
+  std::vector<Vec3> quad;
+  FacePolygonInto(scene, face, quad);
+  Box box;
+  double reach = 0;
+  for (int k = 0; k < 4; ++k) {
+    box.Add(quad[k]);
+    reach = std::max(reach, Length(quad[(k + 1) % 4] - quad[k]));
+  }
+  const Vec3 normal = Normalize(PolygonNewellNormal(quad));
+  std::vector<const Emitter*> near;
+  auto e = std::lower_bound(emitters.begin(), emitters.end(), box.lo.x - reach - widest,
+                            [](const Emitter& em, double x) { return em.box.lo.x < x; });
+  for (; e != emitters.end() && e->box.lo.x <= box.hi.x + reach; ++e) {
+    if (Gap(box, e->box) <= reach && AnyInFront(e->polygon, quad[0], normal) &&
+        AnyInFront(quad, e->polygon[0], e->normal)) {
+      near.push_back(&*e);
+    }
+  }
+  if (near.empty()) return {1, 1};
+  auto form_factor = [&](double u, double v) {
+    const Vec3 x = quad[0] * ((1 - u) * (1 - v)) + quad[1] * (u * (1 - v)) + quad[2] * (u * v) +
+                   quad[3] * ((1 - u) * v);
+    double sum = 0;
+    for (const Emitter* em : near) {
+      if (Dot(x - em->polygon[0], em->normal) <= 0) continue;
+      if (caster != nullptr &&
+          caster->Occluded({x, em->centroid - x, kSegmentMargin, 1 - kSegmentMargin})) {
+        continue;
+      }
+      sum += PointToPolygonFormFactor(x, normal, em->polygon);
+    }
+    return sum;
+  };
+  std::array<Line, kLines.size()> along_u, along_v;
+  double peak = 0;
+  for (size_t l = 0; l < kLines.size(); ++l) {
+    for (int i = 0; i <= kIntervals; ++i) {
+      const double t = static_cast<double>(i) / kIntervals;
+      along_u[l][i] = form_factor(t, kLines[l]);
+      along_v[l][i] = form_factor(kLines[l], t);
+      peak = std::max({peak, along_u[l][i], along_v[l][i]});
+    }
+  }
+  if (peak < kNearFieldMinPeak) return {1, 1};
+  int nu = 1, nv = 1;
+  for (size_t l = 0; l < kLines.size(); ++l) {
+    nu = std::max(nu, StepsFor(along_u[l], kNearFieldStepCost));
+    nv = std::max(nv, StepsFor(along_v[l], kNearFieldStepCost));
+  }
+  return {nu, nv};
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& scene) {
+  std::vector<std::pair<int, int>> steps(scene.faces.size(), {1, 1});
+  const std::vector<Emitter> emitters = SortedEmitters(scene);
+  if (emitters.empty()) return steps;
+  double widest = 0;
+  for (const Emitter& e : emitters) widest = std::max(widest, e.box.hi.x - e.box.lo.x);
+  // First without blockers: the faces that could need steps at all (cheap; most scenes few).
+  std::vector<uint8_t> candidate(scene.faces.size(), 0);
+  ParallelFor(static_cast<int64_t>(scene.faces.size()), 256, 0, [&](int64_t begin, int64_t end) {
+    for (int64_t f = begin; f < end; ++f) {
+      const auto [nu, nv] = StepsOfFace(scene, static_cast<size_t>(f), emitters, widest, nullptr);
+      candidate[static_cast<size_t>(f)] = nu > 1 || nv > 1;
+    }
+  });
+  std::vector<uint32_t> faces;
+  for (uint32_t f = 0; f < candidate.size(); ++f) {
+    if (candidate[f]) faces.push_back(f);
+  }
+  if (faces.empty()) return steps;
+  // Then again with the scene's faces as blockers, one patch a face.
+  MeshOptions whole;
+  whole.max_edge = std::numeric_limits<double>::max();
+  whole.follow_contacts = false;
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, whole);
+  if (!mesh.ok()) return mesh.status();
+  absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(*mesh);
+  if (!caster.ok()) return caster.status();
+  ParallelFor(static_cast<int64_t>(faces.size()), 16, 0, [&](int64_t begin, int64_t end) {
+    for (int64_t k = begin; k < end; ++k) {
+      const uint32_t f = faces[static_cast<size_t>(k)];
+      steps[f] = StepsOfFace(scene, f, emitters, widest, caster->get());
+    }
+  });
+  return steps;
+}
+
+}  // namespace radflux
