@@ -60,6 +60,6 @@ for patches in default "$@"; do
     /usr/bin/python3 -c 'import json, sys
 print("phases (s):", ", ".join(f"{k} {v:.2f}" for k, v in json.load(open(sys.argv[1]))["seconds"].items()))' \
       "$out/r_$run.json"
-    /usr/bin/python3 "$here/conference_regions.py" "$out/conf_$run.pfm" "${refs[@]}"
+    /usr/bin/python3 "$here/image_regions.py" "$out/conf_$run.pfm" "${refs[@]}"
   done
 done
