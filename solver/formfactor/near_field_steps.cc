@@ -38,7 +38,10 @@ struct Emitter {
   Vec3 normal;  // the side it emits from
   Box box;
   Vec3 centroid;
+  double emission = 0;  // E, mean over bands
 };
+
+double BandMean(const Rgb& v) { return (v[0] + v[1] + v[2]) / 3; }
 
 // A blocker must lie this far (as a share of the segment) from both ends of the segment
 // from a point to an emitter: the face itself and the emitter (and its back-face twin) are none.
@@ -73,13 +76,17 @@ int StepsFor(const Line& line, double step_cost) {
   return best;
 }
 
-std::vector<Emitter> SortedEmitters(const Scene& scene) {
+// The scene's emitting faces sorted by their boxes' lowest x, and their power (mean over bands).
+std::vector<Emitter> SortedEmitters(const Scene& scene, double* power) {
   std::vector<Emitter> emitters;
   std::vector<Vec3> polygon;
   for (const Face& face : scene.faces) {
     if (!scene.materials[face.material].IsEmitter()) continue;
     FacePolygonInto(scene, face, polygon);
-    Emitter e{polygon, Normalize(PolygonNewellNormal(polygon)), {}, {}};
+    const Vec3 newell = PolygonNewellNormal(polygon);
+    Emitter e{
+        polygon, Normalize(newell), {}, {}, BandMean(scene.materials[face.material].emission)};
+    *power += e.emission * Length(newell) / 2;
     for (const Vec3& p : polygon) {
       e.box.Add(p);
       e.centroid += p / static_cast<double>(polygon.size());
@@ -92,11 +99,12 @@ std::vector<Emitter> SortedEmitters(const Scene& scene) {
 }
 
 // The steps of scene face f by the rule of the header, among `emitters` (sorted by their
-// boxes' lowest x, none wider in x than `widest`); each emitter's light at a point counts only
-// when `caster` (on the scene's faces, or null: no blocker) finds nothing between the point
-// and the emitter's centroid (a ceiling 2 cm above a housing sees nothing of the tube inside).
+// boxes' lowest x, none wider in x than `widest`; `power` their emitted power); each
+// emitter's light at a point counts only when `caster` (on the scene's faces, or null: no
+// blocker) finds nothing between the point and the emitter's centroid (a ceiling 2 cm above a
+// housing sees nothing of the tube inside).
 std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<Emitter>& emitters,
-                                double widest, const RayCaster* caster) {
+                                double widest, double power, const RayCaster* caster) {
   const Face& face = scene.faces[f];
   if (face.vertices.size() != 4 || scene.materials[face.material].IsEmitter()) return {1, 1};
   std::vector<Vec3> quad;
@@ -107,7 +115,8 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
     box.Add(quad[k]);
     reach = std::max(reach, Length(quad[(k + 1) % 4] - quad[k]));
   }
-  const Vec3 normal = Normalize(PolygonNewellNormal(quad));
+  const Vec3 newell = PolygonNewellNormal(quad);
+  const Vec3 normal = Normalize(newell);
   std::vector<const Emitter*> near;
   auto e = std::lower_bound(emitters.begin(), emitters.end(), box.lo.x - reach - widest,
                             [](const Emitter& em, double x) { return em.box.lo.x < x; });
@@ -118,17 +127,20 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
     }
   }
   if (near.empty()) return {1, 1};
+  double irradiance_sum = 0;
   auto form_factor = [&](double u, double v) {
     const Vec3 x = quad[0] * ((1 - u) * (1 - v)) + quad[1] * (u * (1 - v)) + quad[2] * (u * v) +
                    quad[3] * ((1 - u) * v);
-    double sum = 0;
+    double sum = 0;  // F; irradiance_sum gathers F E
     for (const Emitter* em : near) {
       if (Dot(x - em->polygon[0], em->normal) <= 0) continue;
       if (caster != nullptr &&
           caster->Occluded({x, em->centroid - x, kSegmentMargin, 1 - kSegmentMargin})) {
         continue;
       }
-      sum += PointToPolygonFormFactor(x, normal, em->polygon);
+      const double factor = PointToPolygonFormFactor(x, normal, em->polygon);
+      sum += factor;
+      irradiance_sum += factor * em->emission;
     }
     return sum;
   };
@@ -142,7 +154,9 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
       peak = std::max({peak, along_u[l][i], along_v[l][i]});
     }
   }
-  if (peak < kNearFieldMinPeak) return {1, 1};
+  const double reflected = BandMean(scene.materials[face.material].reflectance) * irradiance_sum /
+                           (2 * kLines.size() * (kIntervals + 1)) * Length(newell) / 2;
+  if (peak < kNearFieldMinPeak || reflected < kNearFieldMinPower * power) return {1, 1};
   int nu = 1, nv = 1;
   for (size_t l = 0; l < kLines.size(); ++l) {
     nu = std::max(nu, StepsFor(along_u[l], kNearFieldStepCost));
@@ -155,7 +169,8 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
 
 absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& scene) {
   std::vector<std::pair<int, int>> steps(scene.faces.size(), {1, 1});
-  const std::vector<Emitter> emitters = SortedEmitters(scene);
+  double power = 0;
+  const std::vector<Emitter> emitters = SortedEmitters(scene, &power);
   if (emitters.empty()) return steps;
   double widest = 0;
   for (const Emitter& e : emitters) widest = std::max(widest, e.box.hi.x - e.box.lo.x);
@@ -163,7 +178,8 @@ absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& sce
   std::vector<uint8_t> candidate(scene.faces.size(), 0);
   ParallelFor(static_cast<int64_t>(scene.faces.size()), 256, 0, [&](int64_t begin, int64_t end) {
     for (int64_t f = begin; f < end; ++f) {
-      const auto [nu, nv] = StepsOfFace(scene, static_cast<size_t>(f), emitters, widest, nullptr);
+      const auto [nu, nv] =
+          StepsOfFace(scene, static_cast<size_t>(f), emitters, widest, power, nullptr);
       candidate[static_cast<size_t>(f)] = nu > 1 || nv > 1;
     }
   });
@@ -183,7 +199,7 @@ absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& sce
   ParallelFor(static_cast<int64_t>(faces.size()), 16, 0, [&](int64_t begin, int64_t end) {
     for (int64_t k = begin; k < end; ++k) {
       const uint32_t f = faces[static_cast<size_t>(k)];
-      steps[f] = StepsOfFace(scene, f, emitters, widest, caster->get());
+      steps[f] = StepsOfFace(scene, f, emitters, widest, power, caster->get());
     }
   });
   return steps;
