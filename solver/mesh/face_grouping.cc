@@ -176,20 +176,27 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
   for (uint32_t p : small) small_area += mesh.patches[p].area;
   GroupTree trees(mesh, small,
                   small_area / static_cast<double>(std::max<int64_t>(unknowns - singles, 1)));
+  int64_t roots = 0;
   for (size_t begin = 0; begin < small.size();) {
     size_t end = begin + 1;
     while (end < small.size() && set_of(small[end]) == set_of(small[begin])) ++end;
     trees.AddRoot(begin, end);
+    ++roots;
     begin = end;
   }
+  // The groups' budget: what the singles leave of `unknowns`, but never less than a group per
+  // tree, so that the cells keep kDirectCellsPerUnknown per group when the singles alone reach
+  // the target (a lamp in its housing meshed alone at --patches 20: 50 singles, 3 groups, and
+  // no cells left, so the tube saw its housing's mean and absorbed a third of its share).
+  const int64_t budget = std::max(unknowns - singles, roots);
   if (cells != nullptr) {
     std::vector<uint32_t> cell_of = group_of;
     uint32_t count = singles;
-    trees.Number(trees.CutNodes(kDirectCellsPerUnknown * (unknowns - singles)), cell_of, count);
+    trees.Number(trees.CutNodes(kDirectCellsPerUnknown * budget), cell_of, count);
     *cells = NumberByFirstPatch(mesh, cell_of, count);
   }
   uint32_t groups = singles;
-  trees.Number(trees.CutNodes(unknowns - singles), group_of, groups);
+  trees.Number(trees.CutNodes(budget), group_of, groups);
   return NumberByFirstPatch(mesh, group_of, groups);
 }
 

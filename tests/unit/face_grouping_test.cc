@@ -150,6 +150,26 @@ TEST(FaceGrouping, BentObjectsAcrossTheSceneGetLocalGroups) {
   }
 }
 
+// When the unknowns of their own (here 40 emitting faces) reach the target alone, every tree
+// still becomes one group, and each group keeps kDirectCellsPerUnknown direct-light cells: a
+// lamp in its housing meshed alone at --patches 20 had 50 singles, 3 groups and no cells left.
+TEST(FaceGrouping, SinglesAtTheTargetLeaveEachGroupItsCells) {
+  int next = 1;
+  std::string obj = TessellatedQuad("lamps", "lamp", {0, 0, 2}, {0, 4, 0}, {4, 0, 0}, 2, next);
+  obj += TessellatedQuad("floor", "white", {0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 8, next);
+  const Scene scene = SceneFromObj(obj);
+  const PatchMesh mesh = *SubdivideScene(scene, MeshOptions{});
+  uint32_t singles = 0;
+  for (const Patch& patch : mesh.patches) {
+    singles += scene.materials[scene.faces[patch.face].material].IsEmitter() ? 1 : 0;
+  }
+  ASSERT_GE(singles, 8u);
+  PatchClusters cells;
+  const PatchClusters c = GroupPatches(scene, mesh, singles / 2, &cells);
+  EXPECT_EQ(c.size(), singles + 1);  // the floor is one tree: one group
+  EXPECT_EQ(cells.size(), singles + kDirectCellsPerUnknown);
+}
+
 TEST(FaceGrouping, FewerFacesThanTargetKeepTheUngroupedMesh) {
   const Scene scene = TessellatedPlates();  // 3600 faces
   MeshOptions options;
