@@ -60,6 +60,7 @@ bool AnyInFront(const std::vector<Vec3>& polygon, const Vec3& origin, const Vec3
 int StepsFor(const Line& line, double step_cost) {
   double mean = 0;
   for (double g : line) mean += g / line.size();
+  if (!(mean > 0)) return 1;  // no light along this line
   int best = 1;
   double best_cost = INFINITY;
   for (int n = 1; n <= kMaxNearFieldSteps; ++n) {
