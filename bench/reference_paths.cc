@@ -23,7 +23,6 @@ constexpr int kLightSamples = 2;
 constexpr double kGuideShare = 0.5;
 
 double Uniform(ReferenceRng& rng) { return std::uniform_real_distribution<double>(0, 1)(rng); }
-double Mean(const Rgb& c) { return (c[0] + c[1] + c[2]) / 3; }
 
 // The index at which u (in [0, 1)) falls in a running sum ending at 1.
 size_t Pick(const std::vector<double>& cdf, double u) {
@@ -64,7 +63,8 @@ absl::StatusOr<std::unique_ptr<ReferenceTracer>> ReferenceTracer::Create(const S
   tracer->epsilon_ = 1e-6 * Length(hi - lo);
   std::vector<double> power(m.size());
   for (uint32_t p = 0; p < m.size(); ++p)
-    power[p] = m.patches[p].opacity * m.patches[p].area * Mean(tracer->MaterialOf(p).emission);
+    power[p] =
+        m.patches[p].opacity * m.patches[p].area * MeanComponent(tracer->MaterialOf(p).emission);
   for (double w : power) tracer->emitted_power_ += w;
   tracer->emitter_cdf_ = NormalisedCdf(power);
   return tracer;
@@ -79,7 +79,7 @@ void ReferenceTracer::SetGuide(const std::vector<double>& weight) {
 
 double ReferenceTracer::GuideShare(uint32_t p) const {
   if (guide_cdf_.empty()) return 0;
-  return std::clamp(1 - Mean(MaterialOf(p).reflectance), 0.0, kGuideShare);
+  return std::clamp(1 - MeanComponent(MaterialOf(p).reflectance), 0.0, kGuideShare);
 }
 
 double ReferenceTracer::ContinuationPdf(double share, const Vec3& x, const Vec3& n, const Vec3& w,
@@ -202,7 +202,7 @@ void ReferenceTracer::TraceParticle(ReferenceRng& rng, std::vector<double>& inci
     incident[hit.patch] += 1;
     x = x + n * epsilon_ + w * hit.t;
     p = hit.patch;
-    if (Uniform(rng) >= Mean(MaterialOf(p).reflectance)) return;
+    if (Uniform(rng) >= MeanComponent(MaterialOf(p).reflectance)) return;
   }
 }
 
@@ -212,7 +212,7 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
   uint32_t p = static_cast<uint32_t>(Pick(emitter_cdf_, Uniform(rng)));
   const Rgb& e = MaterialOf(p).emission;
   Rgb weight{};
-  for (int c = 0; c < kBands; ++c) weight[c] = e[c] / Mean(e);
+  for (int c = 0; c < kBands; ++c) weight[c] = e[c] / MeanComponent(e);
   loss.emitted = weight;
   Vec3 x = PatchPointSampler(mesh_, p)({Uniform(rng), Uniform(rng)});
   for (;;) {

@@ -13,6 +13,7 @@ inline constexpr int kBands = 3;
 using Rgb = std::array<double, kBands>;
 
 inline bool IsGrey(const Rgb& c) { return c[0] == c[1] && c[1] == c[2]; }
+inline double MeanComponent(const Rgb& c) { return (c[0] + c[1] + c[2]) / kBands; }
 inline double MaxComponent(const Rgb& c) {
   double m = c[0];
   for (double v : c) m = v > m ? v : m;

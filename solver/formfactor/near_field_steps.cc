@@ -8,6 +8,7 @@
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/polygon_form_factor.h"
+#include "solver/formfactor/surface_pair_integrator.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/raytrace/embree_ray_caster.h"
 
@@ -18,30 +19,17 @@ constexpr int kIntervals = 32;  // samples along a line: kIntervals + 1
 constexpr std::array<double, 3> kLines = {1.0 / 6, 0.5, 5.0 / 6};
 using Line = std::array<double, kIntervals + 1>;
 
-struct Box {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  void Add(const Vec3& p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-};
-
-double Gap(const Box& a, const Box& b) {
-  const Vec3 d{std::max({0.0, a.lo.x - b.hi.x, b.lo.x - a.hi.x}),
-               std::max({0.0, a.lo.y - b.hi.y, b.lo.y - a.hi.y}),
-               std::max({0.0, a.lo.z - b.hi.z, b.lo.z - a.hi.z})};
-  return Length(d);
+// The distance between the boxes [alo, ahi] and [blo, bhi] (0 when they overlap).
+double Gap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+  return Length(Vec3{std::max({0.0, alo.x - bhi.x, blo.x - ahi.x}),
+                     std::max({0.0, alo.y - bhi.y, blo.y - ahi.y}),
+                     std::max({0.0, alo.z - bhi.z, blo.z - ahi.z})});
 }
 
 struct Emitter {
-  std::vector<Vec3> polygon;
-  Vec3 normal;  // the side it emits from
-  Box box;
-  Vec3 centroid;
+  SurfaceShape shape;   // its normal the side it emits from
   double emission = 0;  // E, mean over bands
 };
-
-double BandMean(const Rgb& v) { return (v[0] + v[1] + v[2]) / 3; }
 
 // A blocker must lie this far (as a share of the segment) from both ends of the segment
 // from a point to an emitter: the face itself and the emitter (and its back-face twin) are none.
@@ -84,18 +72,12 @@ std::vector<Emitter> SortedEmitters(const Scene& scene, double* power) {
   for (const Face& face : scene.faces) {
     if (!scene.materials[face.material].IsEmitter()) continue;
     FacePolygonInto(scene, face, polygon);
-    const Vec3 newell = PolygonNewellNormal(polygon);
-    Emitter e{
-        polygon, Normalize(newell), {}, {}, BandMean(scene.materials[face.material].emission)};
-    *power += e.emission * Length(newell) / 2;
-    for (const Vec3& p : polygon) {
-      e.box.Add(p);
-      e.centroid += p / static_cast<double>(polygon.size());
-    }
+    Emitter e{MakeSurfaceShape(polygon), MeanComponent(scene.materials[face.material].emission)};
+    *power += e.emission * e.shape.area;
     emitters.push_back(std::move(e));
   }
   std::sort(emitters.begin(), emitters.end(),
-            [](const Emitter& a, const Emitter& b) { return a.box.lo.x < b.box.lo.x; });
+            [](const Emitter& a, const Emitter& b) { return a.shape.lo.x < b.shape.lo.x; });
   return emitters;
 }
 
@@ -108,38 +90,36 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
                                 double widest, double power, const RayCaster* caster) {
   const Face& face = scene.faces[f];
   if (face.vertices.size() != 4 || scene.materials[face.material].IsEmitter()) return {1, 1};
-  std::vector<Vec3> quad;
-  FacePolygonInto(scene, face, quad);
-  Box box;
+  std::vector<Vec3> polygon;
+  FacePolygonInto(scene, face, polygon);
+  const SurfaceShape quad = MakeSurfaceShape(polygon);
+  const std::vector<Vec3>& p = quad.polygon;
   double reach = 0;
-  for (int k = 0; k < 4; ++k) {
-    box.Add(quad[k]);
-    reach = std::max(reach, Length(quad[(k + 1) % 4] - quad[k]));
-  }
-  const Vec3 newell = PolygonNewellNormal(quad);
-  const Vec3 normal = Normalize(newell);
+  for (int k = 0; k < 4; ++k) reach = std::max(reach, Length(p[(k + 1) % 4] - p[k]));
   std::vector<const Emitter*> near;
-  auto e = std::lower_bound(emitters.begin(), emitters.end(), box.lo.x - reach - widest,
-                            [](const Emitter& em, double x) { return em.box.lo.x < x; });
-  for (; e != emitters.end() && e->box.lo.x <= box.hi.x + reach; ++e) {
-    if (Gap(box, e->box) <= reach && AnyInFront(e->polygon, quad[0], normal) &&
-        AnyInFront(quad, e->polygon[0], e->normal)) {
+  auto e = std::lower_bound(emitters.begin(), emitters.end(), quad.lo.x - reach - widest,
+                            [](const Emitter& em, double x) { return em.shape.lo.x < x; });
+  for (; e != emitters.end() && e->shape.lo.x <= quad.hi.x + reach; ++e) {
+    const SurfaceShape& em = e->shape;
+    if (Gap(quad.lo, quad.hi, em.lo, em.hi) <= reach && AnyInFront(em.polygon, p[0], quad.normal) &&
+        AnyInFront(p, em.polygon[0], em.normal)) {
       near.push_back(&*e);
     }
   }
   if (near.empty()) return {1, 1};
   double irradiance_sum = 0;
   auto form_factor = [&](double u, double v) {
-    const Vec3 x = quad[0] * ((1 - u) * (1 - v)) + quad[1] * (u * (1 - v)) + quad[2] * (u * v) +
-                   quad[3] * ((1 - u) * v);
+    const Vec3 x =
+        p[0] * ((1 - u) * (1 - v)) + p[1] * (u * (1 - v)) + p[2] * (u * v) + p[3] * ((1 - u) * v);
     double sum = 0;  // F; irradiance_sum gathers F E
     for (const Emitter* em : near) {
-      if (Dot(x - em->polygon[0], em->normal) <= 0) continue;
+      const SurfaceShape& shape = em->shape;
+      if (Dot(x - shape.polygon[0], shape.normal) <= 0) continue;
       if (caster != nullptr &&
-          caster->Occluded({x, em->centroid - x, kSegmentMargin, 1 - kSegmentMargin})) {
+          caster->Occluded({x, shape.centroid - x, kSegmentMargin, 1 - kSegmentMargin})) {
         continue;
       }
-      const double factor = PointToPolygonFormFactor(x, normal, em->polygon);
+      const double factor = PointToPolygonFormFactor(x, quad.normal, shape.polygon);
       sum += factor;
       irradiance_sum += factor * em->emission;
     }
@@ -155,8 +135,8 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
       peak = std::max({peak, along_u[l][i], along_v[l][i]});
     }
   }
-  const double reflected = BandMean(scene.materials[face.material].reflectance) * irradiance_sum /
-                           (2 * kLines.size() * (kIntervals + 1)) * Length(newell) / 2;
+  const double reflected = MeanComponent(scene.materials[face.material].reflectance) *
+                           irradiance_sum / (2 * kLines.size() * (kIntervals + 1)) * quad.area;
   if (peak < kNearFieldMinPeak || reflected < kNearFieldMinPower * power) return {1, 1};
   int nu = 1, nv = 1;
   for (size_t l = 0; l < kLines.size(); ++l) {
@@ -174,7 +154,7 @@ absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& sce
   const std::vector<Emitter> emitters = SortedEmitters(scene, &power);
   if (emitters.empty()) return steps;
   double widest = 0;
-  for (const Emitter& e : emitters) widest = std::max(widest, e.box.hi.x - e.box.lo.x);
+  for (const Emitter& e : emitters) widest = std::max(widest, e.shape.hi.x - e.shape.lo.x);
   // First without blockers: the faces that could need steps at all (cheap; most scenes few).
   std::vector<uint8_t> candidate(scene.faces.size(), 0);
   ParallelFor(static_cast<int64_t>(scene.faces.size()), 256, 0, [&](int64_t begin, int64_t end) {
