@@ -4,7 +4,7 @@
 Usage: housing_vs_particles.py --radflux RADFLUX_LOCAL --particles LIGHT_LOSSES
                                [--seeds 1,2] [--tolerance 0.05] [--keep DIR]
 
-The scene is RenderPark's classroom fixture rebuilt by hand (solver/mesh/near_field_steps.h): a
+The scene is RenderPark's classroom fixture rebuilt by hand (solver/formfactor/near_field_cuts.h): a
 two-sided 1.3 m x 4 cm tube 1.8 cm under the top of a trough (8 cm top, sides sloping out to a
 20 cm opening 8 cm lower) made of two two-sided shells 2 mm apart, rd 0.8, in a 10 x 7 x 3.5 m
 room of 25 cm one-sided tiles that face out: whatever leaves the fixture meets a tile's back

@@ -5,14 +5,14 @@
 
 #include "solver/core/seconds_since.h"
 #include "solver/formfactor/direct_lit.h"
-#include "solver/formfactor/near_field_steps.h"
+#include "solver/formfactor/near_field_cuts.h"
 
 namespace radflux {
 
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options) {
   const auto begin = std::chrono::steady_clock::now();
   GroupedMesh out;
-  absl::StatusOr<std::vector<std::pair<int, int>>> near_field = NearFieldSteps(scene);
+  absl::StatusOr<QuadCutsByFace> near_field = NearFieldCuts(scene);
   if (!near_field.ok()) return near_field.status();
   if (!GroupsFaces(scene, options)) {
     absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options, *near_field);

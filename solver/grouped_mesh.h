@@ -22,11 +22,11 @@ struct GroupedMesh {
   double seconds = 0;                       // SubdivideAndGroup's whole time, caster included
 };
 
-// The scene's patches and unknowns, quads near emitters cut into strips across their light
-// (formfactor/near_field_steps.h): with GroupsFaces, split (SubdivideForGrouping), probed
-// (ProbeDirectLight) and grouped (GroupPatches) to about options.target_patches unknowns (the
-// same for every caller: the probe's seed is fixed); otherwise SubdivideScene's mesh, one
-// unknown per patch.
+// The scene's patches and unknowns, quads near emitters cut into strips across their light and
+// along their outlines (formfactor/near_field_cuts.h): with GroupsFaces, split
+// (SubdivideForGrouping), probed (ProbeDirectLight) and grouped (GroupPatches) to about
+// options.target_patches unknowns (the same for every caller: the probe's seed is fixed); otherwise
+// SubdivideScene's mesh, one unknown per patch.
 absl::StatusOr<GroupedMesh> SubdivideAndGroup(const Scene& scene, const MeshOptions& options);
 
 }  // namespace radflux

@@ -201,13 +201,13 @@ PatchClusters GroupPatches(const Scene& scene, const PatchMesh& mesh, int64_t un
 }
 
 absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options,
-                                               std::span<const std::pair<int, int>> least_steps) {
+                                               const QuadCutsByFace& cuts) {
   const double target_area = TotalFaceArea(scene) / static_cast<double>(options.target_patches);
   MeshOptions split;
   split.max_edge = kSplitEdge * std::sqrt(target_area);
   split.follow_contacts = options.follow_contacts;
   split.min_contact_area = target_area;  // faces of a patch or more (face_grouping.h)
-  return SubdivideScene(scene, split, least_steps);
+  return SubdivideScene(scene, split, cuts);
 }
 
 }  // namespace radflux

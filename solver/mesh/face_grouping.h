@@ -4,7 +4,7 @@
 // with a* = (total face area) / N:
 //  - faces are split to an edge length of kSplitEdge * sqrt(a*) (large faces become patches
 //    of about a*; emitters keep subdivide.h's cap), quads close to an emitter against their
-//    size further into strips across its light (formfactor/near_field_steps.h: a housing's inside
+//    size further into strips across its light (formfactor/near_field_cuts.h: a housing's inside
 //    along its tube), and every emitting patch is an unknown of its own (light sampling needs
 //    emitters as single polygons), as is every hidden patch (in a slot under an emitter: its light
 //    is not its neighbours'); faces of area a* or more are cut along their contacts and lose the
@@ -82,10 +82,9 @@ enum class DirectLight : uint8_t {
 // The patches of a scene that GroupsFaces: its faces split as above (edges of kSplitEdge
 // sqrt(a*), faces of a* or more cut along their contacts), before the probe and the grouping
 // (solver/grouped_mesh.h's SubdivideAndGroup does both).
-// `least_steps` as SubdivideScene's.
-absl::StatusOr<PatchMesh> SubdivideForGrouping(
-    const Scene& scene, const MeshOptions& options,
-    std::span<const std::pair<int, int>> least_steps = {});
+// `cuts` as SubdivideScene's.
+absl::StatusOr<PatchMesh> SubdivideForGrouping(const Scene& scene, const MeshOptions& options,
+                                               const QuadCutsByFace& cuts = {});
 
 // Groups the patches of `mesh` (of `scene`) into `unknowns` unknowns (or more: at least one
 // per emitting, hidden or kBright patch and per (object, material, two-sidedness, side,

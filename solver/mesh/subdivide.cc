@@ -33,7 +33,7 @@ struct FaceExtent {
   double reach = 0;  // the farthest vertex from the first (bounds the bisection)
   bool quad = false;
   bool emitter = false;
-  int least_u = 1, least_v = 1;  // the near field's steps (near_field_steps.h), or 1
+  const QuadCuts* cuts = nullptr;  // lines it must be cut along (quads only), or null
 };
 
 FaceExtent MeasureExtent(const std::vector<Vec3>& p, bool emitter) {
@@ -67,10 +67,41 @@ double FaceEdgeLength(const FaceExtent& e, double h) {
   return std::max(h, e.longest_edge / kMaxEmitterSteps);
 }
 
+// Calls visit(a, b, n) for each interval [a, b] of a side of `length` between the `cuts`
+// (parameters in (0, 1), ascending; null: none) with the n equal steps of at most `edge` it
+// takes.
+template <typename Visit>
+void ForEachInterval(double length, double edge, const std::vector<double>* cuts, Visit visit) {
+  double a = 0;
+  if (cuts != nullptr) {
+    for (double b : *cuts) {
+      visit(a, b, Steps((b - a) * length, edge));
+      a = b;
+    }
+  }
+  visit(a, 1.0, Steps((1 - a) * length, edge));
+}
+
+int SideSteps(double length, double edge, const std::vector<double>* cuts) {
+  int total = 0;
+  ForEachInterval(length, edge, cuts, [&](double, double, int n) { total += n; });
+  return total;
+}
+
+// The parameters of a side's grid lines, 0 and 1 included: its intervals' equal steps.
+std::vector<double> SideLines(double length, double edge, const std::vector<double>* cuts) {
+  std::vector<double> lines{0.0};
+  ForEachInterval(length, edge, cuts, [&](double a, double b, int n) {
+    for (int i = 1; i <= n; ++i) lines.push_back(a + (b - a) * (static_cast<double>(i) / n));
+  });
+  return lines;
+}
+
 // Subdivision counts of one face at edge length h: (nu, nv) for a quad, (n, n) otherwise.
 std::pair<int, int> FaceSteps(const FaceExtent& e, double h) {
   const double edge = FaceEdgeLength(e, h);
-  return {std::max(e.least_u, Steps(e.u, edge)), std::max(e.least_v, Steps(e.v, edge))};
+  if (e.cuts == nullptr) return {Steps(e.u, edge), Steps(e.v, edge)};
+  return {SideSteps(e.u, edge, &e.cuts->u), SideSteps(e.v, edge, &e.cuts->v)};
 }
 
 int64_t FacePatchCount(const FaceExtent& e, double h) {
@@ -88,11 +119,14 @@ class FaceMesher {
         two_sided_(material.two_sided),
         opacity_(static_cast<float>(material.opacity)) {}
 
-  void Quad(const std::vector<Vec3>& p, int nu, int nv) {
+  // The grid of quad p through the lines at parameters us (u: 0 -> 1) and vs (v: 0 -> 3),
+  // each ascending from 0 to 1.
+  void Quad(const std::vector<Vec3>& p, const std::vector<double>& us,
+            const std::vector<double>& vs) {
     const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());
-    for (int j = 0; j <= nv; ++j) {
-      for (int i = 0; i <= nu; ++i) {
-        const double u = double(i) / nu, v = double(j) / nv;
+    const int nu = static_cast<int>(us.size()) - 1, nv = static_cast<int>(vs.size()) - 1;
+    for (double v : vs) {
+      for (double u : us) {
         mesh_.positions.push_back(p[0] * ((1 - u) * (1 - v)) + p[1] * (u * (1 - v)) +
                                   p[2] * (u * v) + p[3] * ((1 - u) * v));
       }
@@ -215,13 +249,15 @@ double ChooseEdgeLength(const std::vector<FaceExtent>& extents, const MeshOption
 // any cut along its contacts; returns the face's unit normal.
 Vec3 MeshFaceGrid(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
                   const FaceExtent& extent, double h, PatchMesh& mesh) {
-  const auto [nu, nv] = FaceSteps(extent, h);
   const Vec3 normal = Normalize(PolygonNewellNormal(polygon));
   FaceMesher mesher(mesh, f, normal, scene.materials[scene.faces[f].material]);
+  const double edge = FaceEdgeLength(extent, h);
   if (polygon.size() == 4) {
-    mesher.Quad(polygon, nu, nv);
+    const QuadCuts* cuts = extent.cuts;
+    mesher.Quad(polygon, SideLines(extent.u, edge, cuts ? &cuts->u : nullptr),
+                SideLines(extent.v, edge, cuts ? &cuts->v : nullptr));
   } else {
-    mesher.Fan(polygon, nu);
+    mesher.Fan(polygon, FaceSteps(extent, h).first);
   }
   return normal;
 }
@@ -281,7 +317,7 @@ double TotalFaceArea(const Scene& scene) {
 }
 
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options,
-                                         std::span<const std::pair<int, int>> least_steps) {
+                                         const QuadCutsByFace& cuts) {
   if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
     return absl::InvalidArgumentError("patch count and max edge length must be >= 0");
   }
@@ -292,12 +328,21 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
-  if (!least_steps.empty() && least_steps.size() != scene.faces.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("least steps for ", least_steps.size(),
-                                                   " faces of a scene of ", scene.faces.size()));
-  }
-  for (size_t f = 0; f < least_steps.size(); ++f) {
-    if (extents[f].quad) std::tie(extents[f].least_u, extents[f].least_v) = least_steps[f];
+  for (const auto& [f, face_cuts] : cuts) {
+    if (f >= scene.faces.size()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("cuts for face ", f, " of a scene of ", scene.faces.size(), " faces"));
+    }
+    for (const std::vector<double>* side : {&face_cuts.u, &face_cuts.v}) {
+      for (size_t k = 0; k < side->size(); ++k) {
+        const double t = (*side)[k];
+        if (!(t > 0 && t < 1) || (k > 0 && !(t > (*side)[k - 1]))) {
+          return absl::InvalidArgumentError(absl::StrCat(
+              scene.DescribeFace(f), ": cut lines must ascend within (0, 1), got ", t));
+        }
+      }
+    }
+    if (extents[f].quad) extents[f].cuts = &face_cuts;
   }
   // With at least as many faces as the target, every face is one patch; the contacts of the
   // faces of a patch's share of the area or more are still followed (a ceiling 2 cm above a

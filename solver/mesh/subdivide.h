@@ -3,8 +3,8 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
-#include <utility>
+#include <unordered_map>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "solver/mesh/patch_mesh.h"
@@ -26,6 +26,14 @@ struct MeshOptions {
   // Neither set: every face becomes one patch (quads and triangles) or a fan.
 };
 
+// Lines a quad face must be cut along whatever the edge length: parameters in (0, 1),
+// ascending, along u (vertices 0 -> 1) and v (0 -> 3).
+struct QuadCuts {
+  std::vector<double> u, v;
+};
+// The faces that have such lines (few: those near emitters), by face index.
+using QuadCutsByFace = std::unordered_map<uint32_t, QuadCuts>;
+
 // The scene's face area (scene units^2), each face once.
 double TotalFaceArea(const Scene& scene);
 
@@ -40,11 +48,11 @@ double TotalFaceArea(const Scene& scene);
 // with a max_edge and the contacts of its large faces only (a wall's part behind a board must
 // not share an unknown with its lit part; finding every small face's contacts costs far more
 // than meshing).
-// With `least_steps` (one (nu, nv) per face, or empty), a quad face is split into at least
-// that many steps each way (formfactor/near_field_steps.h: strips across a lamp's near field),
-// counted in target_patches.
+// A quad listed in `cuts` is also cut along its lines (formfactor/near_field_cuts.h: strips
+// across a lamp's near field, and its lamp's outline), each interval between them split as the
+// edge length asks; they count in target_patches.
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options,
-                                         std::span<const std::pair<int, int>> least_steps = {});
+                                         const QuadCutsByFace& cuts = {});
 
 struct MeshStats {
   size_t patches = 0;

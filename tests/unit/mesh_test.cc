@@ -2,13 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "solver/mesh/contact_footprints.h"
 #include "solver/mesh/subdivide.h"
 #include "solver/scene/obj_loader.h"
 #include "tests/source_path.h"
+#include "tests/unit/test_scenes.h"
 
 namespace radflux {
 namespace {
@@ -137,6 +140,37 @@ TEST(Subdivide, AMaxEdgeFarBelowTheSceneIsRefusedNotMeshedCoarsely) {
     EXPECT_EQ(mesh.status().code(), absl::StatusCode::kResourceExhausted);
     EXPECT_NE(mesh.status().message().find("would exceed 2^31 patches"), std::string::npos)
         << mesh.status().message();
+  }
+}
+
+// A quad with cut lines is cut along each of them, and each interval between them is split
+// as the edge length asks: a 1 x 1 quad cut at u = 0.1, v = 0.3 and 0.35, max edge 0.4, has
+// grid lines at u = 0, 0.1, 0.4, 0.7, 1 and v = 0, 0.3, 0.35, 0.675, 1.
+TEST(Subdivide, CutLinesAreGridLinesAndEachIntervalKeepsTheEdge) {
+  int next = 1;
+  const Scene scene = testing::SceneFromObj(
+      testing::ObjQuad("plate", "white", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, next));
+  QuadCutsByFace cuts;
+  cuts[0] = QuadCuts{{0.1}, {0.3, 0.35}};
+  absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, MeshOptions{0, 0.4}, cuts);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  std::set<double> xs, ys;
+  for (uint32_t p = 0; p < mesh->size(); ++p) {
+    for (int k = 0; k < 4; ++k) {
+      xs.insert(std::round(mesh->Vertex(p, k).x * 1e9) / 1e9);
+      ys.insert(std::round(mesh->Vertex(p, k).y * 1e9) / 1e9);
+    }
+  }
+  EXPECT_EQ(xs, (std::set<double>{0, 0.1, 0.4, 0.7, 1}));
+  EXPECT_EQ(ys, (std::set<double>{0, 0.3, 0.35, 0.675, 1}));
+  EXPECT_EQ(mesh->size(), 4u * 4u);
+  // Lines out of (0, 1) or out of order are refused, naming the face.
+  for (const QuadCuts& bad : {QuadCuts{{0.5, 0.2}, {}}, QuadCuts{{}, {1.0}}}) {
+    cuts[0] = bad;
+    absl::StatusOr<PatchMesh> refused = SubdivideScene(scene, MeshOptions{0, 0.4}, cuts);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.status().message().find("cut lines must ascend"), std::string::npos)
+        << refused.status().message();
   }
 }
 

@@ -1,10 +1,12 @@
-#include "solver/formfactor/near_field_steps.h"
+#include "solver/formfactor/near_field_cuts.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "solver/core/parallel.h"
 #include "solver/formfactor/polygon_form_factor.h"
@@ -81,15 +83,44 @@ std::vector<Emitter> SortedEmitters(const Scene& scene, double* power) {
   return emitters;
 }
 
-// The steps of scene face f by the rule of the header, among `emitters` (sorted by their
-// boxes' lowest x, none wider in x than `widest`; `power` their emitted power); each
-// emitter's light at a point counts only when `caster` (on the scene's faces, or null: no
-// blocker) finds nothing between the point and the emitter's centroid (a ceiling 2 cm above a
-// housing sees nothing of the tube inside).
-std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<Emitter>& emitters,
-                                double widest, double power, const RayCaster* caster) {
+// The (u, v) of x's projection on the plane of quad p, in the frame of its edges from p[0]
+// (exact for a parallelogram, which every quad the near field meets in practice is).
+std::pair<double, double> QuadParameters(const std::vector<Vec3>& p, const Vec3& x) {
+  const Vec3 a = p[1] - p[0], b = p[3] - p[0], d = x - p[0];
+  const double aa = Dot(a, a), ab = Dot(a, b), bb = Dot(b, b), da = Dot(d, a), db = Dot(d, b);
+  const double det = aa * bb - ab * ab;
+  return {(bb * da - ab * db) / det, (aa * db - ab * da) / det};
+}
+
+// One side's lines: the n equal steps' or, where the light along the side is flat enough for
+// one step (n = 1), the outlines' (ascending; those outside (kOutlineMargin, 1 -
+// kOutlineMargin) dropped, and all of them when there are more than kMaxNearFieldSteps).
+// Equal steps follow a peaked light already; one step spans the falloff past an emitter's
+// ends, which only a line there separates from the light over it.
+std::vector<double> SideCuts(int n, std::vector<double> outlines) {
+  std::vector<double> lines;
+  if (n > 1) {
+    for (int i = 1; i < n; ++i) lines.push_back(static_cast<double>(i) / n);
+    return lines;
+  }
+  std::erase_if(outlines, [](double t) { return !(t > kOutlineMargin && t < 1 - kOutlineMargin); });
+  if (outlines.size() > static_cast<size_t>(kMaxNearFieldSteps)) return lines;
+  lines = std::move(outlines);
+  std::sort(lines.begin(), lines.end());
+  lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+  return lines;
+}
+
+// The cuts of scene face f by the rule of the header (none: nullopt), among `emitters`
+// (sorted by their boxes' lowest x, none wider in x than `widest`; `power` their emitted
+// power); each emitter's light at a point counts only when `caster` (on the scene's faces, or
+// null: no blocker) finds nothing between the point and the emitter's centroid (a ceiling 2 cm
+// above a housing sees nothing of the tube inside).
+std::optional<QuadCuts> CutsOfFace(const Scene& scene, size_t f,
+                                   const std::vector<Emitter>& emitters, double widest,
+                                   double power, const RayCaster* caster) {
   const Face& face = scene.faces[f];
-  if (face.vertices.size() != 4 || scene.materials[face.material].IsEmitter()) return {1, 1};
+  if (face.vertices.size() != 4 || scene.materials[face.material].IsEmitter()) return std::nullopt;
   std::vector<Vec3> polygon;
   FacePolygonInto(scene, face, polygon);
   const SurfaceShape quad = MakeSurfaceShape(polygon);
@@ -106,14 +137,15 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
       near.push_back(&*e);
     }
   }
-  if (near.empty()) return {1, 1};
+  if (near.empty()) return std::nullopt;
+  std::vector<uint8_t> lights(near.size(), 0);  // whether near[i] lit some sample point
   double irradiance_sum = 0;
   auto form_factor = [&](double u, double v) {
     const Vec3 x =
         p[0] * ((1 - u) * (1 - v)) + p[1] * (u * (1 - v)) + p[2] * (u * v) + p[3] * ((1 - u) * v);
     double sum = 0;  // F; irradiance_sum gathers F E
-    for (const Emitter* em : near) {
-      const SurfaceShape& shape = em->shape;
+    for (size_t i = 0; i < near.size(); ++i) {
+      const SurfaceShape& shape = near[i]->shape;
       if (Dot(x - shape.polygon[0], shape.normal) <= 0) continue;
       if (caster != nullptr &&
           caster->Occluded({x, shape.centroid - x, kSegmentMargin, 1 - kSegmentMargin})) {
@@ -121,7 +153,8 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
       }
       const double factor = PointToPolygonFormFactor(x, quad.normal, shape.polygon);
       sum += factor;
-      irradiance_sum += factor * em->emission;
+      irradiance_sum += factor * near[i]->emission;
+      lights[i] = lights[i] || factor > 0;
     }
     return sum;
   };
@@ -137,38 +170,51 @@ std::pair<int, int> StepsOfFace(const Scene& scene, size_t f, const std::vector<
   }
   const double reflected = MeanComponent(scene.materials[face.material].reflectance) *
                            irradiance_sum / (2 * kLines.size() * (kIntervals + 1)) * quad.area;
-  if (peak < kNearFieldMinPeak || reflected < kNearFieldMinPower * power) return {1, 1};
+  if (peak < kNearFieldMinPeak || reflected < kNearFieldMinPower * power) return std::nullopt;
   int nu = 1, nv = 1;
   for (size_t l = 0; l < kLines.size(); ++l) {
     nu = std::max(nu, StepsFor(along_u[l], kNearFieldStepCost));
     nv = std::max(nv, StepsFor(along_v[l], kNearFieldStepCost));
   }
-  return {nu, nv};
+  std::vector<double> outline_u, outline_v;  // each lighting emitter's extent over the face
+  for (size_t i = 0; i < near.size(); ++i) {
+    if (!lights[i]) continue;
+    double u_lo = INFINITY, u_hi = -INFINITY, v_lo = INFINITY, v_hi = -INFINITY;
+    for (const Vec3& x : near[i]->shape.polygon) {
+      const auto [u, v] = QuadParameters(p, x);
+      u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u);
+      v_lo = std::min(v_lo, v), v_hi = std::max(v_hi, v);
+    }
+    outline_u.insert(outline_u.end(), {u_lo, u_hi});
+    outline_v.insert(outline_v.end(), {v_lo, v_hi});
+  }
+  QuadCuts cuts{SideCuts(nu, std::move(outline_u)), SideCuts(nv, std::move(outline_v))};
+  if (cuts.u.empty() && cuts.v.empty()) return std::nullopt;
+  return cuts;
 }
 
 }  // namespace
 
-absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& scene) {
-  std::vector<std::pair<int, int>> steps(scene.faces.size(), {1, 1});
+absl::StatusOr<QuadCutsByFace> NearFieldCuts(const Scene& scene) {
+  QuadCutsByFace cuts;
   double power = 0;
   const std::vector<Emitter> emitters = SortedEmitters(scene, &power);
-  if (emitters.empty()) return steps;
+  if (emitters.empty()) return cuts;
   double widest = 0;
   for (const Emitter& e : emitters) widest = std::max(widest, e.shape.hi.x - e.shape.lo.x);
-  // First without blockers: the faces that could need steps at all (cheap; most scenes few).
+  // First without blockers: the faces that could need cuts at all (cheap; most scenes few).
   std::vector<uint8_t> candidate(scene.faces.size(), 0);
   ParallelFor(static_cast<int64_t>(scene.faces.size()), 256, 0, [&](int64_t begin, int64_t end) {
     for (int64_t f = begin; f < end; ++f) {
-      const auto [nu, nv] =
-          StepsOfFace(scene, static_cast<size_t>(f), emitters, widest, power, nullptr);
-      candidate[static_cast<size_t>(f)] = nu > 1 || nv > 1;
+      candidate[static_cast<size_t>(f)] =
+          CutsOfFace(scene, static_cast<size_t>(f), emitters, widest, power, nullptr).has_value();
     }
   });
   std::vector<uint32_t> faces;
   for (uint32_t f = 0; f < candidate.size(); ++f) {
     if (candidate[f]) faces.push_back(f);
   }
-  if (faces.empty()) return steps;
+  if (faces.empty()) return cuts;
   // Then again with the scene's faces as blockers, one patch a face.
   MeshOptions whole;
   whole.max_edge = std::numeric_limits<double>::max();
@@ -177,13 +223,17 @@ absl::StatusOr<std::vector<std::pair<int, int>>> NearFieldSteps(const Scene& sce
   if (!mesh.ok()) return mesh.status();
   absl::StatusOr<std::unique_ptr<EmbreeRayCaster>> caster = EmbreeRayCaster::Create(*mesh);
   if (!caster.ok()) return caster.status();
+  std::vector<std::optional<QuadCuts>> found(faces.size());
   ParallelFor(static_cast<int64_t>(faces.size()), 16, 0, [&](int64_t begin, int64_t end) {
     for (int64_t k = begin; k < end; ++k) {
-      const uint32_t f = faces[static_cast<size_t>(k)];
-      steps[f] = StepsOfFace(scene, f, emitters, widest, power, caster->get());
+      found[static_cast<size_t>(k)] =
+          CutsOfFace(scene, faces[static_cast<size_t>(k)], emitters, widest, power, caster->get());
     }
   });
-  return steps;
+  for (size_t k = 0; k < faces.size(); ++k) {
+    if (found[k].has_value()) cuts.emplace(faces[k], *std::move(found[k]));
+  }
+  return cuts;
 }
 
 }  // namespace radflux
