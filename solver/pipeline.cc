@@ -277,7 +277,8 @@ void PrependSolve(const SolveResult& first, SolveResult& then) {
 }
 
 // A grouped job with direct-light cells: the cells' detail as the unknowns with rows see it
-// (GatherCellDetail, from the solved emitters' B), rho H added to the source, and the solve
+// (GatherCellDetail, from the solved B: the emitters' for the direct light, every unknown's
+// for the cells' own indirect light), rho H added to the source, and the solve
 // continued from its B with the method that finished it: result.solve then solves
 // B = E + rho (H + F B). Returns H per unknown (empty without cells, or when the solve was
 // cancelled or did not converge: it is then left as it stopped, and says so).
@@ -289,14 +290,16 @@ absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, 
   PatchAttributes source = result.job->attributes;
   const CellDirectLight light =
       ComputeCellDirectLight(result.job->rows, result.solve.radiosity, options.form_factors);
-  CellDetail detail =
-      GatherCellDetail(result.job->rows, CellDeviation(light, source), options.form_factors);
+  const SolvedLight light_so_far{result.solve.radiosity, source.reflectance};
+  CellDetail detail = GatherCellDetail(result.job->rows, CellDeviation(light, source),
+                                       options.form_factors, &light_so_far);
   for (uint32_t u = 0; u < source.size(); ++u) {
     for (int b = 0; b < kBands; ++b) {
       source.emission[u][b] += source.reflectance[u][b] * detail.irradiance[u][b];
     }
   }
   result.detail_rays = detail.rays;
+  result.detail_indirect_cells = detail.indirect_cells;
   result.direct_kept = light.kept;  // the push-down finds every cell kept after this pass
   result.direct_rays = light.rays;
   result.timings.direct += SecondsSince(start);

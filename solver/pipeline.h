@@ -128,7 +128,8 @@ struct JobResult {
   // asked for (JobOptions::find_indirect).
   std::vector<Rgb> indirect;
   uint64_t direct_cells = 0, direct_kept = 0, direct_rays = 0, direct_lifted = 0;
-  uint64_t detail_rays = 0;  // the cells' detail's gather (cell_detail.h)
+  uint64_t detail_rays = 0;            // the cells' detail's gather (cell_detail.h)
+  uint64_t detail_indirect_cells = 0;  // ... its cells that took their own indirect light
   // Set when the solved unknowns are not job->mesh's patches (adaptive: leaves, each shown
   // by one or more patches): the energy balance of the system that was solved, or why there
   // is none (hierarchical: light moves along links, there are no rows). The report uses it

@@ -163,6 +163,7 @@ nlohmann::json UnknownsJson(const JobResult& result) {
           {"direct_cells_kept", result.direct_kept},
           {"direct_rays", result.direct_rays},
           {"cell_detail_rays", result.detail_rays},
+          {"cell_detail_indirect_cells", result.detail_indirect_cells},
           {"direct_lifted_patches", result.direct_lifted}};
 }
 

@@ -1,6 +1,6 @@
 // PatchClusters: the unknowns of the radiosity system when they are not the mesh's patches.
-// Each unknown is a cluster of one or more patches of one object and material (see face_grouping.h for
-// how they are chosen) that receives and shoots as one: its row averages its members' rows by
+// Each unknown is a cluster of one or more patches of one object and material (see face_grouping.h
+// for how they are chosen) that receives and shoots as one: its row averages its members' rows by
 // area, a ray that hits any member counts for it, and after the solve every member shows the
 // cluster's B. An empty PatchClusters means "unknown u is patch u".
 #pragma once
@@ -35,8 +35,8 @@ struct PatchClusters {
 PatchClusters ClustersFromAssignment(const PatchMesh& mesh, std::vector<uint32_t> of_patch,
                                      uint32_t count);
 
-// Per-unknown attributes: area the members' sum times their opacity, reflectance and emission of the members'
-// material (grouping never mixes materials).
+// Per-unknown attributes: area the members' sum times their opacity, reflectance and emission of
+// the members' material (grouping never mixes materials).
 PatchAttributes ComputeClusterAttributes(const Scene& scene, const PatchMesh& mesh,
                                          const PatchClusters& clusters);
 
@@ -59,6 +59,8 @@ class UnknownPointSampler {
   SurfacePoint operator()(Point2 u) const;
   // Which member (index among the members) operator() uses for u.x, and u.x rescaled within it.
   std::pair<size_t, double> Member(double ux) const;
+  // The patch operator() places u's point on.
+  uint32_t MemberPatch(double ux) const { return members_[Member(ux).first]; }
 
  private:
   const PatchMesh& mesh_;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,66 @@ TEST(CellDetail, EachCellWeighsItsDeviationByTheFormFactorToIt) {
   }
   EXPECT_EQ(receiver[2], 0.0);  // no deviation, no detail: exactly
   EXPECT_GT(detail.rays, 32768u);
+}
+
+// The cells' own indirect light: a receiver at z = 1 facing down (B = 1, 2, 0 per band) over
+// "below" (z = 0, facing up), grouped with "away" (x in [3, 4], z = 0, facing down, seeing
+// nothing). "below" reads I = F B_r (F = 0.19982, parallel squares 1 apart), "away" 0; with
+// rho 0.5, delta_below = rho (I - I/2) and the receiver's H = F delta_below. With "away"
+// facing up inside a closed box whose faces face out (a part enclosed in a solid:
+// exposed_area.h), every ray of "away" meets a back side and none counts: no indirect detail.
+TEST(CellDetail, EachCellTakesItsOwnIndirectLightUnlessEnclosed) {
+  for (const bool lid : {false, true}) {
+    int next = 1;
+    std::string obj;
+    obj += ObjQuad("receiver", "white", {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}, next);
+    obj += ObjQuad("below", "white", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, next);
+    obj += lid ? ObjQuad("away", "white", {{3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}}, next)
+               : ObjQuad("away", "white", {{3, 0, 0}, {3, 1, 0}, {4, 1, 0}, {4, 0, 0}}, next);
+    if (lid) {  // the box [2.5, 4.5] x [-0.5, 1.5] x [-0.5, 1.5], its faces facing out
+      const auto at = [](double x, double y, double z) {
+        return Vec3{2.5 + 2 * x, -0.5 + 2 * y, -0.5 + 2 * z};
+      };
+      const Vec3 v0 = at(0, 0, 0), v1 = at(1, 0, 0), v2 = at(1, 1, 0), v3 = at(0, 1, 0);
+      const Vec3 v4 = at(0, 0, 1), v5 = at(1, 0, 1), v6 = at(1, 1, 1), v7 = at(0, 1, 1);
+      for (const std::vector<Vec3>& face : std::vector<std::vector<Vec3>>{{v3, v2, v1, v0},
+                                                                          {v1, v5, v4, v0},
+                                                                          {v2, v6, v5, v1},
+                                                                          {v3, v7, v6, v2},
+                                                                          {v0, v4, v7, v3},
+                                                                          {v5, v6, v7, v4}}) {
+        obj += ObjQuad("lid", "white", face, next);
+      }
+    }
+    RowFixture f(SceneFromObj(obj), MeshOptions{lid ? 9 : 3, 0});
+    std::vector<uint32_t> unknown(f.mesh.size()), cell(f.mesh.size());
+    for (uint32_t p = 0; p < f.mesh.size(); ++p) {
+      const std::string& name = f.ObjectOf(p);
+      unknown[p] = name == "receiver" ? 0 : name == "lid" ? 2 : 1;
+      cell[p] = name == "receiver" ? 0 : name == "below" ? 1 : name == "away" ? 2 : 3;
+    }
+    const PatchClusters clusters = ClustersFromAssignment(f.mesh, unknown, lid ? 3 : 2);
+    const PatchClusters cells = ClustersFromAssignment(f.mesh, cell, lid ? 4 : 3);
+    const PatchAttributes attributes = ComputeClusterAttributes(f.scene, f.mesh, clusters);
+    const RowContext context = MakeRowContext(f.mesh, attributes, *f.caster, &clusters, &cells);
+    const std::vector<Rgb> deviation(cells.size(), Rgb{});  // no direct detail at all
+    const std::vector<Rgb> b = {{1, 2, 0}, {0, 0, 0}, {0, 0, 0}};
+    const std::vector<Rgb> rho(3, Rgb{0.5, 0.5, 0.5});
+    const SolvedLight solved{std::span<const Rgb>(b).first(clusters.size()),
+                             std::span<const Rgb>(rho).first(clusters.size())};
+    FormFactorOptions options;
+    options.rays = 65536;
+    const CellDetail detail = GatherCellDetail(context, deviation, options, &solved);
+    const double f_below = testing::ParallelRectangles(1, 1, 1);  // 0.19982
+    for (int band = 0; band < kBands; ++band) {
+      const double expected = lid ? 0 : f_below * 0.5 * (f_below * b[0][band] / 2);
+      EXPECT_NEAR(detail.irradiance[0][band], expected, 0.04 * f_below * 0.5 * f_below)
+          << (lid ? "lid" : "open") << " band " << band;
+    }
+    EXPECT_EQ(detail.indirect_cells, lid ? 1u : 2u);
+    // Without the solve's light there is no indirect detail: exactly the direct one (0).
+    EXPECT_EQ(GatherCellDetail(context, deviation, options).irradiance[0][0], 0.0);
+  }
 }
 
 }  // namespace
