@@ -1,6 +1,7 @@
 #include "solver/formfactor/cell_detail.h"
 
 #include <atomic>
+#include <unordered_map>
 
 #include "solver/core/parallel.h"
 #include "solver/core/sampling.h"
@@ -13,10 +14,10 @@ namespace {
 constexpr uint64_t kPointStream = 23;
 constexpr uint64_t kDirectionStream = 29;
 
-// One gather ray: the cell it starts on, the patch whose front it meets (kNoPatch: none), and
+// One gather ray: the patch it starts on, the patch whose front it meets (kNoPatch: none), and
 // whether it met a back side instead.
 struct GatherHit {
-  uint32_t from_cell = 0;
+  uint32_t from = 0;
   uint32_t hit = kNoPatch;
   bool back = false;
 };
@@ -50,7 +51,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
         const Point2 at = MultiJitteredSample(r, k, points);
         stream[r] = context.CosineRay(
             sample_point(at), MultiJitteredSample(PermuteIndex(r, k, directions), k, directions));
-        hits[first[i] + r].from_cell = cells.of_patch[sample_point.MemberPatch(at.x)];
+        hits[first[i] + r].from = sample_point.MemberPatch(at.x);
       }
       context.caster->IntersectStream(stream);
       for (uint32_t r = 0; r < k; ++r) {
@@ -63,38 +64,67 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
   CellDetail detail;
   std::vector<Rgb> delta(deviation.begin(), deviation.end());
   if (solved != nullptr) {
-    // I_c per cell (sum, then mean over its rays), each group's cells written by one thread.
-    std::vector<Rgb> indirect(cells.size(), Rgb{});
-    std::vector<uint32_t> count(cells.size(), 0);
+    // Per group (one thread each): the mean over each of its faces' counted rays, then each
+    // cell's area-weighted mean over its patches (a patch of a face without a counted ray
+    // reads the group's mean) and the group's mean over its read patches.
     std::atomic<uint64_t> indirect_cells{0};
     ParallelFor(unknowns, 64, options.threads, [&](int64_t begin, int64_t end) {
+      struct FaceLight {
+        Rgb sum{};
+        uint32_t rays = 0;
+      };
+      thread_local std::unordered_map<uint32_t, FaceLight> faces;  // by scene face
       for (int64_t u = begin; u < end; ++u) {
         const uint32_t g = static_cast<uint32_t>(u);
         const std::span<const uint32_t> own = context.CellsOf(g);
         if (own.size() < 2 || rays_of[g] == 0) continue;
+        faces.clear();
         for (uint64_t r = first[g]; r < first[g + 1]; ++r) {
           const GatherHit& h = hits[r];
           if (h.back) continue;  // from a part enclosed in a solid (exposed_area.h): no one's
-          ++count[h.from_cell];
+          FaceLight& light = faces[context.mesh->patches[h.from].face];
+          ++light.rays;
           if (h.hit == kNoPatch) continue;
           const uint32_t j = context.UnknownOf(h.hit);
           if (context.emitter[j]) continue;  // the direct light: D_c's
           const Rgb& d = deviation[cells.of_patch[h.hit]];
-          for (int b = 0; b < kBands; ++b)
-            indirect[h.from_cell][b] += solved->radiosity[j][b] + d[b];
+          for (int b = 0; b < kBands; ++b) light.sum[b] += solved->radiosity[j][b] + d[b];
         }
         Rgb mean{};
-        double area = 0;
-        for (uint32_t c : own) {
-          if (count[c] == 0) continue;
-          for (int b = 0; b < kBands; ++b) indirect[c][b] /= count[c];
-          area += cells.area[c];
-          for (int b = 0; b < kBands; ++b) mean[b] += cells.area[c] * indirect[c][b];
+        double read_area = 0;
+        for (auto& [face, light] : faces) {
+          for (int b = 0; b < kBands; ++b) light.sum[b] /= light.rays;  // now the mean
         }
+        auto face_light = [&](uint32_t p) -> const FaceLight* {
+          const auto it = faces.find(context.mesh->patches[p].face);
+          return it == faces.end() ? nullptr : &it->second;
+        };
         for (uint32_t c : own) {
-          if (count[c] == 0) continue;
+          for (uint32_t p : cells.Members(c)) {
+            const FaceLight* light = face_light(p);
+            if (light == nullptr) continue;
+            const double a = context.mesh->patches[p].area;
+            read_area += a;
+            for (int b = 0; b < kBands; ++b) mean[b] += a * light->sum[b];
+          }
+        }
+        if (!(read_area > 0)) continue;
+        for (int b = 0; b < kBands; ++b) mean[b] /= read_area;
+        for (uint32_t c : own) {
+          Rgb excess{};  // sum over the cell's read patches of A_p (I_p - mean)
+          double area = 0;
+          bool read = false;
+          for (uint32_t p : cells.Members(c)) {
+            const double a = context.mesh->patches[p].area;
+            area += a;
+            const FaceLight* light = face_light(p);
+            if (light == nullptr) continue;
+            read = true;
+            for (int b = 0; b < kBands; ++b) excess[b] += a * (light->sum[b] - mean[b]);
+          }
+          if (!read) continue;
           for (int b = 0; b < kBands; ++b) {
-            delta[c][b] += solved->reflectance[g][b] * (indirect[c][b] - mean[b] / area);
+            delta[c][b] += solved->reflectance[g][b] * excess[b] / area;
           }
           ++indirect_cells;
         }
