@@ -282,9 +282,9 @@ void PrependSolve(const SolveResult& first, SolveResult& then) {
 // continued from its B with the method that finished it: result.solve then solves
 // B = E + rho (H + F B). Returns H per unknown (empty without cells, or when the solve was
 // cancelled or did not converge: it is then left as it stopped, and says so).
-absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, JobResult& result) {
+absl::StatusOr<CellDetail> SolveWithCellDetail(const JobOptions& options, JobResult& result) {
   if (result.job->rows.cells == nullptr || result.solve.cancelled || !result.solve.converged) {
-    return std::vector<Rgb>{};
+    return CellDetail{};
   }
   const auto start = std::chrono::steady_clock::now();
   PatchAttributes source = result.job->attributes;
@@ -316,7 +316,7 @@ absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, 
   PrependSolve(result.solve, *solved);
   result.solve = *std::move(solved);
   result.timings.solve += SecondsSince(solve_start);
-  return std::move(detail.irradiance);
+  return detail;
 }
 
 }  // namespace
@@ -324,19 +324,20 @@ absl::StatusOr<std::vector<Rgb>> SolveWithCellDetail(const JobOptions& options, 
 absl::Status PushDownGroupedSolve(const JobOptions& options, JobResult& result) {
   const PatchClusters& clusters = result.job->clusters;
   if (clusters.empty()) return absl::OkStatus();
-  absl::StatusOr<std::vector<Rgb>> detail = SolveWithCellDetail(options, result);
+  absl::StatusOr<CellDetail> detail = SolveWithCellDetail(options, result);
   if (!detail.ok()) return detail.status();
   absl::StatusOr<EnergyBalance> balance = StreamEnergyBalance(
       result.System(), result.solve.radiosity, result.Sampling(options.form_factors),
-      result.row_stats.scaled_off, *detail);
+      result.row_stats.scaled_off, detail->irradiance);
   if (!balance.ok()) return balance.status();
   result.solved_balance = *balance;
   result.unknown_radiosity = result.solve.radiosity;
-  CellDirectResult pushed = PushDownWithCellDirect(result.job->rows, result.job->attributes,
-                                                   result.unknown_radiosity, options.form_factors);
+  CellDirectResult pushed =
+      PushDownWithCellDirect(result.job->rows, result.job->attributes, result.unknown_radiosity,
+                             options.form_factors, detail->indirect);
   result.solve.radiosity = std::move(pushed.radiosity);
   result.direct_cells = pushed.cells;
-  if (detail->empty()) result.direct_kept = pushed.kept;
+  if (detail->irradiance.empty()) result.direct_kept = pushed.kept;
   result.direct_rays += pushed.rays;
   result.direct_lifted = pushed.lifted;
   result.timings.direct += pushed.seconds;

@@ -64,6 +64,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
   CellDetail detail;
   std::vector<Rgb> delta(deviation.begin(), deviation.end());
   if (solved != nullptr) {
+    detail.indirect.assign(cells.size(), Rgb{});
     // Per group (one thread each): the mean over each of its faces' counted rays, then each
     // cell's area-weighted mean over its patches (a patch of a face without a counted ray
     // reads the group's mean) and the group's mean over its read patches.
@@ -124,7 +125,8 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
           }
           if (!read) continue;
           for (int b = 0; b < kBands; ++b) {
-            delta[c][b] += solved->reflectance[g][b] * excess[b] / area;
+            detail.indirect[c][b] = solved->reflectance[g][b] * excess[b] / area;
+            delta[c][b] += detail.indirect[c][b];
           }
           ++indirect_cells;
         }

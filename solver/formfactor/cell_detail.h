@@ -21,7 +21,8 @@
 // rho_g (I_c - Ibar_g) besides, I_c the area-weighted mean of I_f over the cell's patches (a
 // face without a counted ray reads Ibar_g), Ibar_g the mean over the group's read patches:
 // still 0 over the group. Per face, not per cell: a cell casts one or two of its group's rays,
-// and per cell the noise showed in the groups' B (a back wall swung -10..+13% by seed).
+// and per cell the noise showed in the groups' B (a back wall swung -10..+13% by seed). The
+// push-down shows this part too (cell_direct.h), so pictures and per-patch values see it.
 #pragma once
 
 #include <cstdint>
@@ -38,6 +39,8 @@ struct CellDetail {
   std::vector<Rgb> irradiance;  // H per unknown of the context, W/m^2 per band
   uint64_t rays = 0;            // the cosine rays cast
   uint64_t indirect_cells = 0;  // cells whose delta took their own indirect light (I_c)
+  std::vector<Rgb> indirect;    // per cell, that part of delta: rho_g (I_c - Ibar_g) (empty
+                                // without the solve's light)
 };
 
 // The solve's light for the cells' indirect detail: B and rho (per band) per unknown.

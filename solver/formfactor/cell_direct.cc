@@ -98,8 +98,8 @@ std::vector<Rgb> CellDeviation(const CellDirectLight& light, const PatchAttribut
 
 CellDirectResult PushDownWithCellDirect(const RowContext& context,
                                         const PatchAttributes& attributes,
-                                        const std::vector<Rgb>& b,
-                                        const FormFactorOptions& options) {
+                                        const std::vector<Rgb>& b, const FormFactorOptions& options,
+                                        std::span<const Rgb> indirect) {
   const auto start = std::chrono::steady_clock::now();
   CellDirectResult result;
   if (context.cells == nullptr) {
@@ -120,7 +120,7 @@ CellDirectResult PushDownWithCellDirect(const RowContext& context,
     if (!light.sampled[c]) continue;
     bool lifted = false;
     for (int k = 0; k < kBands; ++k) {
-      out[k] += deviation[c][k];
+      out[k] += deviation[c][k] + (indirect.empty() ? 0.0 : indirect[c][k]);
       lifted = lifted || out[k] < attributes.emission[g][k];
       out[k] = std::max(out[k], attributes.emission[g][k]);
     }

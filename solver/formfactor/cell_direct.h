@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "solver/core/bands.h"
@@ -62,10 +63,11 @@ std::vector<Rgb> CellDeviation(const CellDirectLight& light, const PatchAttribut
 // columns the rows kept in context.cell_columns for them, the others drawn here (the same
 // numbers either way); on options.threads threads (the result does not depend on them). Unknowns of
 // one cell, and those with rho = 0, show their B unchanged; without cells every patch shows its
-// unknown's B.
+// unknown's B. With `indirect` (per cell, cell_detail.h's CellDetail::indirect), each sampled
+// cell's patches show that deviation of its reflected light too (its group's mean unchanged).
 CellDirectResult PushDownWithCellDirect(const RowContext& context,
                                         const PatchAttributes& attributes,
-                                        const std::vector<Rgb>& b,
-                                        const FormFactorOptions& options);
+                                        const std::vector<Rgb>& b, const FormFactorOptions& options,
+                                        std::span<const Rgb> indirect = {});
 
 }  // namespace radflux

@@ -118,6 +118,15 @@ TEST(CellDetail, EachCellTakesItsOwnIndirectLightUnlessEnclosed) {
           << (lid ? "lid" : "open") << " band " << band;
     }
     EXPECT_EQ(detail.indirect_cells, lid ? 1u : 2u);
+    // What the outputs add to each cell's patches (cell_direct.h's push-down): +- rho F B_r / 2
+    // on "below" and "away" (equal areas), 0 on the receiver's own cell.
+    ASSERT_EQ(detail.indirect.size(), cells.size());
+    for (int band = 0; band < kBands; ++band) {
+      const double half = lid ? 0 : 0.5 * f_below * b[0][band] / 2;
+      EXPECT_NEAR(detail.indirect[1][band], half, 0.04 * 0.5 * f_below) << band;
+      EXPECT_NEAR(detail.indirect[2][band], -half, 0.04 * 0.5 * f_below) << band;
+      EXPECT_EQ(detail.indirect[0][band], 0.0);
+    }
     // Without the solve's light there is no indirect detail: exactly the direct one (0).
     EXPECT_EQ(GatherCellDetail(context, deviation, options).irradiance[0][0], 0.0);
   }
