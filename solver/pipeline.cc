@@ -280,8 +280,9 @@ void PrependSolve(const SolveResult& first, SolveResult& then) {
 // (GatherCellDetail, from the solved B: the emitters' for the direct light, every unknown's
 // for the cells' own indirect light), rho H added to the source, and the solve
 // continued from its B with the method that finished it: result.solve then solves
-// B = E + rho (H + F B). Returns H per unknown (empty without cells, or when the solve was
-// cancelled or did not converge: it is then left as it stopped, and says so).
+// B = E + rho (H + F B). Returns the detail: H per unknown and the cells' indirect deviation
+// (both empty without cells, or when the solve was cancelled or did not converge: it is then
+// left as it stopped, and says so).
 absl::StatusOr<CellDetail> SolveWithCellDetail(const JobOptions& options, JobResult& result) {
   if (result.job->rows.cells == nullptr || result.solve.cancelled || !result.solve.converged) {
     return CellDetail{};

@@ -71,7 +71,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
     std::atomic<uint64_t> indirect_cells{0};
     ParallelFor(unknowns, 64, options.threads, [&](int64_t begin, int64_t end) {
       struct FaceLight {
-        Rgb sum{};
+        Rgb light{};  // the sum over the face's counted rays, then their mean: I_f
         uint32_t rays = 0;
       };
       thread_local std::unordered_map<uint32_t, FaceLight> faces;  // by scene face
@@ -89,12 +89,12 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
           const uint32_t j = context.UnknownOf(h.hit);
           if (context.emitter[j]) continue;  // the direct light: D_c's
           const Rgb& d = deviation[cells.of_patch[h.hit]];
-          for (int b = 0; b < kBands; ++b) light.sum[b] += solved->radiosity[j][b] + d[b];
+          for (int b = 0; b < kBands; ++b) light.light[b] += solved->radiosity[j][b] + d[b];
         }
         Rgb mean{};
         double read_area = 0;
         for (auto& [face, light] : faces) {
-          for (int b = 0; b < kBands; ++b) light.sum[b] /= light.rays;  // now the mean
+          for (int b = 0; b < kBands; ++b) light.light[b] /= light.rays;
         }
         auto face_light = [&](uint32_t p) -> const FaceLight* {
           const auto it = faces.find(context.mesh->patches[p].face);
@@ -106,7 +106,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
             if (light == nullptr) continue;
             const double a = context.mesh->patches[p].area;
             read_area += a;
-            for (int b = 0; b < kBands; ++b) mean[b] += a * light->sum[b];
+            for (int b = 0; b < kBands; ++b) mean[b] += a * light->light[b];
           }
         }
         if (!(read_area > 0)) continue;
@@ -121,7 +121,7 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
             const FaceLight* light = face_light(p);
             if (light == nullptr) continue;
             read = true;
-            for (int b = 0; b < kBands; ++b) excess[b] += a * (light->sum[b] - mean[b]);
+            for (int b = 0; b < kBands; ++b) excess[b] += a * (light->light[b] - mean[b]);
           }
           if (!read) continue;
           for (int b = 0; b < kBands; ++b) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "solver/core/inverse_bilinear.h"
 #include "solver/core/parallel.h"
 #include "solver/formfactor/polygon_form_factor.h"
 #include "solver/formfactor/surface_pair_integrator.h"
@@ -81,15 +82,6 @@ std::vector<Emitter> SortedEmitters(const Scene& scene, double* power) {
   std::sort(emitters.begin(), emitters.end(),
             [](const Emitter& a, const Emitter& b) { return a.shape.lo.x < b.shape.lo.x; });
   return emitters;
-}
-
-// The (u, v) of x's projection on the plane of quad p, in the frame of its edges from p[0]
-// (exact for a parallelogram, which every quad the near field meets in practice is).
-std::pair<double, double> QuadParameters(const std::vector<Vec3>& p, const Vec3& x) {
-  const Vec3 a = p[1] - p[0], b = p[3] - p[0], d = x - p[0];
-  const double aa = Dot(a, a), ab = Dot(a, b), bb = Dot(b, b), da = Dot(d, a), db = Dot(d, b);
-  const double det = aa * bb - ab * ab;
-  return {(bb * da - ab * db) / det, (aa * db - ab * da) / det};
 }
 
 // One side's lines: the n equal steps' or, where the light along the side is flat enough for
@@ -177,11 +169,11 @@ std::optional<QuadCuts> CutsOfFace(const Scene& scene, size_t f,
     nv = std::max(nv, StepsFor(along_v[l], kNearFieldStepCost));
   }
   std::vector<double> outline_u, outline_v;  // each lighting emitter's extent over the face
-  for (size_t i = 0; i < near.size(); ++i) {
+  for (size_t i = 0; i < near.size() && (nu == 1 || nv == 1); ++i) {  // used only there
     if (!lights[i]) continue;
     double u_lo = INFINITY, u_hi = -INFINITY, v_lo = INFINITY, v_hi = -INFINITY;
     for (const Vec3& x : near[i]->shape.polygon) {
-      const auto [u, v] = QuadParameters(p, x);
+      const auto [u, v] = InverseBilinear({p[0], p[1], p[2], p[3]}, quad.normal, x);
       u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u);
       v_lo = std::min(v_lo, v), v_hi = std::max(v_hi, v);
     }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "solver/core/inverse_bilinear.h"
 #include "solver/core/parallel.h"
 
 namespace radflux {
@@ -40,32 +41,11 @@ void RenderRow(const PatchMesh& mesh, const RayCaster& caster,
   }
 }
 
-// Parameters (s, t) in [0, 1]^2 of `point` (in the plane of quad p) under the bilinear map
-// v0 + s (v1 - v0) + t (v3 - v0) + s t (v0 - v1 + v2 - v3): the root in [0, 1] (or the
-// nearest to it) of the quadratic in s that the map's 2D cross product gives.
+// Parameters (s, t) in [0, 1]^2 of `point` (in the plane of quad p): core/inverse_bilinear.h.
 std::pair<double, double> InverseBilinear(const PatchMesh& mesh, uint32_t p, const Vec3& point) {
-  const Frame frame = Frame::FromNormal(mesh.patches[p].normal);
-  const Vec3 v0 = mesh.Vertex(p, 0);
-  auto flat = [&](const Vec3& d) {
-    return std::array<double, 2>{Dot(d, frame.s), Dot(d, frame.t)};
-  };
-  auto cross = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
-    return a[0] * b[1] - a[1] * b[0];
-  };
-  const auto e = flat(mesh.Vertex(p, 1) - v0), f = flat(mesh.Vertex(p, 3) - v0),
-             h = flat(point - v0);
-  const auto g = flat(v0 - mesh.Vertex(p, 1) + mesh.Vertex(p, 2) - mesh.Vertex(p, 3));
-  const double a = -cross(e, g), b = cross(h, g) - cross(e, f), c = cross(h, f);
-  const double root = std::sqrt(std::max(0.0, b * b - 4 * a * c));
-  const double q = -0.5 * (b + std::copysign(root, b));
-  auto outside = [](double x) { return std::isfinite(x) ? std::max(-x, x - 1) : 1e300; };
-  const double first = q != 0 ? c / q : 0, second = a != 0 ? q / a : 1e300;
-  const double s = std::clamp(outside(first) <= outside(second) ? first : second, 0.0, 1.0);
-  const std::array<double, 2> along = {f[0] + s * g[0], f[1] + s * g[1]};
-  const double length2 = along[0] * along[0] + along[1] * along[1];
-  const double t =
-      length2 > 0 ? ((h[0] - s * e[0]) * along[0] + (h[1] - s * e[1]) * along[1]) / length2 : 0;
-  return {s, std::clamp(t, 0.0, 1.0)};
+  return InverseBilinear(
+      {mesh.Vertex(p, 0), mesh.Vertex(p, 1), mesh.Vertex(p, 2), mesh.Vertex(p, 3)},
+      mesh.patches[p].normal, point);
 }
 
 // Whether quad p is a parallelogram (v0 - v1 + v2 - v3 = 0 within 1e-6 of its edges): its
