@@ -33,7 +33,8 @@ CellDetail GatherCellDetail(const RowContext& context, std::span<const Rgb> devi
   std::vector<uint64_t> first(unknowns + 1, 0);
   for (uint32_t i = 0; i < unknowns; ++i) {
     if (context.needs_row[i]) {
-      rays_of[i] = RowRayCount(options.rays, context.OpaqueArea(i), context.mean_row_area);
+      rays_of[i] =
+          RowRayCount(options.rays, context.OpaqueArea(i), context.mean_row_area, context.Emits(i));
     }
     first[i + 1] = first[i] + rays_of[i];
   }

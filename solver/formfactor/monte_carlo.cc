@@ -188,7 +188,8 @@ class MonteCarloBuilder final : public RowBuilder {
 
   // Unknown u's rays (row_rays.h).
   uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays, context_.OpaqueArea(u), context_.mean_row_area);
+    return RowRayCount(options_.rays, context_.OpaqueArea(u), context_.mean_row_area,
+                       context_.Emits(u));
   }
 
   // The rays of `set` from one patch p, shifted by (ps, ds), and their origins on p.

@@ -77,6 +77,8 @@ struct RowContext {
     if (cells == nullptr) return {};
     return {cell_order.data() + cell_first[u], cell_order.data() + cell_first[u + 1]};
   }
+  // Whether unknown u emits (false for one the context does not flag).
+  bool Emits(uint32_t u) const { return u < emitter.size() && emitter[u] != 0; }
   double Exposure(uint32_t u) const { return u < exposure.size() ? exposure[u] : 1.0; }
   // Unknown u's opaque area (0 for one the context does not size).
   double OpaqueArea(uint32_t u) const { return u < opaque_area.size() ? opaque_area[u] : 0; }

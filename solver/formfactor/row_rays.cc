@@ -22,7 +22,8 @@ double RowAreaShare(double area, double mean_area) {
                                                                                          : 1.0;
 }
 
-uint32_t RowRayCount(int k, double area, double mean_area) {
+uint32_t RowRayCount(int k, double area, double mean_area, bool emits) {
+  if (emits) return static_cast<uint32_t>(std::max(1, kEmitterRowRays * k));
   const double least = std::max({1, k / 4, std::min(k, kLeastRowRays)});
   return static_cast<uint32_t>(
       std::clamp(std::round(k * RowAreaShare(area, mean_area)), least, std::max(least, 4.0 * k)));
@@ -34,7 +35,8 @@ int RowNearFieldFactor(int factor, double share) {
 }
 
 bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area) {
-  return area_j * RowRayCount(k, area_i, mean_area) < area_i * RowRayCount(k, area_j, mean_area);
+  return area_j * RowRayCount(k, area_i, mean_area, false) <
+         area_i * RowRayCount(k, area_j, mean_area, false);
 }
 
 }  // namespace radflux

@@ -48,7 +48,8 @@ bool Exact(const PatchAttributes& p, const RowSampling& sampling, double mean_ro
 void AddRow(const PatchAttributes& p, const std::vector<Rgb>& b, const RowsView& rows, uint32_t i,
             const RowSampling& sampling, double mean_row_area, BalancePass& pass,
             EnergyBalance& out) {
-  const double rays = sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area) : 0;
+  const double rays =
+      sampling.rays > 0 ? RowRayCount(sampling.rays, p.area[i], mean_row_area, Emits(p, i)) : 0;
   const auto cols = rows.RowCols(i);
   const auto vals = rows.RowValues(i);
   // Per band as below, entry by entry: each band's sums take the entries in the same order.

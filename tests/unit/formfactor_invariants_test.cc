@@ -138,7 +138,8 @@ TEST(FormFactorInvariants, CornellBoxRowSumsAndSparsity) {
     mean += f.RowSum(i) / f.rows;
     // A row can exceed one only by noise (its k_i cosine rays plus the emitter columns' light
     // samples): at most 0.01 for k_i = 256, the excess scaling as the noise, 1 / sqrt(k_i).
-    const uint32_t k = RowRayCount(o.rays, fixture.attributes.area[i], mean_area);
+    const uint32_t k = RowRayCount(o.rays, fixture.attributes.area[i], mean_area,
+                                   MaxComponent(fixture.attributes.emission[i]) > 0);
     fewest = std::min(fewest, k);
     worst_excess = std::max(worst_excess, (f.RowSum(i) - 1) * std::sqrt(k / 256.0));
   }

@@ -47,8 +47,8 @@ TEST(ReciprocalPairs, AveragesEachPairByRaysPerArea) {
   context.opaque_area = {1, 1, 2, 1};
   context.needs_row = {1, 1, 1, 1};
   context.mean_row_area = 4.0 / 3.0;  // RowRayCount(16, 1 or 2, 4/3) = 16 (the least) or 24
-  ASSERT_EQ(RowRayCount(16, 1, context.mean_row_area), 16u);
-  ASSERT_EQ(RowRayCount(16, 2, context.mean_row_area), 24u);
+  ASSERT_EQ(RowRayCount(16, 1, context.mean_row_area, false), 16u);
+  ASSERT_EQ(RowRayCount(16, 2, context.mean_row_area, false), 24u);
   CsrMatrix f = FromRows({{{1, 4 / 16.f}, {2, 6 / 16.f}, {3, 0.125f}},
                           {{0, 2 / 16.f}, {2, 8 / 16.f}},
                           {{0, 3 / 24.f}, {3, 0.25f}},
@@ -86,7 +86,7 @@ TEST(ReciprocalPairs, SymmetricRingIsExactlyReciprocal) {
   context.opaque_area = {1, 1, 1};
   context.needs_row = {1, 1, 1};
   context.mean_row_area = 1;
-  ASSERT_EQ(RowRayCount(16, 1, 1), 16u);
+  ASSERT_EQ(RowRayCount(16, 1, 1, false), 16u);
   CsrMatrix ring = FromRows({{{1, 4 / 16.f}, {2, 2 / 16.f}},
                              {{0, 2 / 16.f}, {2, 4 / 16.f}},
                              {{0, 4 / 16.f}, {1, 2 / 16.f}}});

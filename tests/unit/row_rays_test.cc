@@ -19,18 +19,27 @@ TEST(RowRays, MeanAreaCountsOnlyTheRowsThatExist) {
 }
 
 TEST(RowRays, InProportionToAreaWithinTheClamp) {
-  EXPECT_EQ(RowRayCount(64, 1.0, 1.0), 64u);
-  EXPECT_EQ(RowRayCount(64, 1.5, 1.0), 96u);
-  EXPECT_EQ(RowRayCount(64, 0.5, 1.0), 32u);
-  EXPECT_EQ(RowRayCount(64, 0.01, 1.0), 16u);    // k / 4
-  EXPECT_EQ(RowRayCount(64, 100.0, 1.0), 256u);  // 4 k
-  EXPECT_EQ(RowRayCount(256, 0.01, 1.0), 64u);   // k / 4 above kLeastRowRays
+  EXPECT_EQ(RowRayCount(64, 1.0, 1.0, false), 64u);
+  EXPECT_EQ(RowRayCount(64, 1.5, 1.0, false), 96u);
+  EXPECT_EQ(RowRayCount(64, 0.5, 1.0, false), 32u);
+  EXPECT_EQ(RowRayCount(64, 0.01, 1.0, false), 16u);    // k / 4
+  EXPECT_EQ(RowRayCount(64, 100.0, 1.0, false), 256u);  // 4 k
+  EXPECT_EQ(RowRayCount(256, 0.01, 1.0, false), 64u);   // k / 4 above kLeastRowRays
   // Below 64, k / 4 would leave a small row fewer than kLeastRowRays rays.
-  EXPECT_EQ(RowRayCount(16, 0.01, 1.0), static_cast<uint32_t>(kLeastRowRays));
-  EXPECT_EQ(RowRayCount(16, 2.0, 1.0), 32u);
-  EXPECT_EQ(RowRayCount(8, 0.01, 1.0), 8u);  // never more than k at the low end
-  EXPECT_EQ(RowRayCount(1, 0.01, 1.0), 1u);
-  EXPECT_EQ(RowRayCount(64, 1.0, 0.0), 64u);  // no rows with area: k
+  EXPECT_EQ(RowRayCount(16, 0.01, 1.0, false), static_cast<uint32_t>(kLeastRowRays));
+  EXPECT_EQ(RowRayCount(16, 2.0, 1.0, false), 32u);
+  EXPECT_EQ(RowRayCount(8, 0.01, 1.0, false), 8u);  // never more than k at the low end
+  EXPECT_EQ(RowRayCount(1, 0.01, 1.0, false), 1u);
+  EXPECT_EQ(RowRayCount(64, 1.0, 0.0, false), 64u);  // no rows with area: k
+}
+
+// An emitter's row casts kEmitterRowRays k whatever its area: a lamp in its housing reflects
+// light far brighter than the room's, and its share of the room's power follows.
+TEST(RowRays, AnEmittersRowCastsItsFixedCount) {
+  EXPECT_EQ(RowRayCount(64, 0.01, 1.0, true), static_cast<uint32_t>(kEmitterRowRays * 64));
+  EXPECT_EQ(RowRayCount(64, 100.0, 1.0, true), static_cast<uint32_t>(kEmitterRowRays * 64));
+  EXPECT_EQ(RowRayCount(16, 1.0, 0.0, true), static_cast<uint32_t>(kEmitterRowRays * 16));
+  EXPECT_EQ(RowRayCount(0, 1.0, 1.0, true), 1u);
 }
 
 // A share that is not a finite number >= 0 (an infinite or NaN area) gets the budget, never
@@ -38,11 +47,11 @@ TEST(RowRays, InProportionToAreaWithinTheClamp) {
 TEST(RowRays, ANonFiniteShareGetsTheBudget) {
   const double nan = std::nan("");
   const double inf = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(RowRayCount(64, nan, 1.0), 64u);
-  EXPECT_EQ(RowRayCount(64, inf, 1.0), 64u);
-  EXPECT_EQ(RowRayCount(64, 1.0, inf), 64u);
-  EXPECT_EQ(RowRayCount(64, -1.0, 1.0), 64u);
-  EXPECT_EQ(RowRayCount(0, 1.0, 1.0), 1u);  // a zero budget: one ray, not an inverted clamp
+  EXPECT_EQ(RowRayCount(64, nan, 1.0, false), 64u);
+  EXPECT_EQ(RowRayCount(64, inf, 1.0, false), 64u);
+  EXPECT_EQ(RowRayCount(64, 1.0, inf, false), 64u);
+  EXPECT_EQ(RowRayCount(64, -1.0, 1.0, false), 64u);
+  EXPECT_EQ(RowRayCount(0, 1.0, 1.0, false), 1u);  // a zero budget: one ray, not an inverted clamp
 }
 
 // Unclamped, the rays add up to k per row, and every unit of area gets the same rays.
@@ -52,7 +61,7 @@ TEST(RowRays, TheBudgetIsKPerRowAndFollowsArea) {
   const double mean = MeanRowArea(area, has_row);
   uint32_t total = 0;
   for (double a : area) {
-    const uint32_t k = RowRayCount(128, a, mean);
+    const uint32_t k = RowRayCount(128, a, mean, false);
     total += k;
     EXPECT_NEAR(k / a, 128 / mean, 0.5 / a);  // rounding only
   }
