@@ -96,7 +96,7 @@ std::vector<float> UnknownExposure(const RowContext& context, int threads) {
     thread_local Scratch scratch;
     for (int64_t v = begin; v < end; ++v) {
       const uint32_t u = static_cast<uint32_t>(v);
-      if (!context.needs_row[u]) continue;
+      if (!context.needs_row[u] || context.emitter[u]) continue;
       if (EnclosedPoints(context, u, kExposureFirstPoints, 0, scratch) == 0) continue;
       const int enclosed = EnclosedPoints(context, u, kExposurePoints, 1, scratch);
       if (enclosed == 0 || enclosed == kExposurePoints) continue;

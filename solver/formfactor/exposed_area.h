@@ -32,14 +32,12 @@ inline constexpr int kExposurePoints = 256;
 // Per unknown of `context`, the share of its area whose points are not enclosed, in (0, 1]:
 // kExposurePoints stratified points (the unknown's shift of one shared set, seeded by its
 // index alone, so a worker computes the same) when any of kExposureFirstPoints is enclosed,
-// else 1. Emitters too: the conference room's pendant rods touch face to face (6% of the
-// lamps' area), and rows that counted those parts' rays as lost lost 12.1% of the emitted
-// light where particles lose 10.6% (bench/escaped_by_material, bench/light_losses): the lamps
-// in view read 1.3% dark against Cycles, the ceiling and window wall 2%. (At 16 rays an
-// emitter row, the scaled rows' noise took cg's symmetric form indefinite on every seed; at
-// row_rays.h's 4k, cg converges in 27-31 iterations on seeds 1-8.) Unknowns without a row,
-// and those enclosed whole (nothing reaches them, their row is empty), keep 1. Empty when
-// every unknown has 1.
+// else 1. Emitters keep 1: what an enclosed part emits is lost in the solid as it is in
+// reality, and scaling the rows of the conference room's fixtures (emitting faces with
+// rho 0.98 lining a reflector) took cg's symmetric form indefinite on every seed (the
+// estimate's few % of noise against rows that return 98% of what they gather). Unknowns
+// without a row, and those enclosed whole (nothing reaches them, their row is empty), keep 1
+// too. Empty when every unknown has 1.
 std::vector<float> UnknownExposure(const RowContext& context, int threads);
 
 }  // namespace radflux
