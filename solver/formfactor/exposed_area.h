@@ -33,9 +33,9 @@ inline constexpr int kExposurePoints = 256;
 // kExposurePoints stratified points (the unknown's shift of one shared set, seeded by its
 // index alone, so a worker computes the same) when any of kExposureFirstPoints is enclosed,
 // else 1. Emitters keep 1: what an enclosed part emits is lost in the solid as it is in
-// reality, and scaling the rows of the conference room's fixtures (emitting faces with
-// rho 0.98 lining a reflector) took cg's symmetric form indefinite on every seed (the
-// estimate's few % of noise against rows that return 98% of what they gather). Unknowns
+// reality, and a lamp whose rays leave into one-sided faces seen from behind (a room of
+// outward tiles, bench/housing_vs_particles.py) reads as enclosed, which would take its
+// emission away (+35% absorbed share there). Unknowns
 // without a row, and those enclosed whole (nothing reaches them, their row is empty), keep 1
 // too. Empty when every unknown has 1.
 std::vector<float> UnknownExposure(const RowContext& context, int threads);
