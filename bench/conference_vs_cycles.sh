@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The conference room (issue 21) against Cycles: clean the scene, render the Cycles reference
-# (two seeds; slow: ~12 min a seed at 2,048 samples on a loaded 2-core machine; skipped when
+# (two seeds; ~2 min a seed at 2,048 samples on 2 quiet cores, ~12 loaded; skipped when
 # present), solve with radflux at its defaults and at each extra --patches given, once per job
 # seed of SEEDS (default "1"), with EXTRA flags added (e.g. EXTRA="--gather 16"), and print the
 # issue's region means for each, the phases' seconds from the report, and wall and CPU
