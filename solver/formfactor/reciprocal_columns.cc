@@ -65,8 +65,8 @@ ReciprocalColumns::ReciprocalColumns(const RowContext& context, int rays, int th
 
 bool ReciprocalColumns::Fills(uint32_t i, uint32_t j) const {
   return Hidden(j) && !Hidden(i) &&
-         ReadFromHiddenRow(rays_, context_->opaque_area[i], context_->opaque_area[j],
-                           context_->mean_row_area);
+         ReadFromHiddenRow(rays_, context_->opaque_area[i], context_->Emits(i),
+                           context_->opaque_area[j], context_->mean_row_area);
 }
 
 uint64_t ReciprocalColumns::AddOwnRow(uint32_t j, RowAccumulator& row) const {

@@ -34,8 +34,8 @@ int RowNearFieldFactor(int factor, double share) {
   return static_cast<int>(std::clamp(std::ceil(factor * share), 1.0, most));
 }
 
-bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area) {
-  return area_j * RowRayCount(k, area_i, mean_area, false) <
+bool ReadFromHiddenRow(int k, double area_i, bool i_emits, double area_j, double mean_area) {
+  return area_j * RowRayCount(k, area_i, mean_area, i_emits) <
          area_i * RowRayCount(k, area_j, mean_area, false);
 }
 

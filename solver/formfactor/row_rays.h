@@ -52,8 +52,9 @@ int RowNearFieldFactor(int factor, double share);
 // from i's own hits: its variance there is (A_j / k_j) F_ij / A_i against F_ij / k_i, so when
 // j has less area per ray (a wall of 100 m^2 and 256 rays against a lamp's strip of 0.16 m^2
 // and 16; not a 0.01 m^2 part with 16 rays of its own, to which one ray of the strip's 16
-// would give F = 1: office2's switch plate read +154% so on one seed of four).
-// (Emitters are never hidden: RowRayCount's non-emitting count for both.)
-bool ReadFromHiddenRow(int k, double area_i, double area_j, double mean_area);
+// would give F = 1: office2's switch plate read +154% so on one seed of four). `i_emits`:
+// whether i is an emitter (its rays are then RowRayCount's emitter count); a hidden unknown
+// never emits.
+bool ReadFromHiddenRow(int k, double area_i, bool i_emits, double area_j, double mean_area);
 
 }  // namespace radflux

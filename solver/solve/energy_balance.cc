@@ -40,7 +40,8 @@ bool Exact(const PatchAttributes& p, const RowSampling& sampling, double mean_ro
     return false;
   }
   const uint32_t hidden = sampling.reciprocal[i] ? i : j, other = hidden == i ? j : i;
-  return ReadFromHiddenRow(sampling.rays, p.area[other], p.area[hidden], mean_row_area);
+  return ReadFromHiddenRow(sampling.rays, p.area[other], Emits(p, other), p.area[hidden],
+                           mean_row_area);
 }
 
 // Row i (a patch with a row): its power along the row, the row-less patches' power along

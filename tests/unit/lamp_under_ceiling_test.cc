@@ -117,7 +117,8 @@ TEST(LampUnderCeiling, TheRoomGathersTheStripByReciprocity) {
       if (!mesh.patches[j].hidden) continue;
       for (uint32_t i = 0; i < mesh.size(); ++i) {
         if (mesh.patches[i].hidden || MaxComponent(a.reflectance[i]) == 0 ||
-            !ReadFromHiddenRow(JobOptions{}.form_factors.rays, a.area[i], a.area[j],
+            !ReadFromHiddenRow(JobOptions{}.form_factors.rays, a.area[i],
+                               MaxComponent(a.emission[i]) > 0, a.area[j],
                                result.job->rows.mean_row_area)) {
           continue;
         }

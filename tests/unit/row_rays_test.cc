@@ -42,6 +42,16 @@ TEST(RowRays, AnEmittersRowCastsItsFixedCount) {
   EXPECT_EQ(RowRayCount(0, 1.0, 1.0, true), 1u);
 }
 
+// F_ij towards a hidden unknown j is read from j's row where j has less area per ray than i:
+// an emitter i casts its fixed count, so its own hits win where an area-sized row's would not.
+TEST(RowRays, AHiddenColumnIsReadWhereItHasLessAreaPerRay) {
+  // i: 0.1 of the mean area, 16 rays (0.00625 per ray) or 256 as an emitter (0.00039); j: 0.01,
+  // 16 rays (0.000625 per ray).
+  EXPECT_TRUE(ReadFromHiddenRow(64, 0.1, false, 0.01, 1.0));
+  EXPECT_FALSE(ReadFromHiddenRow(64, 0.1, true, 0.01, 1.0));
+  EXPECT_FALSE(ReadFromHiddenRow(64, 0.01, false, 0.1, 1.0));  // j has more area per ray
+}
+
 // A share that is not a finite number >= 0 (an infinite or NaN area) gets the budget, never
 // an undefined conversion of NaN to an integer (0 rays: a row of nothing but its emitters).
 TEST(RowRays, ANonFiniteShareGetsTheBudget) {
