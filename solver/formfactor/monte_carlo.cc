@@ -187,10 +187,7 @@ class MonteCarloBuilder final : public RowBuilder {
   }
 
   // Unknown u's rays (row_rays.h).
-  uint32_t Rays(uint32_t u) const {
-    return RowRayCount(options_.rays, context_.OpaqueArea(u), context_.mean_row_area,
-                       context_.Emits(u));
-  }
+  uint32_t Rays(uint32_t u) const { return context_.RowRays(u, options_.rays); }
 
   // The rays of `set` from one patch p, shifted by (ps, ds), and their origins on p.
   void PatchRays(uint32_t p, const RaySet& set, Point2 ps, Point2 ds,

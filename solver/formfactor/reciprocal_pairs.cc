@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "solver/core/parallel.h"
-#include "solver/formfactor/row_rays.h"
 #include "solver/sparse/entry_buckets.h"
 
 namespace radflux {
@@ -69,8 +68,7 @@ ReciprocalPairs::ReciprocalPairs(const RowContext& context, int rays,
   exposure_.resize(n);
   for (size_t u = 0; u < n; ++u) {
     exposure_[u] = context.Exposure(static_cast<uint32_t>(u));
-    rays_[u] =
-        RowRayCount(rays, area_[u], context.mean_row_area, context.Emits(static_cast<uint32_t>(u)));
+    rays_[u] = context.RowRays(static_cast<uint32_t>(u), rays);
     takes_part_[u] = u < cosine.size() && cosine[u] && area_[u] > 0;
     density_[u] = takes_part_[u] ? rays_[u] / area_[u] : 0;
   }

@@ -79,6 +79,9 @@ struct RowContext {
   }
   // Whether unknown u emits (false for one the context does not flag).
   bool Emits(uint32_t u) const { return u < emitter.size() && emitter[u] != 0; }
+  // The cosine rays of unknown u's Monte Carlo row at k rays a row on average (row_rays.h:
+  // by its opaque area, or the emitters' count): every reader of a row's rays asks here.
+  uint32_t RowRays(uint32_t u, int k) const;
   double Exposure(uint32_t u) const { return u < exposure.size() ? exposure[u] : 1.0; }
   // Unknown u's opaque area (0 for one the context does not size).
   double OpaqueArea(uint32_t u) const { return u < opaque_area.size() ? opaque_area[u] : 0; }

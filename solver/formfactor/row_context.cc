@@ -43,6 +43,10 @@ RowContext MakeRowContext(const PatchMesh& mesh, const PatchAttributes& attribut
   return context;
 }
 
+uint32_t RowContext::RowRays(uint32_t u, int k) const {
+  return RowRayCount(k, OpaqueArea(u), mean_row_area, Emits(u));
+}
+
 double RowContext::MaxRowSum(uint32_t u) const {
   const double rho = u < reflectance.size() ? reflectance[u] : 1.0;
   return std::max(1.0, kMaxRowGain / rho);
