@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <mutex>
 
 #include "solver/core/parallel.h"
@@ -53,13 +55,11 @@ RowBlock BuildRowBlock(const RowBuilder& builder, const RowContext& context, dou
 }
 
 double RayEpsilonFor(const PatchMesh& mesh) {
-  if (mesh.positions.empty()) return 0;
-  Vec3 lo = mesh.positions[0], hi = lo;
+  double largest = 0;
   for (const Vec3& p : mesh.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   }
-  return 1e-5 * Length(hi - lo);
+  return kRayLiftUlps * std::numeric_limits<float>::epsilon() * largest;
 }
 
 namespace {
