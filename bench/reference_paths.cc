@@ -9,6 +9,7 @@
 #include <string>
 
 #include "solver/core/sampling.h"
+#include "solver/formfactor/row_builder.h"
 #include "solver/mesh/subdivide.h"
 
 namespace radflux {
@@ -55,12 +56,7 @@ absl::StatusOr<std::unique_ptr<ReferenceTracer>> ReferenceTracer::Create(const S
   if (!caster.ok()) return caster.status();
   tracer->caster_ = std::move(*caster);
   const PatchMesh& m = tracer->mesh_;
-  Vec3 lo = m.positions[0], hi = lo;
-  for (const Vec3& v : m.positions) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  }
-  tracer->epsilon_ = 1e-6 * Length(hi - lo);
+  tracer->epsilon_ = RayEpsilonFor(m);  // the rows' lift: a convention of geometry, not a method
   std::vector<double> power(m.size());
   for (uint32_t p = 0; p < m.size(); ++p)
     power[p] =
