@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <vector>
 
 namespace radflux {
 namespace {
@@ -125,6 +126,21 @@ void MultiJitteredSamples(uint32_t p, std::span<Point2> out) {
         g, i, p, [&](uint32_t k) { return stratum_x[k]; },
         [&](uint32_t k) { return stratum_y[k]; });
   }
+}
+
+void ShiftedMultiJitteredSamples(uint32_t p, std::span<Point2> out) {
+  constexpr uint32_t kSharedSetPattern = 0x51ed270bu;
+  constexpr size_t kLargestShared = 256;  // larger sets are drawn whole each time
+  const size_t n = out.size();
+  if (n > kLargestShared) return MultiJitteredSamples(p, out);
+  thread_local std::array<std::vector<Point2>, kLargestShared + 1> shared;
+  std::vector<Point2>& set = shared[n];
+  if (set.size() != n) {
+    set.resize(n);
+    MultiJitteredSamples(kSharedSetPattern, set);
+  }
+  const Point2 shift = RandomShift(p);
+  for (size_t i = 0; i < n; ++i) out[i] = CranleyPattersonShift(set[i], shift);
 }
 
 namespace {

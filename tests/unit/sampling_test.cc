@@ -99,6 +99,45 @@ TEST(Sampling, MultiJitteredSamplesAreTheSingleSamples) {
   }
 }
 
+// The largest gap between neighbours of `v` on the circle [0, 1).
+double LargestCircularGap(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  double gap = 1 - v.back() + v.front();
+  for (size_t i = 1; i < v.size(); ++i) gap = std::max(gap, v[i] - v[i - 1]);
+  return gap;
+}
+
+// A shifted shared set keeps each set stratified (one point per 1/n of each axis, up to the
+// shift: no circular gap reaches 2/n) and, over patterns, covers the square uniformly (each
+// of 4 x 4 cells gets 1/16 of the points within 4 standard deviations); the same pattern
+// gives the same points.
+TEST(Sampling, ShiftedMultiJitteredSamplesAreStratifiedAndUniformOverPatterns) {
+  for (uint32_t n : {1u, 4u, 16u, 64u, 256u, 400u}) {  // 400: beyond the shared sizes
+    std::array<double, 16> cells{};
+    const uint32_t patterns = 4096;
+    for (uint32_t p = 0; p < patterns; ++p) {
+      std::vector<Point2> set(n), again(n);
+      ShiftedMultiJitteredSamples(p, set);
+      ShiftedMultiJitteredSamples(p, again);
+      std::vector<double> xs, ys;
+      for (uint32_t i = 0; i < n; ++i) {
+        ASSERT_EQ(set[i].x, again[i].x);
+        ASSERT_TRUE(set[i].x >= 0 && set[i].x < 1 && set[i].y >= 0 && set[i].y < 1);
+        xs.push_back(set[i].x), ys.push_back(set[i].y);
+        cells[static_cast<size_t>(4 * set[i].y) * 4 + static_cast<size_t>(4 * set[i].x)] += 1;
+      }
+      if (n > 1) {
+        ASSERT_LT(LargestCircularGap(xs), 2.0 / n) << n << " " << p;
+        ASSERT_LT(LargestCircularGap(ys), 2.0 / n) << n << " " << p;
+      }
+    }
+    // A cell's count: at most binomial spread over patterns (less, as sets are stratified).
+    const double total = static_cast<double>(patterns) * n, expected = total / 16;
+    const double sd = std::sqrt(total * (1.0 / 16) * (15.0 / 16));
+    for (double c : cells) EXPECT_NEAR(c, expected, 4 * sd) << n;
+  }
+}
+
 // Several sets at once, within the inline buffer and beyond it: set k is pattern k's points.
 TEST(Sampling, MultiJitteredSetsAreEachPatternsSamples) {
   for (uint32_t n : {1u, 4u, 16u, 21u, 40u}) {
