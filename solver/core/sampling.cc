@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace radflux {
@@ -128,16 +130,16 @@ void MultiJitteredSamples(uint32_t p, std::span<Point2> out) {
   }
 }
 
-void ShiftedMultiJitteredSamples(uint32_t p, std::span<Point2> out) {
-  constexpr uint32_t kSharedSetPattern = 0x51ed270bu;
+void ShiftedMultiJitteredSamples(uint32_t p, uint64_t stream, std::span<Point2> out) {
+  constexpr uint64_t kSharedSetSeed = 0x51ed270bu;
   constexpr size_t kLargestShared = 256;  // larger sets are drawn whole each time
   const size_t n = out.size();
   if (n > kLargestShared) return MultiJitteredSamples(p, out);
-  thread_local std::array<std::vector<Point2>, kLargestShared + 1> shared;
-  std::vector<Point2>& set = shared[n];
+  thread_local std::map<std::pair<uint64_t, size_t>, std::vector<Point2>> shared;
+  std::vector<Point2>& set = shared[{stream, n}];
   if (set.size() != n) {
     set.resize(n);
-    MultiJitteredSamples(kSharedSetPattern, set);
+    MultiJitteredSamples(PatternSeed(kSharedSetSeed, n, stream), set);
   }
   const Point2 shift = RandomShift(p);
   for (size_t i = 0; i < n; ++i) out[i] = CranleyPattersonShift(set[i], shift);

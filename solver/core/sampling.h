@@ -93,12 +93,13 @@ inline Point2 RandomShift(uint32_t p, uint32_t first = 0) {
   return {RandomFloat(first, p), RandomFloat(first + 1, p)};
 }
 
-// n = out.size() points of one fixed multi-jittered set (kSharedSetPattern's), shifted
-// toroidally by pattern p's RandomShift: stratified as MultiJitteredSamples' and unbiased,
-// at two hashes a set once each thread has made the fixed set of that size (the per-row light
-// samples drew a fresh set of 4 or 16 points per pattern: 7.5% of the Cornell box's
-// instructions in their hashes).
-void ShiftedMultiJitteredSamples(uint32_t p, std::span<Point2> out);
+// n = out.size() points of one fixed multi-jittered set per (n, stream), shifted toroidally
+// by pattern p's RandomShift: stratified as MultiJitteredSamples' and unbiased, at two hashes
+// a set once each thread has made the fixed set (the per-row light samples drew a fresh set
+// of 4 or 16 points per pattern: 7.5% of the Cornell box's instructions in their hashes).
+// Dimensions sampled together (a point and its direction) take different streams, or their
+// sets of one size would be the same points moved alike.
+void ShiftedMultiJitteredSamples(uint32_t p, uint64_t stream, std::span<Point2> out);
 
 namespace internal {
 // sin and cos of |a| <= pi/4 by their Taylor series to a^12 (truncation < 1e-11; in

@@ -190,16 +190,19 @@ uint64_t LightSampler::AddSamples(const UnknownPointSampler& sample_point, uint3
   directions.resize(count);
   rays.clear();
   pending.clear();
-  ShiftedMultiJitteredSamples(PatternSeed(seed, index, kLightPointStream), on_patch);
+  ShiftedMultiJitteredSamples(PatternSeed(seed, index, kLightPointStream), kLightPointStream,
+                              on_patch);
   // The directions of a point's samples are a multi-jittered set of their own (stratified
   // over the emitter, or the tiled rectangle, they mostly share); samples of one point each
   // take theirs from one set over all points.
   const uint32_t direction_pattern = PatternSeed(seed, index, kLightDirectionStream);
-  if (per_point == 1) ShiftedMultiJitteredSamples(direction_pattern, directions);
+  if (per_point == 1) {
+    ShiftedMultiJitteredSamples(direction_pattern, kLightDirectionStream, directions);
+  }
   for (size_t p = 0; p < on_patch.size(); ++p) {
     const uint32_t first = static_cast<uint32_t>(p) * static_cast<uint32_t>(per_point);
     if (per_point > 1) {
-      ShiftedMultiJitteredSamples(PatternSeed(direction_pattern, p),
+      ShiftedMultiJitteredSamples(PatternSeed(direction_pattern, p), kLightDirectionStream,
                                   std::span<Point2>(directions).subspan(first, per_point));
     }
     const SurfacePoint at = sample_point(on_patch[p]);

@@ -117,8 +117,8 @@ TEST(Sampling, ShiftedMultiJitteredSamplesAreStratifiedAndUniformOverPatterns) {
     const uint32_t patterns = 4096;
     for (uint32_t p = 0; p < patterns; ++p) {
       std::vector<Point2> set(n), again(n);
-      ShiftedMultiJitteredSamples(p, set);
-      ShiftedMultiJitteredSamples(p, again);
+      ShiftedMultiJitteredSamples(p, 1, set);
+      ShiftedMultiJitteredSamples(p, 1, again);
       std::vector<double> xs, ys;
       for (uint32_t i = 0; i < n; ++i) {
         ASSERT_EQ(set[i].x, again[i].x);
@@ -136,6 +136,14 @@ TEST(Sampling, ShiftedMultiJitteredSamplesAreStratifiedAndUniformOverPatterns) {
     const double sd = std::sqrt(total * (1.0 / 16) * (15.0 / 16));
     for (double c : cells) EXPECT_NEAR(c, expected, 4 * sd) << n;
   }
+  // Two streams of one size are two sets, not one set moved alike: their differences vary.
+  std::vector<Point2> a(16), b(16);
+  ShiftedMultiJitteredSamples(7, 1, a);
+  ShiftedMultiJitteredSamples(7, 2, b);
+  std::set<double> dx;
+  for (size_t i = 0; i < a.size(); ++i)
+    dx.insert(std::round(1e9 * std::fmod(b[i].x - a[i].x + 1, 1)));
+  EXPECT_GT(dx.size(), 2u);
 }
 
 // Several sets at once, within the inline buffer and beyond it: set k is pattern k's points.
