@@ -10,6 +10,7 @@
 #include "solver/core/sampling.h"
 #include "solver/formfactor/light_sampling.h"
 #include "solver/output/gather_lights.h"
+#include "solver/output/indirect_regather.h"
 #include "solver/output/render.h"
 #include "solver/output/vertex_radiosity.h"
 
@@ -54,20 +55,17 @@ RowContext LightContext(const GatherLights& lights, const RayCaster& caster, dou
 // Everything the rows of one gather read (not copyable: sampler_ points into light_context_).
 class GatherScene {
  public:
-  // With `gathered`, `at_vertex` is R = B - E, met by the gather rays, and the lights shine
-  // with their E; otherwise it is I (solve/indirect_light.h) at the visible point itself, and
-  // the lights shine with their B (`patch_radiosity`), as the rows' emitter columns carry it.
+  // With `gathered`, `at_vertex` is R = B - E, met by the gather rays; otherwise it is the
+  // indirect radiosity I (indirect_regather.h) at the visible point itself. Either way the
+  // lights shine with their E: what an emitter reflects is in R and in I.
   GatherScene(const PatchMesh& mesh, const RayCaster& caster, const PatchAttributes& attributes,
-              const std::vector<Rgb>& patch_radiosity, std::vector<Rgb> at_vertex, bool gathered,
-              const Camera& camera)
+              std::vector<Rgb> at_vertex, bool gathered, const Camera& camera)
       : mesh_(mesh),
         caster_(caster),
         attributes_(attributes),
         at_vertex_(std::move(at_vertex)),
         gathered_(gathered),
         lights_(MakeGatherLights(mesh, attributes)),
-        light_radiance_(gathered ? lights_.emission
-                                 : LightRadiosity(lights_, mesh, patch_radiosity)),
         light_context_(LightContext(lights_, caster, RayEpsilonFor(mesh))),
         sampler_(light_context_),
         projection_(camera) {}
@@ -108,8 +106,7 @@ class GatherScene {
   std::vector<Rgb> at_vertex_;  // R = B - E, or I (see the constructor), W/m^2 per band
   bool gathered_;
   GatherLights lights_;
-  std::vector<Rgb> light_radiance_;  // per light: what a light sample carries, W/m^2 per band
-  RowContext light_context_;         // of lights_.mesh
+  RowContext light_context_;  // of lights_.mesh
   LightSampler sampler_;
   PinholeProjection projection_;
 };
@@ -137,7 +134,7 @@ Rgb GatherScene::PointRadiance(const Point& point, const Secondary& secondary) c
   for (size_t i = point.light_begin; i < point.light_end; ++i) {
     if (secondary.light_rays[i].Occluded()) continue;
     const LightSampler::PendingSample& sample = secondary.pending[i];
-    const Rgb& e = light_radiance_[sample.emitter];
+    const Rgb& e = lights_.emission[sample.emitter];
     for (int b = 0; b < kBands; ++b) direct[b] += e[b] * sample.form_factor;
   }
   for (size_t i = point.gather_begin; i < point.gather_end; ++i) {
@@ -285,16 +282,10 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh
       !s.ok()) {
     return s;
   }
-  std::vector<Rgb> reflected(mesh.size());
-  for (size_t p = 0; p < mesh.size(); ++p) {
-    for (int b = 0; b < kBands; ++b) {
-      reflected[p][b] = patch_radiosity[p][b] - attributes.emission[p][b];
-    }
-  }
-  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, reflected);
+  absl::StatusOr<std::vector<Rgb>> at_vertex =
+      ReflectedAtVertices(mesh, shading, attributes, patch_radiosity);
   if (!at_vertex.ok()) return at_vertex.status();
-  const GatherScene scene(mesh, caster, attributes, patch_radiosity, *std::move(at_vertex), true,
-                          camera);
+  const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), true, camera);
   return RenderScene(scene, camera, SamplesPerPixel(options.rays), options);
 }
 
@@ -314,10 +305,13 @@ absl::StatusOr<Image> RenderDirectPerPixel(const PatchMesh& mesh, const ShadingM
         absl::StrCat("direct light per pixel: ", patch_indirect.size(), " indirect values for ",
                      mesh.size(), " patches"));
   }
-  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, patch_indirect);
+  absl::StatusOr<std::vector<Rgb>> indirect =
+      RegatherShownIndirect(mesh, shading, caster, attributes, patch_radiosity, patch_indirect,
+                            camera, options.seed, options.threads);
+  if (!indirect.ok()) return indirect.status();
+  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, *indirect);
   if (!at_vertex.ok()) return at_vertex.status();
-  const GatherScene scene(mesh, caster, attributes, patch_radiosity, *std::move(at_vertex), false,
-                          camera);
+  const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), false, camera);
   return RenderScene(scene, camera, PixelSamples{options.rays, 0}, options);
 }
 

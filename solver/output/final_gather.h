@@ -50,12 +50,11 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh
 // Each pixel averages options.rays multi-jittered points (`rays` here counts points, each with
 // one primary ray and one light sample); a point x on patch p shows
 //     L(x) = (E_p + I(x) + rho_p H_direct(x)) / pi,
-// I the indirect radiosity `patch_indirect` (solve/indirect_light.h) Gouraud-interpolated from
-// its values at `shading`'s welded vertices, and H_direct = sum_j B_j F_j(x) V by one light
-// sample as above, each light carrying its patches' mean B (the rows' emitter columns carry the
-// emitters' B, not only their E, so that I + rho H_direct adds up to B - E over a patch). Where
-// the light falls off or is shadowed within a patch, the picture follows it at the pixel, not
-// at the patch; the patches' means are B's but for the light samples' noise. The rest as
+// H_direct = sum_j E_j F_j(x) V by one light sample as above, and I the indirect radiosity
+// Gouraud-interpolated from its per-patch values: gathered afresh for the patches the picture
+// shows (RegatherShownIndirect, indirect_regather.h; seeded by options.seed), `patch_indirect`
+// (the solve's, solve/indirect_light.h) for the rest. Where the light falls off or is shadowed
+// within a patch, the picture follows it at the pixel, not at the patch. The rest as
 // RenderFinalGather.
 absl::StatusOr<Image> RenderDirectPerPixel(const PatchMesh& mesh, const ShadingMesh& shading,
                                            const RayCaster& caster,

@@ -119,21 +119,4 @@ GatherLights MakeGatherLights(const PatchMesh& mesh, const PatchAttributes& attr
   return lights;
 }
 
-std::vector<Rgb> LightRadiosity(const GatherLights& lights, const PatchMesh& mesh,
-                                const std::vector<Rgb>& patch_radiosity) {
-  std::vector<Rgb> power(lights.mesh.size(), Rgb{});
-  std::vector<double> area(lights.mesh.size(), 0.0);
-  for (uint32_t p = 0; p < mesh.size(); ++p) {
-    const uint32_t light = lights.of_patch[p];
-    if (light == kNoLight) continue;
-    area[light] += mesh.patches[p].area;
-    for (int b = 0; b < kBands; ++b)
-      power[light][b] += mesh.patches[p].area * patch_radiosity[p][b];
-  }
-  for (size_t l = 0; l < power.size(); ++l) {
-    for (int b = 0; b < kBands; ++b) power[l][b] = area[l] > 0 ? power[l][b] / area[l] : 0.0;
-  }
-  return power;
-}
-
 }  // namespace radflux

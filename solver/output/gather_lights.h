@@ -25,9 +25,4 @@ inline constexpr uint32_t kNoLight = 0xffffffffu;
 // The lights of `mesh` (patches with E > 0 in some band).
 GatherLights MakeGatherLights(const PatchMesh& mesh, const PatchAttributes& attributes);
 
-// Per light, the area-weighted mean of `patch_radiosity` over the patches it covers: the light's
-// B (its emission plus what it reflects), W/m^2 per band.
-std::vector<Rgb> LightRadiosity(const GatherLights& lights, const PatchMesh& mesh,
-                                const std::vector<Rgb>& patch_radiosity);
-
 }  // namespace radflux

@@ -26,7 +26,8 @@ absl::StatusOr<std::vector<Rgb>> ReflectedIndirect(const RadiositySystem& system
           const auto values = rows.RowValues(i);
           for (size_t k = 0; k < cols.size(); ++k) {
             if (!emits[cols[k]]) continue;
-            for (int band = 0; band < kBands; ++band) direct[band] += values[k] * b[cols[k]][band];
+            for (int band = 0; band < kBands; ++band)
+              direct[band] += values[k] * p.emission[cols[k]][band];
           }
           for (int band = 0; band < kBands; ++band) {
             indirect[i][band] = std::max(

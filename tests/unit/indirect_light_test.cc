@@ -1,4 +1,4 @@
-// ReflectedIndirect: B less the emission and the light that came straight from an emitter,
+// ReflectedIndirect: B less the emission and the light that came straight from an emission,
 // against hand-worked rows, in memory and spilled.
 #include "solver/solve/indirect_light.h"
 
@@ -27,8 +27,8 @@ struct ThreePatches {
   }
 };
 
-// I_1 = B_1 - rho F_10 B_0 = 0.4 - 0.15, I_2 = 0.3 - 0.05 (the lamp's B, 1.1, counts whole:
-// 0.4 - 0.165 and 0.3 - 0.055); the lamp, without a row, 0.
+// I_1 = B_1 - rho F_10 E_0 = 0.4 - 0.15, I_2 = 0.3 - 0.05; the lamp, without a row, 0. A lamp
+// that also reflects (B 1.1 against E 1) sends the extra 0.1 as indirect light: I is the same.
 TEST(ReflectedIndirect, SubtractsTheLightStraightFromTheEmitters) {
   const ThreePatches s;
   const RadiositySystem system{&s.f, &s.p, nullptr};
@@ -40,8 +40,8 @@ TEST(ReflectedIndirect, SubtractsTheLightStraightFromTheEmitters) {
   EXPECT_NEAR((*i)[2][1], 0.25, 1e-7);
   i = ReflectedIndirect(system, {Rgb{1.1, 1.1, 1.1}, Rgb{0.4, 0.4, 0.4}, Rgb{0.3, 0.3, 0.3}});
   ASSERT_TRUE(i.ok());
-  EXPECT_NEAR((*i)[1][0], 0.235, 1e-7);
-  EXPECT_NEAR((*i)[2][2], 0.245, 1e-7);
+  EXPECT_NEAR((*i)[1][0], 0.25, 1e-7);
+  EXPECT_NEAR((*i)[2][2], 0.25, 1e-7);
 }
 
 // A B below what the lamp alone gives is clamped at 0, never negative light.
@@ -73,9 +73,9 @@ TEST(ReflectedIndirect, ReadsStoredRowsAndRejectsBadSizes) {
 }
 
 // A closed unit cube lit by its ceiling (rho 0.5 everywhere): RunJob's I per patch is, at
-// convergence, rho times the irradiance from the patches that do not emit, read off the very
-// rows (sum over non-emitters j of F_ij B_j; the solve stops at 1e-9, the rows are floats:
-// within 1e-5 of B); and nothing when the caller says it draws no such picture.
+// convergence, rho times the irradiance from everything but emission, read off the very rows
+// (sum over j of F_ij (B_j - E_j); the solve stops at 1e-9, the rows are floats: within 1e-5
+// of B); and nothing when the caller says it draws no such picture.
 TEST(ReflectedIndirect, RunJobFillsItPerPatchWhenAsked) {
   JobOptions options;
   options.mesh.target_patches = 150;
@@ -88,13 +88,13 @@ TEST(ReflectedIndirect, RunJobFillsItPerPatchWhenAsked) {
   const std::vector<Rgb>& b = result->solve.radiosity;
   ASSERT_EQ(result->indirect.size(), result->job->mesh.size());
   for (uint32_t i = 0; i < p.size(); ++i) {
-    double from_others = 0;
+    double bounced_in = 0;
     const auto cols = result->form_factors.RowCols(i);
     const auto values = result->form_factors.RowValues(i);
     for (size_t k = 0; k < cols.size(); ++k) {
-      if (MaxComponent(p.emission[cols[k]]) == 0) from_others += values[k] * b[cols[k]][0];
+      bounced_in += values[k] * (b[cols[k]][0] - p.emission[cols[k]][0]);
     }
-    EXPECT_NEAR(result->indirect[i][0], p.reflectance[i][0] * from_others, 1e-5 * b[i][0]) << i;
+    EXPECT_NEAR(result->indirect[i][0], p.reflectance[i][0] * bounced_in, 1e-5 * b[i][0]) << i;
     EXPECT_LT(result->indirect[i][0], b[i][0] - p.emission[i][0] + 1e-12) << i;
   }
   options.find_indirect = false;

@@ -251,27 +251,29 @@ TEST(FinalGather, PlateUnderSmallEmitterMatchesClosedForm) {
 // The direct light per pixel on a plate that is a single patch: its B is one flat value (here
 // the plate's mean, as a solve would give), yet the picture follows the falloff under the lamp
 // pixel by pixel (a Gouraud picture would show one value: 9x the edge's at the centre). The
-// lamp shines with its B (here 1.1 E, as if it reflected a tenth more), not its E: the pixels
-// are 1.1 x 0.5 F(x). Tolerances as the gather's, 16 points a pixel.
+// plate's indirect light, regathered, is 0: the lamp reflects nothing (B = E) and the plate
+// sees nothing else. Tolerances as the gather's, 16 points a pixel.
 TEST(DirectPerPixel, OnePatchPlateFollowsTheFalloffUnderTheLamp) {
   const Gathered g(SceneFromObj(PlateUnderLamp()), 2);
   ASSERT_EQ(g.mesh.size(), 2u);
   std::vector<Rgb> b(g.mesh.size()), indirect(g.mesh.size(), Rgb{});
   for (uint32_t p = 0; p < g.mesh.size(); ++p) {
     const bool lamp = MaxComponent(g.attributes.emission[p]) > 0;
-    const double v = lamp ? 1.1 * std::numbers::pi : 0.5 * 0.001;
+    const double v = lamp ? std::numbers::pi : 0.5 * 0.001;
     b[p] = {v, v, v};
   }
   const Camera camera = AbovePlate();
-  ExpectPlateFalloff(g.RenderDirect(b, indirect, camera, 16), camera, 1.1, 0.02, 0.002);
+  ExpectPlateFalloff(g.RenderDirect(b, indirect, camera, 16), camera, 1.0, 0.02, 0.002);
 }
 
-// The closed furnace (B = 2 pi, E = pi, rho 0.5 on every face): I = B - E - rho sum F B = 0,
-// and each point shows (E + rho H) / pi with H the light samples' sum F_j B_j = 2 pi: radiance
-// 2, the light samples the only noise (as the gather's furnace: 2% a pixel, 0.5% the mean).
+// The closed furnace (B = 2 pi, E = pi, rho 0.5 on every face): each point shows
+// (E + I + rho H) / pi, H the light samples' sum F_j E_j = pi and I = B - E - rho sum F E =
+// pi / 2 (regathered where a pixel centre sees the patch, given to the rest): radiance 2, the
+// light samples the only noise (as the gather's furnace: 2% a pixel, 0.5% the mean).
 TEST(DirectPerPixel, ClosedFurnaceShowsB) {
   const Gathered cube(FurnaceCube(), 96);
-  const std::vector<Rgb> indirect(cube.mesh.size(), Rgb{});
+  const double half_pi = std::numbers::pi / 2;
+  const std::vector<Rgb> indirect(cube.mesh.size(), Rgb{half_pi, half_pi, half_pi});
   ExpectUniformRadiance(cube.RenderDirect(FurnaceB(cube.mesh), indirect, InsideUnitCube(), 16),
                         0.02, 0.005);
 }
