@@ -282,8 +282,10 @@ absl::StatusOr<Image> RenderFinalGather(const PatchMesh& mesh, const ShadingMesh
       !s.ok()) {
     return s;
   }
+  absl::StatusOr<VertexFit> fit = VertexFit::Build(mesh, shading);
+  if (!fit.ok()) return fit.status();
   absl::StatusOr<std::vector<Rgb>> at_vertex =
-      ReflectedAtVertices(mesh, shading, attributes, patch_radiosity);
+      ReflectedAtVertices(mesh, *fit, attributes, patch_radiosity);
   if (!at_vertex.ok()) return at_vertex.status();
   const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), true, camera);
   return RenderScene(scene, camera, SamplesPerPixel(options.rays), options);
@@ -305,11 +307,13 @@ absl::StatusOr<Image> RenderDirectPerPixel(const PatchMesh& mesh, const ShadingM
         absl::StrCat("direct light per pixel: ", patch_indirect.size(), " indirect values for ",
                      mesh.size(), " patches"));
   }
+  absl::StatusOr<VertexFit> fit = VertexFit::Build(mesh, shading);
+  if (!fit.ok()) return fit.status();
   absl::StatusOr<std::vector<Rgb>> indirect =
-      RegatherShownIndirect(mesh, shading, caster, attributes, patch_radiosity, patch_indirect,
-                            camera, options.seed, options.threads);
+      RegatherShownIndirect(mesh, *fit, caster, attributes, patch_radiosity, patch_indirect, camera,
+                            options.seed, options.threads);
   if (!indirect.ok()) return indirect.status();
-  absl::StatusOr<std::vector<Rgb>> at_vertex = VertexRadiosity(mesh, shading, *indirect);
+  absl::StatusOr<std::vector<Rgb>> at_vertex = fit->AtPositions(*indirect);
   if (!at_vertex.ok()) return at_vertex.status();
   const GatherScene scene(mesh, caster, attributes, *std::move(at_vertex), false, camera);
   return RenderScene(scene, camera, PixelSamples{options.rays, 0}, options);

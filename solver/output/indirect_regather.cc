@@ -8,7 +8,6 @@
 #include "solver/core/sampling.h"
 #include "solver/formfactor/row_builder.h"
 #include "solver/output/render.h"
-#include "solver/output/vertex_radiosity.h"
 
 namespace radflux {
 namespace {
@@ -48,8 +47,7 @@ void PatchRays(const PatchMesh& mesh, uint32_t p, uint64_t seed, double epsilon,
 
 }  // namespace
 
-absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh,
-                                                     const ShadingMesh& shading,
+absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh, const VertexFit& fit,
                                                      const PatchAttributes& attributes,
                                                      const std::vector<Rgb>& patch_radiosity) {
   if (patch_radiosity.size() != mesh.size() || attributes.size() != mesh.size()) {
@@ -63,7 +61,7 @@ absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh,
       reflected[p][b] = patch_radiosity[p][b] - attributes.emission[p][b];
     }
   }
-  return VertexRadiosity(mesh, shading, reflected);
+  return fit.AtPositions(reflected);
 }
 
 std::vector<uint32_t> PixelsPerPatch(const PatchMesh& mesh, const RayCaster& caster,
@@ -94,7 +92,7 @@ std::vector<uint32_t> PixelsPerPatch(const PatchMesh& mesh, const RayCaster& cas
 }
 
 absl::StatusOr<std::vector<Rgb>> RegatherShownIndirect(
-    const PatchMesh& mesh, const ShadingMesh& shading, const RayCaster& caster,
+    const PatchMesh& mesh, const VertexFit& fit, const RayCaster& caster,
     const PatchAttributes& attributes, const std::vector<Rgb>& patch_radiosity,
     const std::vector<Rgb>& patch_indirect, const Camera& camera, uint64_t seed, int threads) {
   if (patch_radiosity.size() != mesh.size() || patch_indirect.size() != mesh.size() ||
@@ -104,7 +102,7 @@ absl::StatusOr<std::vector<Rgb>> RegatherShownIndirect(
         " indirect values and ", attributes.size(), " attributes for ", mesh.size(), " patches"));
   }
   absl::StatusOr<std::vector<Rgb>> reflected =
-      ReflectedAtVertices(mesh, shading, attributes, patch_radiosity);
+      ReflectedAtVertices(mesh, fit, attributes, patch_radiosity);
   if (!reflected.ok()) return reflected.status();
 
   const std::vector<uint32_t> pixels = PixelsPerPatch(mesh, caster, camera, threads);

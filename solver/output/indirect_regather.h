@@ -22,7 +22,7 @@
 #include "solver/mesh/patch_attributes.h"
 #include "solver/mesh/patch_mesh.h"
 #include "solver/output/camera.h"
-#include "solver/output/shading_mesh.h"
+#include "solver/output/vertex_radiosity.h"
 #include "solver/raytrace/ray_caster.h"
 
 namespace radflux {
@@ -31,11 +31,10 @@ inline constexpr int kRegatherRaysPerPixel = 8;
 inline constexpr int kRegatherLeastRays = 64;
 inline constexpr int kRegatherMostRays = 4096;
 
-// R = B - E per mesh position, Gouraud-interpolated as VertexRadiosity interpolates B: what a
+// R = B - E per mesh position, Gouraud-interpolated by `fit` (VertexFit of the mesh): what a
 // gather ray takes from the front side it meets (W/m^2 per band). INVALID_ARGUMENT when the
 // sizes disagree.
-absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh,
-                                                     const ShadingMesh& shading,
+absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh, const VertexFit& fit,
                                                      const PatchAttributes& attributes,
                                                      const std::vector<Rgb>& patch_radiosity);
 
@@ -44,11 +43,11 @@ std::vector<uint32_t> PixelsPerPatch(const PatchMesh& mesh, const RayCaster& cas
                                      const Camera& camera, int threads);
 
 // I per patch (W/m^2 per band, >= 0): regathered as above for the patches `camera` shows,
-// `patch_indirect` (the solve's) for the rest. `caster` must report Embree's u,v; rays are
-// seeded per patch from `seed`, so the values do not depend on `threads` (0 = all cores).
-// INVALID_ARGUMENT when the sizes disagree.
+// `patch_indirect` (the solve's) for the rest; R interpolated by `fit`. `caster` must report
+// Embree's u,v; rays are seeded per patch from `seed`, so the values do not depend on `threads` (0
+// = all cores). INVALID_ARGUMENT when the sizes disagree.
 absl::StatusOr<std::vector<Rgb>> RegatherShownIndirect(
-    const PatchMesh& mesh, const ShadingMesh& shading, const RayCaster& caster,
+    const PatchMesh& mesh, const VertexFit& fit, const RayCaster& caster,
     const PatchAttributes& attributes, const std::vector<Rgb>& patch_radiosity,
     const std::vector<Rgb>& patch_indirect, const Camera& camera, uint64_t seed, int threads);
 

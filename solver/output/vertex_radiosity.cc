@@ -118,11 +118,7 @@ void FitPatches(const PatchMesh& mesh, const ShadingMesh& s, const JunctionPatch
   }
 }
 
-// A vertex's value as a linear combination of its fit patches' values.
-struct FitWeights {
-  std::vector<uint32_t> patches;
-  std::vector<double> weights;  // one per patch; they sum to 1
-};
+using FitWeights = VertexFit::Weights;
 
 // The farthest a vertex's value is extrapolated along a direction: its offset from the fit
 // patches' mean centroid, in standard deviations of their centroids along it (a grid's
@@ -201,56 +197,75 @@ std::vector<Rgb> ApplyFits(const std::vector<FitWeights>& fits, const std::vecto
 
 }  // namespace
 
-absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
-                                                       const ShadingMesh& shading,
-                                                       const std::vector<Rgb>& patch_radiosity) {
-  if (patch_radiosity.size() != mesh.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("radiosity has ", patch_radiosity.size(),
-                                                   " values for ", mesh.size(), " patches"));
-  }
-  if (shading.welded.size() != mesh.positions.size()) {
-    return absl::InvalidArgumentError("the shading mesh was built for another mesh");
-  }
+VertexFit::VertexFit(const PatchMesh& mesh, const ShadingMesh& shading)
+    : mesh_(&mesh), shading_(&shading), fits_(shading.size()), means_(mesh, shading) {
   const JunctionPatches junctions(shading);
-  std::vector<FitWeights> fits(shading.size());
   ParallelFor(static_cast<int64_t>(shading.size()), 4096, 0, [&](int64_t begin, int64_t end) {
     std::vector<uint32_t> patches;
     for (auto w = static_cast<uint32_t>(begin); w < end; ++w) {
       FitPatches(mesh, shading, junctions, w, patches);
-      fits[w] = PlaneFitWeights(mesh, patches, mesh.positions[shading.representative[w]],
-                                shading.normals[w]);
+      fits_[w] = PlaneFitWeights(mesh, patches, mesh.positions[shading.representative[w]],
+                                 shading.normals[w]);
     }
   });
+}
+
+absl::StatusOr<VertexFit> VertexFit::Build(const PatchMesh& mesh, const ShadingMesh& shading) {
+  if (shading.welded.size() != mesh.positions.size()) {
+    return absl::InvalidArgumentError("the shading mesh was built for another mesh");
+  }
+  return VertexFit(mesh, shading);
+}
+
+absl::StatusOr<std::vector<Rgb>> VertexFit::Welded(const std::vector<Rgb>& patch_radiosity) const {
+  if (patch_radiosity.size() != mesh_->size()) {
+    return absl::InvalidArgumentError(absl::StrCat("radiosity has ", patch_radiosity.size(),
+                                                   " values for ", mesh_->size(), " patches"));
+  }
   // The fit alone smooths: where B peaks (the middle of a lit wall) every patch's Gouraud
   // mean falls below its B, and a coarse wall's picture came out 2-3% dark. One correction
   // step fits the patches' deficits the same way and adds them, so the deficit left is
   // second order in the smoothing (and zero, as before, for a linear field).
-  const GouraudMeans means(mesh, shading);
-  std::vector<Rgb> values = ApplyFits(fits, patch_radiosity);
-  means.junctions.Apply(values);
-  std::vector<Rgb> deficit = means.Means(values);  // what Gouraud shading fails to carry
+  std::vector<Rgb> values = ApplyFits(fits_, patch_radiosity);
+  means_.junctions.Apply(values);
+  std::vector<Rgb> deficit = means_.Means(values);  // what Gouraud shading fails to carry
   for (size_t p = 0; p < deficit.size(); ++p) {
     for (int k = 0; k < kBands; ++k) deficit[p][k] = patch_radiosity[p][k] - deficit[p][k];
   }
-  const std::vector<Rgb> correction = ApplyFits(fits, deficit);
+  const std::vector<Rgb> correction = ApplyFits(fits_, deficit);
   for (size_t w = 0; w < values.size(); ++w) {
     for (int k = 0; k < kBands; ++k) values[w][k] = std::max(values[w][k] + correction[w][k], 0.0);
   }
-  means.junctions.Apply(values);
+  means_.junctions.Apply(values);
   // What the step leaves still moves light between neighbouring patches where B is curved
   // (under a lamp in a wall's plane, its second row of patches read 1.7% dark); the damped
   // matching takes all but 9% of the smooth part of it (gouraud_means.h).
-  MatchPatchMeans(mesh, means, patch_radiosity, values);
+  MatchPatchMeans(*mesh_, means_, patch_radiosity, values);
   return values;
+}
+
+absl::StatusOr<std::vector<Rgb>> VertexFit::AtPositions(
+    const std::vector<Rgb>& patch_radiosity) const {
+  auto welded = Welded(patch_radiosity);
+  if (!welded.ok()) return welded.status();
+  std::vector<Rgb> values(mesh_->positions.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = (*welded)[shading_->welded[i]];
+  return values;
+}
+
+absl::StatusOr<std::vector<Rgb>> WeldedVertexRadiosity(const PatchMesh& mesh,
+                                                       const ShadingMesh& shading,
+                                                       const std::vector<Rgb>& patch_radiosity) {
+  absl::StatusOr<VertexFit> fit = VertexFit::Build(mesh, shading);
+  if (!fit.ok()) return fit.status();
+  return fit->Welded(patch_radiosity);
 }
 
 absl::StatusOr<std::vector<Rgb>> VertexRadiosity(const PatchMesh& mesh, const ShadingMesh& shading,
                                                  const std::vector<Rgb>& patch_radiosity) {
-  auto welded = WeldedVertexRadiosity(mesh, shading, patch_radiosity);
-  if (!welded.ok()) return welded.status();
-  std::vector<Rgb> values(mesh.positions.size());
-  for (size_t i = 0; i < values.size(); ++i) values[i] = (*welded)[shading.welded[i]];
-  return values;
+  absl::StatusOr<VertexFit> fit = VertexFit::Build(mesh, shading);
+  if (!fit.ok()) return fit.status();
+  return fit->AtPositions(patch_radiosity);
 }
 
 }  // namespace radflux

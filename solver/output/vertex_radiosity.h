@@ -22,9 +22,34 @@
 #include "absl/status/statusor.h"
 #include "solver/core/bands.h"
 #include "solver/mesh/patch_mesh.h"
+#include "solver/output/gouraud_means.h"
 #include "solver/output/shading_mesh.h"
 
 namespace radflux {
+
+// The fit above for one mesh, built once (its weights and the Gouraud means' are geometry)
+// and applied to any field per patch: the default picture interpolates two (B - E where its
+// gather rays land, and the indirect light it shows). The mesh and shading mesh must outlive it.
+class VertexFit {
+ public:
+  // A vertex's value as a linear combination of its fit patches' values.
+  struct Weights {
+    std::vector<uint32_t> patches;
+    std::vector<double> weights;  // one per patch; they sum to 1
+  };
+  // Fails if `shading` was built for another mesh.
+  static absl::StatusOr<VertexFit> Build(const PatchMesh& mesh, const ShadingMesh& shading);
+  // Per welded vertex / per mesh position, as the functions below; fails on a size mismatch.
+  absl::StatusOr<std::vector<Rgb>> Welded(const std::vector<Rgb>& patch_radiosity) const;
+  absl::StatusOr<std::vector<Rgb>> AtPositions(const std::vector<Rgb>& patch_radiosity) const;
+
+ private:
+  VertexFit(const PatchMesh& mesh, const ShadingMesh& shading);
+  const PatchMesh* mesh_;
+  const ShadingMesh* shading_;
+  std::vector<Weights> fits_;  // per welded vertex
+  GouraudMeans means_;
+};
 
 // Radiosity per welded vertex (W/m^2 per band, >= 0) from radiosity per patch; one entry
 // per shading.size(). Fails if the sizes disagree.

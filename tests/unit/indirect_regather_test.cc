@@ -36,8 +36,9 @@ struct Regathered {
   }
   std::vector<Rgb> Indirect(const std::vector<Rgb>& b, const std::vector<Rgb>& solved,
                             const Camera& camera, int threads = 0) const {
-    absl::StatusOr<std::vector<Rgb>> i = RegatherShownIndirect(
-        mesh, shading, *caster, attributes, b, solved, camera, /*seed=*/1, threads);
+    const VertexFit fit = *VertexFit::Build(mesh, shading);
+    absl::StatusOr<std::vector<Rgb>> i = RegatherShownIndirect(mesh, fit, *caster, attributes, b,
+                                                               solved, camera, /*seed=*/1, threads);
     EXPECT_TRUE(i.ok()) << i.status();
     return i.ok() ? *i : std::vector<Rgb>(mesh.size());
   }
@@ -128,10 +129,11 @@ TEST(RegatherShownIndirect, PlateUnderAReflectorMatchesTheParallelSquares) {
 TEST(RegatherShownIndirect, RejectsBadSizes) {
   const Regathered cube(testing::FurnaceCube(), 6);
   const std::vector<Rgb> b(cube.mesh.size());
-  EXPECT_FALSE(RegatherShownIndirect(cube.mesh, cube.shading, *cube.caster, cube.attributes, b,
+  const VertexFit fit = *VertexFit::Build(cube.mesh, cube.shading);
+  EXPECT_FALSE(RegatherShownIndirect(cube.mesh, fit, *cube.caster, cube.attributes, b,
                                      std::vector<Rgb>(1), InsideUnitCube(), 1, 0)
                    .ok());
-  EXPECT_FALSE(RegatherShownIndirect(cube.mesh, cube.shading, *cube.caster, cube.attributes,
+  EXPECT_FALSE(RegatherShownIndirect(cube.mesh, fit, *cube.caster, cube.attributes,
                                      std::vector<Rgb>(1), b, InsideUnitCube(), 1, 0)
                    .ok());
 }
