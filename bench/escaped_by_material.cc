@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   const std::vector<radflux::Rgb>& b =
       clusters.empty() ? result->solve.radiosity : result->unknown_radiosity;
   std::vector<double> lost(copy.materials.size(), 0.0);
-  double emitted = 0, total = 0;
+  double emitted = 0, total = 0, first_flight = 0, reflected_by_emitters = 0;
   for (size_t i = 0; i < p.size(); ++i) {
     for (int c = 0; c < radflux::kBands; ++c) emitted += p.area[i] * p.emission[i][c] / 3;
   }
@@ -54,10 +54,18 @@ int main(int argc, char** argv) {
           const double out = p.area[i] * (b[i][0] + b[i][1] + b[i][2]) / 3 * (1 - sum);
           lost[material] += out;
           total += out;
+          if (radflux::MaxComponent(p.emission[i]) > 0) {
+            for (int c = 0; c < radflux::kBands; ++c) {
+              reflected_by_emitters += p.area[i] * (b[i][c] - p.emission[i][c]) / 3;
+            }
+          }
+          first_flight += p.area[i] * (p.emission[i][0] + p.emission[i][1] + p.emission[i][2]) /
+                          3 * (1 - sum);
         }
       });
   if (!read.ok()) return std::fprintf(stderr, "%s\n", read.ToString().c_str()), 1;
-  std::printf("total,%.5f\nmaterial,lost\n", total / emitted);
+  std::printf("total,%.5f\nfirst_flight,%.5f\nreflected_by_emitters,%.5f\nmaterial,lost\n",
+              total / emitted, first_flight / emitted, reflected_by_emitters / emitted);
   for (size_t m = 0; m < lost.size(); ++m) {
     if (lost[m] != 0) std::printf("%s,%.5f\n", copy.materials[m].name.c_str(), lost[m] / emitted);
   }

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
         mine.emitted[c] += one.emitted[c];
         mine.lost[c] += one.lost[c];
         mine.lost_leaving_emitters[c] += one.lost_leaving_emitters[c];
+        mine.lost_first_flight[c] += one.lost_first_flight[c];
+        mine.reflected_by_emitters[c] += one.reflected_by_emitters[c];
       }
       if (one.from_patch != radflux::kNoPatch) {
         const radflux::PatchMesh& mesh = (*tracer)->mesh();
@@ -64,12 +66,16 @@ int main(int argc, char** argv) {
       total.emitted[c] += t.emitted[c];
       total.lost[c] += t.lost[c];
       total.lost_leaving_emitters[c] += t.lost_leaving_emitters[c];
+      total.lost_first_flight[c] += t.lost_first_flight[c];
+      total.reflected_by_emitters[c] += t.reflected_by_emitters[c];
     }
   }
-  std::printf("band,lost,lost_leaving_emitters\n");
+  std::printf("band,lost,lost_leaving_emitters,lost_first_flight,reflected_by_emitters\n");
   for (int c = 0; c < radflux::kBands; ++c) {
-    std::printf("%d,%.5f,%.5f\n", c, total.lost[c] / total.emitted[c],
-                total.lost_leaving_emitters[c] / total.emitted[c]);
+    std::printf("%d,%.5f,%.5f,%.5f,%.5f\n", c, total.lost[c] / total.emitted[c],
+                total.lost_leaving_emitters[c] / total.emitted[c],
+                total.lost_first_flight[c] / total.emitted[c],
+                total.reflected_by_emitters[c] / total.emitted[c]);
   }
   std::printf("material,lost\n");
   for (size_t m = 0; m < scene->materials.size(); ++m) {

@@ -211,8 +211,11 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
   for (int c = 0; c < kBands; ++c) weight[c] = e[c] / MeanComponent(e);
   loss.emitted = weight;
   Vec3 x = PatchPointSampler(mesh_, p)({Uniform(rng), Uniform(rng)});
-  for (;;) {
+  for (bool first_flight = true;; first_flight = false) {
     const Vec3 n = mesh_.patches[p].normal;
+    if (!first_flight && MaxComponent(MaterialOf(p).emission) > 0) {
+      for (int c = 0; c < kBands; ++c) loss.reflected_by_emitters[c] += weight[c];
+    }
     const Vec3 w =
         Frame::FromNormal(n).ToWorld(SampleCosineHemisphere({Uniform(rng), Uniform(rng)}));
     const Hit hit = caster_->Intersect({x + n * epsilon_, w, 0, INFINITY});
@@ -221,6 +224,7 @@ ReferenceTracer::Loss ReferenceTracer::TraceLoss(ReferenceRng& rng) const {
       for (int c = 0; c < kBands; ++c) {
         loss.lost[c] += weight[c];
         if (from_emitter) loss.lost_leaving_emitters[c] += weight[c];
+        if (first_flight) loss.lost_first_flight[c] += weight[c];
       }
       loss.from_patch = p;
       return loss;

@@ -63,12 +63,15 @@ class ReferenceTracer {
   void TraceParticle(ReferenceRng& rng, std::vector<double>& incident) const;
   // Where one particle's light ends that no front side takes in: per band, its share of the
   // particle's power (start E_b / mean E over bands) lost on a back side or in the void, and
-  // of it, what was lost on a flight from an emitter's face, and that flight's patch. Reflected
+  // of it, what was lost on a flight from an emitter's face (and on the emitted flight itself,
+  // before any reflection), and that flight's patch. Reflected
   // with the band's rho (Russian roulette on the largest band's weight). The means over many
   // particles are shares of the emitted power.
   struct Loss {
     Rgb emitted{};  // the particle's starting weight per band (its band's share of the power)
-    Rgb lost{}, lost_leaving_emitters{};
+    Rgb lost{}, lost_leaving_emitters{}, lost_first_flight{};
+    Rgb reflected_by_emitters{};  // the power it carried on flights that left an emitter's
+                                  // face after a reflection there
     uint32_t from_patch = kNoPatch;  // one particle's: the patch its lost flight left
   };
   Loss TraceLoss(ReferenceRng& rng) const;
