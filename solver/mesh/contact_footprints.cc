@@ -145,8 +145,9 @@ bool AlongBorder(const FaceGeometry& receiver, const Vec3& a, const Vec3& b, dou
   return false;
 }
 
+// `feet` gets the index of each such edge in the stander's polygon.
 void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, uint32_t face,
-                     double tol, std::vector<ContactEdge>& out) {
+                     double tol, std::vector<ContactEdge>& out, std::vector<int>& feet) {
   if (std::abs(Dot(receiver.normal, stander.normal)) > 1 - 1e-9) return;
   const std::vector<Vec3>& p = stander.polygon;
   for (const Vec3& q : p) {
@@ -161,6 +162,7 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
     }
     const bool normal_left = Dot(Cross(receiver.normal, b - a), stander.normal) > 0;
     out.push_back(normal_left ? ContactEdge{b, a, face} : ContactEdge{a, b, face});
+    feet.push_back(static_cast<int>(i));
   }
 }
 
@@ -355,7 +357,7 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
         std::max({tol, kCoverGap * std::sqrt(faces[s].area), faces[s].emits ? faces[s].width : 0});
     receiver_grid.ForBox(faces[s].box.Padded(reach), [&](uint32_t r) {
       if (r == s) return;
-      AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
+      AddContactEdges(faces[r], faces[s], s, tol, edges[r], contacts[s].feet);
       Cover cover = CoverOf(faces[r], faces[s], tol);
       if (cover.kind == CoverKind::kHides) {
         contacts[r].footprints.push_back(std::move(cover.polygon));
@@ -363,6 +365,10 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
         contacts[r].slots.push_back(std::move(cover.polygon));
       }
     });
+  }
+  for (FaceContacts& c : contacts) {
+    std::sort(c.feet.begin(), c.feet.end());
+    c.feet.erase(std::unique(c.feet.begin(), c.feet.end()), c.feet.end());
   }
   FaceGrid lid_grid(faces, scene_box, std::move(all));
   for (uint32_t r : receivers) {

@@ -262,6 +262,47 @@ Vec3 MeshFaceGrid(const Scene& scene, uint32_t f, const std::vector<Vec3>& polyg
   return normal;
 }
 
+// A face standing on another (a block's side on the floor) is lit less and less towards the
+// concave corner at its foot, fastest within about a patch of it (the floor it sees there is
+// the strip its own solid shadows); its first row of patches is cut this fraction of its
+// patch edge from the foot, so that the row's flat B does not spread that falloff over a
+// whole patch: the Cornell box's short block read 0.48% dark against Cycles with rows of
+// 55 mm, its picture ringing from -15% to +40% above its foot; 0.04% with the strip.
+constexpr double kFootStrip = 1.0 / 3;
+
+// Adds to `cuts` the foot strips of the quads whose contacts name feet (FaceContacts::feet),
+// at edge length h, and points their extents at them. A face not taller than three strips (a
+// row) keeps its rows; emitters keep theirs (their B is almost all their own E).
+void AddFootCuts(const Scene& scene, const std::vector<FaceContacts>& contacts, double h,
+                 std::vector<FaceExtent>& extents, QuadCutsByFace& cuts) {
+  if (!(h > 0)) return;  // one patch a face (MeshOptions with neither count nor edge)
+  std::vector<Vec3> polygon;
+  for (uint32_t f = 0; f < extents.size(); ++f) {
+    if (!extents[f].quad || extents[f].emitter || contacts[f].feet.empty()) continue;
+    FacePolygonInto(scene, scene.faces[f], polygon);
+    const double strip = kFootStrip * FaceEdgeLength(extents[f], h);
+    QuadCuts added = cuts.count(f) > 0 ? cuts.at(f) : QuadCuts{};
+    for (int edge : contacts[f].feet) {
+      // Edges 0 and 2 run along u (at v = 0 and 1), edges 1 and 3 along v (at u = 1 and 0).
+      const bool along_u = edge % 2 == 0;
+      const double across = Length(along_u ? polygon[3] - polygon[0] : polygon[1] - polygon[0]);
+      const double t = strip / across;
+      if (!(t > 0 && t < kFootStrip)) continue;
+      std::vector<double>& lines = along_u ? added.v : added.u;
+      const double at = edge == 0 || edge == 3 ? t : 1 - t;
+      const auto next = std::lower_bound(lines.begin(), lines.end(), at);
+      if ((next != lines.end() && *next - at < 1e-9) ||
+          (next != lines.begin() && at - *(next - 1) < 1e-9)) {
+        continue;
+      }
+      lines.insert(next, at);
+    }
+    if (added.u.empty() && added.v.empty()) continue;
+    cuts[f] = std::move(added);
+    extents[f].cuts = &cuts.at(f);
+  }
+}
+
 // Meshes face f at edge length h into `mesh` (its patches and positions appended), cut
 // along its contacts.
 void MeshFace(const Scene& scene, uint32_t f, const std::vector<Vec3>& polygon,
@@ -317,7 +358,7 @@ double TotalFaceArea(const Scene& scene) {
 }
 
 absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& options,
-                                         const QuadCutsByFace& cuts) {
+                                         const QuadCutsByFace& given_cuts) {
   if (options.target_patches < 0 || options.max_edge < 0 || !std::isfinite(options.max_edge)) {
     return absl::InvalidArgumentError("patch count and max edge length must be >= 0");
   }
@@ -328,6 +369,7 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
     FacePolygonInto(scene, face, polygon);
     extents.push_back(MeasureExtent(polygon, scene.materials[face.material].IsEmitter()));
   }
+  QuadCutsByFace cuts = given_cuts;  // and the foot strips below; its nodes do not move
   for (const auto& [f, face_cuts] : cuts) {
     if (f >= scene.faces.size()) {
       return absl::InvalidArgumentError(
@@ -358,6 +400,7 @@ absl::StatusOr<PatchMesh> SubdivideScene(const Scene& scene, const MeshOptions& 
                                                  : std::vector<FaceContacts>(scene.faces.size());
   const double h =
       ContactAwareEdgeLength(scene, extents, contacts, options, ChooseEdgeLength(extents, options));
+  AddFootCuts(scene, contacts, h, extents, cuts);
   PatchMesh mesh;
   mesh.face_first_patch.reserve(scene.faces.size() + 1);
   mesh.face_first_vertex.reserve(scene.faces.size() + 1);

@@ -101,6 +101,56 @@ TEST(ContactFootprints, AnOpenTubeHasLinesOnlyALiftedBlockNothing) {
   EXPECT_EQ(CountLines(lifted), 0u);
 }
 
+// Each of the block's four sides stands on the floor by its first edge (a -> b); the lid, the
+// walls (on the floor's border) and the floor itself stand on nothing.
+TEST(ContactFootprints, TheBlocksSidesKnowTheirFeet) {
+  const std::vector<FaceContacts> contacts =
+      FindContacts(testing::SceneFromObj(FloorAndBlock({}, /*room_walls=*/true)));
+  ASSERT_EQ(contacts.size(), 11u);  // floor, 4 sides, lid, 4 walls, lamp
+  for (uint32_t f = 1; f <= 4; ++f) EXPECT_EQ(contacts[f].feet, std::vector<int>{0}) << f;
+  for (uint32_t f : {0u, 5u, 6u, 7u, 8u, 9u, 10u}) EXPECT_TRUE(contacts[f].feet.empty()) << f;
+}
+
+// At a patch edge of 1 the block's sides (3 high, sqrt(18) wide) get a row 1/3 high along
+// their foot (kFootStrip), then rows as the edge length asks: their lowest patches end at
+// y = 1/3 and the next row's at y = 1/3 + 8/9 (3 rows over the other 8/3). A lifted block's
+// sides stand on nothing and keep 3 even rows. With neither a count nor an edge (the
+// hierarchical solver's roots) every face stays one patch: no strip of zero height.
+TEST(ContactMeshing, ASidesFirstRowIsAStripAlongItsFoot) {
+  for (const double lift : {0.0, 0.5}) {
+    const Scene scene = testing::SceneFromObj(FloorAndBlock({.lift = lift, .lid = true}, false));
+    MeshOptions options;
+    options.max_edge = 1;
+    absl::StatusOr<PatchMesh> mesh = SubdivideScene(scene, options);
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    for (uint32_t f = 1; f <= 4; ++f) {
+      std::vector<double> heights;  // distinct patch corner heights above the block's foot
+      for (uint32_t p = mesh->face_first_patch[f]; p < mesh->face_first_patch[f + 1]; ++p) {
+        for (int k = 0; k < mesh->patches[p].VertexCount(); ++k) {
+          const double y = mesh->Vertex(p, k).y - lift;
+          if (std::none_of(heights.begin(), heights.end(),
+                           [&](double h) { return std::abs(h - y) < 1e-9; })) {
+            heights.push_back(y);
+          }
+        }
+      }
+      std::sort(heights.begin(), heights.end());
+      const std::vector<double> expected =
+          lift == 0 ? std::vector<double>{0, 1.0 / 3, 1.0 / 3 + 8.0 / 9, 1.0 / 3 + 16.0 / 9, 3}
+                    : std::vector<double>{0, 1, 2, 3};
+      ASSERT_EQ(heights.size(), expected.size()) << "face " << f << " lift " << lift;
+      for (size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(heights[k], expected[k], 1e-9);
+    }
+  }
+  const Scene scene = testing::SceneFromObj(FloorAndBlock({}, false));
+  absl::StatusOr<PatchMesh> roots = SubdivideScene(scene, MeshOptions{});
+  ASSERT_TRUE(roots.ok()) << roots.status();
+  for (uint32_t f = 1; f <= 4; ++f) {
+    ASSERT_EQ(roots->face_first_patch[f + 1] - roots->face_first_patch[f], 1u) << f;
+    EXPECT_NEAR(roots->patches[roots->face_first_patch[f]].area, 3 * std::sqrt(18.0), 1e-9);
+  }
+}
+
 // A 10 x 10 ceiling at y = 5 facing down and a 2 x 2 lamp `gap` below it, facing down (its
 // back to the ceiling) or up.
 Scene CeilingAndLamp(double gap, bool lamp_faces_down) {
