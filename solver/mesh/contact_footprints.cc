@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <unordered_map>
+#include <utility>
 
 #include "solver/mesh/footprint_polygons.h"
 
@@ -118,6 +119,7 @@ class FaceGrid {
 struct ContactEdge {
   Vec3 a, b;
   uint32_t face = 0;
+  int edge = 0;  // its index in the face's polygon (i -> i + 1)
 };
 
 double LongestEdge(const std::vector<Vec3>& polygon) {
@@ -145,9 +147,8 @@ bool AlongBorder(const FaceGeometry& receiver, const Vec3& a, const Vec3& b, dou
   return false;
 }
 
-// `feet` gets the index of each such edge in the stander's polygon.
 void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, uint32_t face,
-                     double tol, std::vector<ContactEdge>& out, std::vector<int>& feet) {
+                     double tol, std::vector<ContactEdge>& out) {
   if (std::abs(Dot(receiver.normal, stander.normal)) > 1 - 1e-9) return;
   const std::vector<Vec3>& p = stander.polygon;
   for (const Vec3& q : p) {
@@ -161,8 +162,8 @@ void AddContactEdges(const FaceGeometry& receiver, const FaceGeometry& stander, 
       continue;
     }
     const bool normal_left = Dot(Cross(receiver.normal, b - a), stander.normal) > 0;
-    out.push_back(normal_left ? ContactEdge{b, a, face} : ContactEdge{a, b, face});
-    feet.push_back(static_cast<int>(i));
+    const int edge = static_cast<int>(i);
+    out.push_back(normal_left ? ContactEdge{b, a, face, edge} : ContactEdge{a, b, face, edge});
   }
 }
 
@@ -299,9 +300,11 @@ bool HasLid(const Scene& scene, const std::vector<FaceGeometry>& faces, FaceGrid
 
 // The contacts of receiver r from its contact edges: the loops that are feet of solids (a
 // lid above them; `lids` a grid of every face) become footprints, the rest lines.
+// `feet` gets (face, edge) for each edge of a footprint's loop: a solid's side and its foot.
 void AddFootprintsAndLines(const Scene& scene, const std::vector<FaceGeometry>& faces,
                            FaceGrid& lids, uint32_t r, const std::vector<ContactEdge>& edges,
-                           double diagonal, double tol, FaceContacts& contacts) {
+                           double diagonal, double tol, FaceContacts& contacts,
+                           std::vector<std::pair<uint32_t, int>>& feet) {
   std::vector<bool> in_foot(edges.size(), false);
   std::vector<ContactSegment> foot_edges;
   for (const std::vector<size_t>& loop : ChainLoops(edges, tol)) {
@@ -321,6 +324,7 @@ void AddFootprintsAndLines(const Scene& scene, const std::vector<FaceGeometry>& 
     for (size_t e : loop) {
       in_foot[e] = true;
       foot_edges.push_back({edges[e].a, edges[e].b});
+      feet.emplace_back(edges[e].face, edges[e].edge);
     }
     contacts.footprints.push_back(std::move(polygon));
   }
@@ -357,7 +361,7 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
         std::max({tol, kCoverGap * std::sqrt(faces[s].area), faces[s].emits ? faces[s].width : 0});
     receiver_grid.ForBox(faces[s].box.Padded(reach), [&](uint32_t r) {
       if (r == s) return;
-      AddContactEdges(faces[r], faces[s], s, tol, edges[r], contacts[s].feet);
+      AddContactEdges(faces[r], faces[s], s, tol, edges[r]);
       Cover cover = CoverOf(faces[r], faces[s], tol);
       if (cover.kind == CoverKind::kHides) {
         contacts[r].footprints.push_back(std::move(cover.polygon));
@@ -366,14 +370,16 @@ std::vector<FaceContacts> FindContacts(const Scene& scene, double min_receiver_a
       }
     });
   }
+  FaceGrid lid_grid(faces, scene_box, std::move(all));
+  std::vector<std::pair<uint32_t, int>> feet;
+  for (uint32_t r : receivers) {
+    AddFootprintsAndLines(scene, faces, lid_grid, r, edges[r], diagonal, tol, contacts[r], feet);
+    contacts[r].slots = JoinedConvexPolygons(std::move(contacts[r].slots), faces[r].normal, tol);
+  }
+  for (const auto& [face, edge] : feet) contacts[face].feet.push_back(edge);
   for (FaceContacts& c : contacts) {
     std::sort(c.feet.begin(), c.feet.end());
     c.feet.erase(std::unique(c.feet.begin(), c.feet.end()), c.feet.end());
-  }
-  FaceGrid lid_grid(faces, scene_box, std::move(all));
-  for (uint32_t r : receivers) {
-    AddFootprintsAndLines(scene, faces, lid_grid, r, edges[r], diagonal, tol, contacts[r]);
-    contacts[r].slots = JoinedConvexPolygons(std::move(contacts[r].slots), faces[r].normal, tol);
   }
   return contacts;
 }

@@ -28,8 +28,10 @@ struct FaceContacts {
   std::vector<ContactSegment> lines;  // the other contact edges: cut along, both sides kept
   std::vector<Footprint> slots;       // under an emitter facing the face: cut along, kept,
                                       // hidden from view (Patch::hidden)
-  std::vector<int> feet;  // this face's own edges (i -> i + 1) that stand on a receiver's
-                          // front: the mesher cuts a strip along them (subdivide.h)
+  std::vector<int> feet;  // this face's own edges (i -> i + 1) that are a footprint's, the
+                          // face a side of a solid resting on a receiver: the mesher cuts a
+                          // strip along them (subdivide.h). A partition's or a wall's foot is
+                          // no foot here: strips along office2's walls made its floor noisy.
   // No cuts into this face (its feet cut only a strip of its own grid).
   bool empty() const { return footprints.empty() && lines.empty() && slots.empty(); }
 };

@@ -262,8 +262,8 @@ Vec3 MeshFaceGrid(const Scene& scene, uint32_t f, const std::vector<Vec3>& polyg
   return normal;
 }
 
-// A face standing on another (a block's side on the floor) is lit less and less towards the
-// concave corner at its foot, fastest within about a patch of it (the floor it sees there is
+// A side of a solid resting on a face (a block's side on the floor) is lit less and less towards
+// the concave corner at its foot, fastest within about a patch of it (the floor it sees there is
 // the strip its own solid shadows); its first row of patches is cut this fraction of its
 // patch edge from the foot, so that the row's flat B does not spread that falloff over a
 // whole patch: the Cornell box's short block read 0.48% dark against Cycles with rows of

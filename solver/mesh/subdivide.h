@@ -41,8 +41,8 @@ double TotalFaceArea(const Scene& scene);
 // larger convex polygons into a fan of subdivided triangles around their centroid. Where a
 // closed solid rests on a face (contact_footprints.h), the face's patches are cut along the
 // solid's outline and the part under it is left out, and along the foot of a face standing on
-// it that closes no such loop (a partition) (contact_clip.h); a quad standing on a face gets a
-// first row a third of its patch edge high along its foot (subdivide.cc, kFootStrip): with
+// it that closes no such loop (a partition) (contact_clip.h); a quad side of such a solid gets
+// a first row a third of its patch edge high along its foot (subdivide.cc, kFootStrip): with
 // follow_contacts, on the
 // faces of at least min_contact_area, and with at least as many faces as target_patches (one
 // patch a face) only on faces of total area / target_patches or more. A scene of more faces

@@ -102,8 +102,13 @@ TEST(ContactFootprints, AnOpenTubeHasLinesOnlyALiftedBlockNothing) {
 }
 
 // Each of the block's four sides stands on the floor by its first edge (a -> b); the lid, the
-// walls (on the floor's border) and the floor itself stand on nothing.
+// walls (on the floor's border) and the floor itself stand on nothing. An open tube's sides
+// stand on the floor too, but are no solid's: no feet.
 TEST(ContactFootprints, TheBlocksSidesKnowTheirFeet) {
+  for (const FaceContacts& c :
+       FindContacts(testing::SceneFromObj(FloorAndBlock({.lift = 0, .lid = false}, false)))) {
+    EXPECT_TRUE(c.feet.empty());
+  }
   const std::vector<FaceContacts> contacts =
       FindContacts(testing::SceneFromObj(FloorAndBlock({}, /*room_walls=*/true)));
   ASSERT_EQ(contacts.size(), 11u);  // floor, 4 sides, lid, 4 walls, lamp
