@@ -130,24 +130,18 @@ void GatherScene::CastPrimary(int y, const PixelSamples& samples, uint64_t seed,
 }
 
 Rgb GatherScene::PointRadiance(const Point& point, const Secondary& secondary) const {
-  Rgb direct{}, indirect{};  // H_direct's sample, H_indirect's samples summed, W/m^2 per band
+  Rgb direct{};  // H_direct's sample, W/m^2 per band
   for (size_t i = point.light_begin; i < point.light_end; ++i) {
     if (secondary.light_rays[i].Occluded()) continue;
     const LightSampler::PendingSample& sample = secondary.pending[i];
     const Rgb& e = lights_.emission[sample.emitter];
     for (int b = 0; b < kBands; ++b) direct[b] += e[b] * sample.form_factor;
   }
-  for (size_t i = point.gather_begin; i < point.gather_end; ++i) {
-    const StreamRay& g = secondary.gather_rays[i];
-    const uint32_t q = g.FrontPatch();
-    if (q == kNoPatch || q >= mesh_.size()) continue;
-    Hit hit;
-    hit.patch = q;
-    hit.u = g.u;
-    hit.v = g.v;
-    const Rgb r = InterpolateAtHit(mesh_, at_vertex_, hit);
-    for (int b = 0; b < kBands; ++b) indirect[b] += std::max(0.0, r[b]);
-  }
+  // H_indirect's samples summed
+  const Rgb indirect =
+      SumMetReflected(mesh_, at_vertex_,
+                      std::span<const StreamRay>(secondary.gather_rays)
+                          .subspan(point.gather_begin, point.gather_end - point.gather_begin));
   const Rgb& rho = attributes_.reflectance[point.patch];
   const Rgb& e = attributes_.emission[point.patch];
   Rgb radiance;

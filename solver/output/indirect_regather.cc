@@ -1,7 +1,6 @@
 #include "solver/output/indirect_regather.h"
 
 #include <algorithm>
-#include <cstdlib>
 
 #include "absl/strings/str_cat.h"
 #include "solver/core/parallel.h"
@@ -62,6 +61,22 @@ absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh, cons
     }
   }
   return fit.AtPositions(reflected);
+}
+
+Rgb SumMetReflected(const PatchMesh& mesh, const std::vector<Rgb>& at_vertex,
+                    std::span<const StreamRay> rays) {
+  Rgb sum{};
+  for (const StreamRay& ray : rays) {
+    const uint32_t q = ray.FrontPatch();
+    if (q == kNoPatch || q >= mesh.size()) continue;
+    Hit hit;
+    hit.patch = q;
+    hit.u = ray.u;
+    hit.v = ray.v;
+    const Rgb r = InterpolateAtHit(mesh, at_vertex, hit);
+    for (int b = 0; b < kBands; ++b) sum[b] += std::max(0.0, r[b]);
+  }
+  return sum;
 }
 
 std::vector<uint32_t> PixelsPerPatch(const PatchMesh& mesh, const RayCaster& caster,
@@ -127,17 +142,9 @@ absl::StatusOr<std::vector<Rgb>> RegatherShownIndirect(
                 for (int64_t p = begin; p < end; ++p) {
                   const size_t from = first[p - begin], to = first[p - begin + 1];
                   if (from == to) continue;
-                  Rgb sum{};
-                  for (size_t k = from; k < to; ++k) {
-                    const uint32_t q = stream[k].FrontPatch();
-                    if (q == kNoPatch || q >= mesh.size()) continue;
-                    Hit hit;
-                    hit.patch = q;
-                    hit.u = stream[k].u;
-                    hit.v = stream[k].v;
-                    const Rgb r = InterpolateAtHit(mesh, *reflected, hit);
-                    for (int b = 0; b < kBands; ++b) sum[b] += std::max(0.0, r[b]);
-                  }
+                  const Rgb sum =
+                      SumMetReflected(mesh, *reflected,
+                                      std::span<const StreamRay>(stream).subspan(from, to - from));
                   const Rgb& rho = attributes.reflectance[p];
                   for (int b = 0; b < kBands; ++b) {
                     indirect[p][b] = rho[b] * sum[b] / static_cast<double>(to - from);

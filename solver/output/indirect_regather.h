@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -37,6 +38,12 @@ inline constexpr int kRegatherMostRays = 4096;
 absl::StatusOr<std::vector<Rgb>> ReflectedAtVertices(const PatchMesh& mesh, const VertexFit& fit,
                                                      const PatchAttributes& attributes,
                                                      const std::vector<Rgb>& patch_radiosity);
+
+// The sum over traced `rays` of the reflected radiosity each meets: `at_vertex` (one value per
+// mesh position, e.g. ReflectedAtVertices') interpolated where it meets a front side, at
+// least 0; nothing for a miss or a back side. A gather's estimate of H is this over the count.
+Rgb SumMetReflected(const PatchMesh& mesh, const std::vector<Rgb>& at_vertex,
+                    std::span<const StreamRay> rays);
 
 // Per patch, how many of `camera`'s pixel-centre rays meet its front side.
 std::vector<uint32_t> PixelsPerPatch(const PatchMesh& mesh, const RayCaster& caster,

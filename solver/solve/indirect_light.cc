@@ -14,8 +14,6 @@ absl::StatusOr<std::vector<Rgb>> ReflectedIndirect(const RadiositySystem& system
     return absl::InvalidArgumentError(
         absl::StrCat("indirect light: ", b.size(), " radiosities for ", p.size(), " unknowns"));
   }
-  std::vector<uint8_t> emits(p.size());
-  for (size_t j = 0; j < p.size(); ++j) emits[j] = MaxComponent(p.emission[j]) > 0;
   std::vector<Rgb> indirect(p.size(), Rgb{});
   const absl::Status read =
       ForEachRows(system.form_factors, system.row_store, [&](const RowsView& rows) {
@@ -25,7 +23,6 @@ absl::StatusOr<std::vector<Rgb>> ReflectedIndirect(const RadiositySystem& system
           const auto cols = rows.RowCols(i);
           const auto values = rows.RowValues(i);
           for (size_t k = 0; k < cols.size(); ++k) {
-            if (!emits[cols[k]]) continue;
             for (int band = 0; band < kBands; ++band)
               direct[band] += values[k] * p.emission[cols[k]][band];
           }

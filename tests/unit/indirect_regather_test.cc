@@ -9,31 +9,19 @@
 #include <numeric>
 #include <vector>
 
-#include "solver/mesh/patch_attributes.h"
-#include "solver/mesh/subdivide.h"
-#include "solver/raytrace/embree_ray_caster.h"
 #include "tests/unit/hierarchical_test_scenes.h"
 #include "tests/unit/howell_closed_forms.h"
+#include "tests/unit/picture_test_scenes.h"
 #include "tests/unit/test_scenes.h"
 
 namespace radflux {
 namespace {
 
-struct Regathered {
-  Scene scene;
-  PatchMesh mesh;
-  PatchAttributes attributes;
-  ShadingMesh shading;
-  std::unique_ptr<EmbreeRayCaster> caster;
+using testing::InsideUnitCube;
 
-  Regathered(Scene s, int64_t patches) : scene(std::move(s)) {
-    MeshOptions options;
-    options.target_patches = patches;
-    mesh = *SubdivideScene(scene, options);
-    attributes = ComputePatchAttributes(scene, mesh);
-    shading = *BuildShadingMesh(mesh, FaceMaterials(scene));
-    caster = *EmbreeRayCaster::Create(mesh);
-  }
+// A meshed scene's regathered indirect light, seeded with 1.
+struct Regathered : testing::MeshedScene {
+  using MeshedScene::MeshedScene;
   std::vector<Rgb> Indirect(const std::vector<Rgb>& b, const std::vector<Rgb>& solved,
                             const Camera& camera, int threads = 0) const {
     const VertexFit fit = *VertexFit::Build(mesh, shading);
@@ -43,15 +31,6 @@ struct Regathered {
     return i.ok() ? *i : std::vector<Rgb>(mesh.size());
   }
 };
-
-Camera InsideUnitCube() {
-  Camera camera;
-  camera.position = {0.5, 0.5, 0.05};
-  camera.look_at = {0.5, 0.5, 1};
-  camera.vertical_fov_degrees = 80;
-  camera.width = camera.height = 32;
-  return camera;
-}
 
 // Every pixel centre of a camera inside a closed cube meets one patch's front: the counts
 // add up to the pixels.

@@ -13,30 +13,19 @@
 #include "solver/output/gather_lights.h"
 #include "solver/raytrace/embree_ray_caster.h"
 #include "tests/unit/hierarchical_test_scenes.h"
+#include "tests/unit/picture_test_scenes.h"
 #include "tests/unit/test_scenes.h"
 
 namespace radflux {
 namespace {
 
 using testing::FurnaceCube;
+using testing::InsideUnitCube;
 using testing::ObjQuad;
 using testing::SceneFromObj;
 
-struct Gathered {
-  Scene scene;
-  PatchMesh mesh;
-  PatchAttributes attributes;
-  ShadingMesh shading;
-  std::unique_ptr<EmbreeRayCaster> caster;
-
-  Gathered(Scene s, int64_t patches) : scene(std::move(s)) {
-    MeshOptions options;
-    options.target_patches = patches;
-    mesh = *SubdivideScene(scene, options);
-    attributes = ComputePatchAttributes(scene, mesh);
-    shading = *BuildShadingMesh(mesh, FaceMaterials(scene));
-    caster = *EmbreeRayCaster::Create(mesh);
-  }
+struct Gathered : testing::MeshedScene {
+  using MeshedScene::MeshedScene;
   Image RenderDirect(const std::vector<Rgb>& b, const std::vector<Rgb>& indirect,
                      const Camera& camera, int points) const {
     GatherOptions options;
@@ -56,15 +45,6 @@ struct Gathered {
     return image.ok() ? *image : Image{};
   }
 };
-
-Camera InsideUnitCube() {
-  Camera camera;
-  camera.position = {0.5, 0.5, 0.05};
-  camera.look_at = {0.5, 0.5, 1};
-  camera.vertical_fov_degrees = 80;
-  camera.width = camera.height = 32;
-  return camera;
-}
 
 // Unit cube, rho 0.5, E = pi on every face: B = E / (1 - rho) = 2 pi, radiance 2. Given that
 // exact B, a gathered path's radiance is (E + rho (E F^ + (B - E))) / pi = 1.5 + 0.5 F^, with F^
